@@ -1,0 +1,513 @@
+"""Exact real-root isolation and sign decisions for univariate rational polynomials.
+
+Every "for all w" question of the toolkit ends here: a polynomial in ``c = cos(wT)`` on
+``[-1, 1]`` or in ``x = w**2`` on ``[0, oo)``. Roots are isolated exactly by Descartes' rule of
+signs with bisection (the Vincent–Collins–Akritas method) on python-flint integer polynomials,
+so an answer is a proof: an isolating interval with rational endpoints contains exactly one root,
+and a sign is decided by exact rational evaluation.
+
+>>> import flint
+>>> p = flint.fmpq_poly([-1, 0, 2])          # 2c**2 - 1, roots +-1/sqrt(2)
+>>> [r.approx(10) for r in real_roots(p, -1, 1)]
+['-0.7071067812', '0.7071067812']
+>>> nonnegative_on(p, -1, 1)
+NonnegativeResult(holds=False, witness=0)
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from fractions import Fraction
+from typing import Any
+
+import flint
+import mpmath
+import sympy as sp
+
+__all__ = [
+    "RealRoot",
+    "NonnegativeResult",
+    "Minimum",
+    "as_fmpq_poly",
+    "as_fmpq",
+    "real_roots",
+    "sign_at",
+    "nonnegative_on",
+    "minimise_rational",
+    "cauchy_bound",
+]
+
+Number = int | Fraction | flint.fmpq | sp.Rational
+
+
+def as_fmpq(value: Any) -> flint.fmpq:
+    """Exact conversion of an integer/rational (Python, SymPy or flint) to ``flint.fmpq``."""
+    if isinstance(value, flint.fmpq):
+        return value
+    if isinstance(value, (int, flint.fmpz)):
+        return flint.fmpq(value)
+    if isinstance(value, Fraction):
+        return flint.fmpq(value.numerator, value.denominator)
+    value = sp.nsimplify(value) if isinstance(value, float) else sp.sympify(value)
+    if not value.is_Rational:
+        raise TypeError(f"not an exact rational: {value!r}")
+    return flint.fmpq(int(value.p), int(value.q))
+
+
+def to_rational(value: flint.fmpq) -> sp.Rational:
+    """``flint.fmpq`` -> ``sympy.Rational``."""
+    return sp.Rational(int(value.p), int(value.q))
+
+
+def as_fmpq_poly(poly: Any, var: sp.Symbol | None = None) -> flint.fmpq_poly:
+    """Convert a polynomial with rational coefficients to ``flint.fmpq_poly``.
+
+    Accepts flint polynomials, ``sympy.Poly`` (univariate), SymPy expressions (give ``var``
+    when the expression has several symbols) and coefficient lists (lowest degree first).
+
+    >>> import sympy as sp
+    >>> c = sp.Symbol('c')
+    >>> as_fmpq_poly(c**2/2 - 3, c)
+    1/2*x^2 + (-3)
+    """
+    if isinstance(poly, flint.fmpq_poly):
+        return poly
+    if isinstance(poly, flint.fmpz_poly):
+        return flint.fmpq_poly(poly)
+    if isinstance(poly, (list, tuple)):
+        return flint.fmpq_poly([as_fmpq(a) for a in poly])
+    if not isinstance(poly, sp.Poly):
+        expr = sp.sympify(poly)
+        gens = [var] if var is not None else sorted(expr.free_symbols, key=str)
+        if len(gens) > 1:
+            raise ValueError(f"several symbols in {expr}; name the variable")
+        if not gens:
+            return flint.fmpq_poly([as_fmpq(expr)])
+        poly = sp.Poly(expr, *gens)
+    if len(poly.gens) != 1:
+        raise ValueError("expected a univariate polynomial")
+    coeffs = poly.all_coeffs()[::-1]
+    return flint.fmpq_poly([as_fmpq(a) for a in coeffs])
+
+
+def _primitive_int(p: flint.fmpq_poly) -> flint.fmpz_poly:
+    """Integer polynomial with the same roots and the same sign (denominator is positive)."""
+    return p.numer()
+
+
+def sign_at(p: flint.fmpq_poly | flint.fmpz_poly, point: Number) -> int:
+    """Exact sign of ``p(point)``.
+
+    >>> sign_at(flint.fmpq_poly([-1, 0, 2]), Fraction(1, 2))
+    -1
+    """
+    value = p(as_fmpq(point))
+    return (value > 0) - (value < 0)
+
+
+@dataclass(frozen=True, slots=True)
+class RealRoot:
+    """A real root of ``poly`` isolated in ``[lo, hi]`` (``lo == hi`` for an exact rational root).
+
+    ``poly`` is the squarefree integer factor that vanishes at the root; ``multiplicity`` is the
+    root's multiplicity in the polynomial it was isolated from.
+    """
+
+    lo: flint.fmpq
+    hi: flint.fmpq
+    poly: flint.fmpz_poly
+    multiplicity: int = 1
+
+    @property
+    def is_exact(self) -> bool:
+        return self.lo == self.hi
+
+    def refine(self, width: Number) -> RealRoot:
+        """Bisect until ``hi - lo <= width`` (exact rational arithmetic)."""
+        width = as_fmpq(width)
+        lo, hi = self.lo, self.hi
+        if lo == hi:
+            return self
+        s_lo = sign_at(self.poly, lo)
+        while hi - lo > width:
+            mid = (lo + hi) / 2
+            s_mid = sign_at(self.poly, mid)
+            if s_mid == 0:
+                lo = hi = mid
+                break
+            if s_mid == s_lo:
+                lo = mid
+            else:
+                hi = mid
+        return RealRoot(lo, hi, self.poly, self.multiplicity)
+
+    def ball(self, bits: int = 64) -> flint.arb:
+        """An ``arb`` ball containing the root, radius at most ``2**-bits`` (relative to 1)."""
+        r = self.refine(flint.fmpq(1, 2**bits))
+        mid = (r.lo + r.hi) / 2
+        rad = (r.hi - r.lo) / 2
+        return flint.arb(mid) + flint.arb(0, flint.arb(rad).upper())
+
+    def midpoint(self, bits: int = 64) -> sp.Rational:
+        """A rational point within ``2**-bits`` of the root."""
+        r = self.refine(flint.fmpq(1, 2**bits))
+        return to_rational((r.lo + r.hi) / 2)
+
+    def approx(self, digits: int = 15) -> str:
+        """Decimal approximation with ``digits`` significant digits (correctly bounded)."""
+        bits = int(digits * 3.33) + 16
+        value = to_rational(self.lo) if self.is_exact else self.midpoint(bits)
+        with mpmath.workdps(digits + 5):
+            return mpmath.nstr(mpmath.mpf(value.p) / value.q, digits)
+
+    def as_sympy(self) -> sp.Expr:
+        """The exact root as a SymPy number (rational, or ``CRootOf`` of its factor)."""
+        if self.is_exact:
+            return to_rational(self.lo)
+        c = sp.Dummy("c")
+        roots = sp.Poly([int(a) for a in reversed(self.poly.coeffs())], c).real_roots()
+        lo, hi = to_rational(self.lo), to_rational(self.hi)
+        inside = [r for r in roots if bool(r >= lo) and bool(r <= hi)]
+        if len(inside) != 1:  # pragma: no cover - isolation guarantees one root
+            raise ArithmeticError("isolating interval does not hold exactly one root")
+        return inside[0]
+
+    def __str__(self) -> str:
+        if self.is_exact:
+            return str(self.lo)
+        return f"root in [{self.lo}, {self.hi}] (~{self.approx(12)})"
+
+
+def _sign_variations(coeffs: list[flint.fmpz]) -> int:
+    count = 0
+    previous = 0
+    for a in coeffs:
+        if a == 0:
+            continue
+        s = 1 if a > 0 else -1
+        if previous and s != previous:
+            count += 1
+        previous = s
+    return count
+
+
+_SHIFT = flint.fmpz_poly([1, 1])
+
+
+def _descartes_01(q: flint.fmpz_poly, degree: int) -> int:
+    """Upper bound (exact when 0 or 1) on the number of roots of ``q`` in the open (0, 1)."""
+    coeffs = q.coeffs()
+    coeffs += [flint.fmpz(0)] * (degree + 1 - len(coeffs))
+    reversed_q = flint.fmpz_poly(coeffs[::-1])
+    return _sign_variations(reversed_q(_SHIFT).coeffs())
+
+
+def _halve(q: flint.fmpz_poly, degree: int) -> flint.fmpz_poly:
+    """``2**degree * q(x/2)``: maps the left half of (0, 1) onto (0, 1)."""
+    coeffs = q.coeffs()
+    return flint.fmpz_poly([a * 2 ** (degree - i) for i, a in enumerate(coeffs)])
+
+
+def _isolate_open_01(q: flint.fmpz_poly) -> list[tuple[Fraction, Fraction]]:
+    """Isolating intervals (in (0, 1)) for the roots of squarefree ``q`` in the open (0, 1).
+
+    Returns (lo, hi) pairs; lo == hi marks an exact dyadic root.
+    """
+    degree = q.degree()
+    out: list[tuple[Fraction, Fraction]] = []
+    # stack of (polynomial on (0,1), k, c): the node stands for (c/2^k, (c+1)/2^k)
+    stack = [(q, 0, 0)]
+    while stack:
+        poly, k, c = stack.pop()
+        variations = _descartes_01(poly, degree)
+        if variations == 0:
+            continue
+        if variations == 1:
+            out.append((Fraction(c, 2**k), Fraction(c + 1, 2**k)))
+            continue
+        left = _halve(poly, degree)
+        right = left(_SHIFT)
+        # the midpoint is a root exactly when right(0) == 0
+        if right.coeffs() and right.coeffs()[0] == 0:
+            out.append((Fraction(2 * c + 1, 2 ** (k + 1)),) * 2)
+            right = flint.fmpz_poly(right.coeffs()[1:])
+            # left(1) is the same root; remove it from the left child too
+            left = flint.fmpz_poly(_divide_by_x_minus_1(left.coeffs()))
+        stack.append((right, k + 1, 2 * c + 1))
+        stack.append((left, k + 1, 2 * c))
+    out.sort()
+    return out
+
+
+def _divide_by_x_minus_1(coeffs: list[flint.fmpz]) -> list[flint.fmpz]:
+    """Synthetic division by (x - 1) of a polynomial known to vanish at 1."""
+    n = len(coeffs) - 1
+    quotient = [flint.fmpz(0)] * n
+    carry = flint.fmpz(0)
+    for i in range(n, 0, -1):
+        carry = coeffs[i] + carry
+        quotient[i - 1] = carry
+    return quotient
+
+
+def _map_interval(p: flint.fmpq_poly, lo: flint.fmpq, hi: flint.fmpq) -> flint.fmpz_poly:
+    """Integer polynomial q with q(t) proportional (positively) to p(lo + (hi - lo) t)."""
+    return p(flint.fmpq_poly([lo, hi - lo])).numer()
+
+
+def _squarefree_factors(p: flint.fmpq_poly) -> list[tuple[flint.fmpz_poly, int]]:
+    _, factors = p.numer().factor_squarefree()
+    return [(f, m) for f, m in factors if f.degree() > 0]
+
+
+def cauchy_bound(p: flint.fmpq_poly) -> flint.fmpq:
+    """A rational bound ``R`` with every real root of ``p`` in ``[-R, R]``.
+
+    >>> cauchy_bound(flint.fmpq_poly([-6, 1, 1]))   # roots 2 and -3
+    7
+    """
+    coeffs = p.numer().coeffs()
+    lead = abs(coeffs[-1])
+    bound = max((abs(a) for a in coeffs[:-1]), default=flint.fmpz(0))
+    return flint.fmpq(1) + flint.fmpq(bound, lead)
+
+
+def real_roots(p: Any, lo: Number | None, hi: Number | None, var: sp.Symbol | None = None) -> list[RealRoot]:
+    """All real roots of ``p`` in the closed interval ``[lo, hi]``, isolated exactly.
+
+    ``lo`` / ``hi`` may be ``None`` for an unbounded side (a Cauchy bound is used). Each root
+    appears once, with its multiplicity.
+
+    >>> roots = real_roots(flint.fmpq_poly([0, -1, 0, 1]) ** 2, -1, 1)   # (c**3 - c)**2
+    >>> [(r.approx(5), r.is_exact, r.multiplicity) for r in roots]
+    [('-1.0', True, 2), ('0.0', True, 2), ('1.0', True, 2)]
+    """
+    p = as_fmpq_poly(p, var)
+    if p.is_zero():
+        raise ValueError("the zero polynomial has every point as a root")
+    if lo is None or hi is None:
+        bound = cauchy_bound(p)
+        lo = -bound if lo is None else lo
+        hi = bound if hi is None else hi
+    lo_q, hi_q = as_fmpq(lo), as_fmpq(hi)
+    if lo_q > hi_q:
+        raise ValueError("empty interval")
+    roots: list[RealRoot] = []
+    for factor, multiplicity in _squarefree_factors(p):
+        roots.extend(_roots_of_squarefree(factor, multiplicity, lo_q, hi_q))
+    return _separate(roots)
+
+
+def _separate(roots: list[RealRoot]) -> list[RealRoot]:
+    """Sort roots of coprime factors, refining until their intervals are disjoint."""
+    roots = sorted(roots, key=lambda r: (r.lo, r.hi))
+    changed = True
+    while changed:
+        changed = False
+        for i in range(len(roots) - 1):
+            a, b = roots[i], roots[i + 1]
+            if a.hi > b.lo or (a.hi == b.lo and not (a.is_exact and b.is_exact)):
+                # distinct roots: halving both intervals eventually separates them
+                if not a.is_exact:
+                    roots[i] = a.refine((a.hi - a.lo) / 2)
+                if not b.is_exact:
+                    roots[i + 1] = b.refine((b.hi - b.lo) / 2)
+                changed = True
+        roots.sort(key=lambda r: (r.lo, r.hi))
+    return roots
+
+
+def _deflate(factor: flint.fmpz_poly, root: flint.fmpq) -> flint.fmpz_poly:
+    """Divide out the linear factor of a rational root (exact)."""
+    quotient, remainder = divmod(factor, flint.fmpz_poly([-root.p, root.q]))
+    assert remainder == 0
+    return quotient
+
+
+def _roots_of_squarefree(
+    factor: flint.fmpz_poly, multiplicity: int, lo: flint.fmpq, hi: flint.fmpq
+) -> list[RealRoot]:
+    exact_roots: list[flint.fmpq] = []
+    intervals: list[tuple[flint.fmpq, flint.fmpq]] = []
+    if lo == hi:
+        if factor(lo) == 0:
+            exact_roots.append(lo)
+    else:
+        q = _map_interval(flint.fmpq_poly(factor), lo, hi)
+        coeffs = q.coeffs()
+        if coeffs[0] == 0:  # root at lo
+            exact_roots.append(lo)
+            coeffs = coeffs[1:]
+        if sum(coeffs) == 0:  # root at hi
+            exact_roots.append(hi)
+            coeffs = _divide_by_x_minus_1(coeffs)
+        q = flint.fmpz_poly(coeffs)
+        if q.degree() > 0:
+            width = hi - lo
+            for a, b in _isolate_open_01(q):
+                a_q = lo + width * flint.fmpq(a.numerator, a.denominator)
+                b_q = lo + width * flint.fmpq(b.numerator, b.denominator)
+                if a_q == b_q:
+                    exact_roots.append(a_q)
+                else:
+                    intervals.append((a_q, b_q))
+    # Refinement needs a polynomial that does not vanish at interval ends, which may be
+    # exact roots of the same factor: divide those out.
+    reduced = factor
+    for root in exact_roots:
+        reduced = _deflate(reduced, root)
+    roots = [RealRoot(r, r, factor, multiplicity) for r in exact_roots]
+    roots += [RealRoot(a, b, reduced, multiplicity) for a, b in intervals]
+    return roots
+
+
+def _squarefree_part(p: flint.fmpq_poly) -> flint.fmpz_poly:
+    out = flint.fmpz_poly(1)
+    for factor, _ in _squarefree_factors(p):
+        out *= factor
+    return out
+
+
+def _gap_points(
+    roots: list[RealRoot], lo: flint.fmpq | None, hi: flint.fmpq | None
+) -> list[flint.fmpq]:
+    """One rational point strictly inside each gap between consecutive roots (and the ends).
+
+    ``roots`` are the disjoint isolated roots of one squarefree polynomial, sorted.
+    """
+    points: list[flint.fmpq] = [end for end in (lo, hi) if end is not None]
+    previous: flint.fmpq | None = lo  # right edge of the last root (or the interval's start)
+    for root in roots:
+        # shrink an interval that touches the previous edge, so the gap has an interior
+        while previous is not None and not root.is_exact and root.lo <= previous:
+            root = root.refine((root.hi - root.lo) / 2)
+        if previous is None:
+            points.append(root.lo - 1)
+        elif previous < root.lo:
+            points.append((previous + root.lo) / 2)
+        previous = root.hi
+    if previous is None:
+        points.append(flint.fmpq(0))
+    elif hi is None:
+        points.append(previous + 1)
+    elif previous < hi:
+        points.append((previous + hi) / 2)
+    return points
+
+
+@dataclass(frozen=True, slots=True)
+class NonnegativeResult:
+    """Whether a polynomial is >= 0 on an interval; ``witness`` is a rational point where it
+    is negative (when it is not), re-checked by exact evaluation."""
+
+    holds: bool
+    witness: sp.Rational | None = None
+    touches_zero: tuple[RealRoot, ...] = ()
+
+    def __repr__(self) -> str:
+        return f"NonnegativeResult(holds={self.holds}, witness={self.witness})"
+
+
+def nonnegative_on(p: Any, lo: Number | None, hi: Number | None, var: sp.Symbol | None = None) -> NonnegativeResult:
+    """Decide exactly whether ``p >= 0`` on ``[lo, hi]`` (``None`` = unbounded side).
+
+    When it fails, the witness is a rational point where ``p < 0``. When it holds, the roots
+    in the interval (where ``p`` touches zero) are returned.
+
+    >>> nonnegative_on(flint.fmpq_poly([1, -2, 1]), -1, 1)       # (c - 1)**2
+    NonnegativeResult(holds=True, witness=None)
+    >>> nonnegative_on(flint.fmpq_poly([-1, 0, 1]), 0, None)     # x**2 - 1 on [0, oo)
+    NonnegativeResult(holds=False, witness=0)
+    """
+    p = as_fmpq_poly(p, var)
+    if p.is_zero():
+        return NonnegativeResult(True)
+    lo_q = as_fmpq(lo) if lo is not None else None
+    hi_q = as_fmpq(hi) if hi is not None else None
+    if p.degree() == 0:
+        holds = p.coeffs()[0] >= 0
+        return NonnegativeResult(holds, None if holds else to_rational(lo_q if lo_q is not None else hi_q if hi_q is not None else flint.fmpq(0)))
+    # p changes sign only at roots of its squarefree part, whose isolated roots are disjoint
+    sqf = flint.fmpq_poly(_squarefree_part(p))
+    roots = real_roots(sqf, lo_q, hi_q)
+    for point in _gap_points(roots, lo_q, hi_q):
+        if p(point) < 0:
+            return NonnegativeResult(False, to_rational(point))
+    return NonnegativeResult(True, None, tuple(real_roots(p, lo_q, hi_q)))
+
+
+@dataclass(frozen=True, slots=True)
+class Minimum:
+    """The exact minimum of a rational function on an interval.
+
+    ``argmin`` is an exact rational endpoint or an isolated :class:`RealRoot` of the derivative's
+    numerator; ``value`` is an ``arb`` ball certified to contain the minimum value; ``exact`` is
+    the exact minimum as a SymPy number when the minimiser is rational.
+    """
+
+    argmin: sp.Rational | RealRoot
+    value: flint.arb
+    exact: sp.Expr | None
+
+    def argmin_approx(self, digits: int = 15) -> str:
+        if isinstance(self.argmin, RealRoot):
+            return self.argmin.approx(digits)
+        return str(sp.N(self.argmin, digits))
+
+
+def _arb_eval(p: flint.fmpq_poly, point: flint.arb) -> flint.arb:
+    return p.numer()(point) / flint.arb(p.denom())
+
+
+def minimise_rational(
+    num: Any, den: Any, lo: Number, hi: Number, var: sp.Symbol | None = None, bits: int = 200
+) -> Minimum:
+    """Exact minimum of ``num/den`` over the closed interval ``[lo, hi]``.
+
+    ``den`` must not vanish on ``[lo, hi]`` (cancel removable singularities first). The
+    minimiser is an endpoint or a root of ``num' den - num den'``; candidates are compared with
+    certified ball arithmetic, refining until their order is decided.
+
+    >>> m = minimise_rational(flint.fmpq_poly([0, -1, 0, 1]), flint.fmpq_poly([1]), -1, 1)
+    >>> m.argmin_approx(8), m.exact                       # c**3 - c: min at 1/sqrt(3)
+    ('0.57735027', None)
+    """
+    num = as_fmpq_poly(num, var)
+    den = as_fmpq_poly(den, var)
+    lo_q, hi_q = as_fmpq(lo), as_fmpq(hi)
+    if den.degree() > 0 and any(True for _ in real_roots(den, lo_q, hi_q)):
+        raise ValueError("the denominator vanishes on the interval")
+    candidates: list[flint.fmpq | RealRoot] = [lo_q, hi_q]
+    deriv = num.derivative() * den - num * den.derivative()
+    if not deriv.is_zero() and deriv.degree() > 0:
+        candidates.extend(r if not r.is_exact else r.lo for r in real_roots(deriv, lo_q, hi_q))
+
+    def value(cand: flint.fmpq | RealRoot, prec: int) -> flint.arb:
+        if isinstance(cand, RealRoot):
+            point = cand.ball(prec)
+        else:
+            point = flint.arb(cand)
+        return _arb_eval(num, point) / _arb_eval(den, point)
+
+    prec = 64
+    old_prec = flint.ctx.prec
+    try:
+        while True:
+            flint.ctx.prec = prec + 32
+            values = [value(cand, prec) for cand in candidates]
+            best = min(range(len(values)), key=lambda i: values[i].mid())
+            best_value = values[best]
+            decided = all(i == best or not (values[i] < best_value) for i in range(len(values)))
+            # ties (overlapping balls) are harmless for the minimum's value but we refine
+            # until the chosen ball is tight enough to be reported
+            if decided and best_value.rad() < flint.arb(2) ** (-bits // 2) or prec >= 4 * bits:
+                break
+            prec *= 2
+    finally:
+        flint.ctx.prec = old_prec
+    chosen = candidates[best]
+    if isinstance(chosen, RealRoot):
+        return Minimum(chosen, best_value, None)
+    exact_value = to_rational(num(chosen) / den(chosen))
+    return Minimum(to_rational(chosen), best_value, exact_value)
