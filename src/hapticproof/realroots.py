@@ -295,8 +295,28 @@ def real_roots(p: Any, lo: Number | None, hi: Number | None, var: sp.Symbol | No
         raise ValueError("empty interval")
     roots: list[RealRoot] = []
     for factor, multiplicity in _squarefree_factors(p):
-        roots.extend(_roots_of_squarefree(factor, multiplicity, lo_q, hi_q))
+        for piece in _split_rational_roots(factor):
+            roots.extend(_roots_of_squarefree(piece, multiplicity, lo_q, hi_q))
     return _separate(roots)
+
+
+#: Factors up to this degree are fully factored so that rational roots come out exact.
+_FACTOR_DEGREE = 40
+
+
+def _split_rational_roots(factor: flint.fmpz_poly) -> list[flint.fmpz_poly]:
+    """Split off the linear factors (rational roots) of a low-degree squarefree factor."""
+    if factor.degree() <= 1 or factor.degree() > _FACTOR_DEGREE:
+        return [factor]
+    _, irreducible = factor.factor()
+    linear = [f for f, _ in irreducible if f.degree() == 1]
+    if not linear:
+        return [factor]
+    rest = flint.fmpz_poly(1)
+    for f, _ in irreducible:
+        if f.degree() > 1:
+            rest *= f
+    return linear + ([rest] if rest.degree() > 0 else [])
 
 
 def _separate(roots: list[RealRoot]) -> list[RealRoot]:
@@ -330,6 +350,10 @@ def _roots_of_squarefree(
 ) -> list[RealRoot]:
     exact_roots: list[flint.fmpq] = []
     intervals: list[tuple[flint.fmpq, flint.fmpq]] = []
+    if factor.degree() == 1:
+        a0, a1 = factor.coeffs()
+        root = flint.fmpq(-a0, a1)
+        return [RealRoot(root, root, factor, multiplicity)] if lo <= root <= hi else []
     if lo == hi:
         if factor(lo) == 0:
             exact_roots.append(lo)

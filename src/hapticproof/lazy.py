@@ -1,0 +1,98 @@
+"""Lazy, cached, timed computation stages for frozen scenes.
+
+A scene is a frozen, hashable value object; the work done for it is a set of *stages*
+(G^-1, poles, residues, Hermitian part, worst case, ...). A stage runs only when something asks
+for it, runs at most once per scene (equal scenes share one cache), and records its wall time,
+so ``profile(scene)`` shows what a request cost and what it skipped (DESIGN.md: *Scenes are
+frozen, hashable and lazy*).
+
+>>> from dataclasses import dataclass
+>>> @dataclass(frozen=True, slots=True, weakref_slot=True)
+... class Square:
+...     side: int
+>>> @stage("area")
+... def area(sq):
+...     return sq.side ** 2
+>>> sq = Square(3)
+>>> area(sq), area(Square(3)), list(profile(sq))
+(9, 9, ['area'])
+"""
+
+from __future__ import annotations
+
+import functools
+import time
+import weakref
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any, TypeVar
+
+__all__ = ["stage", "profile", "computed_stages", "clear", "force"]
+
+F = TypeVar("F", bound=Callable[..., Any])
+
+
+@dataclass(frozen=True, slots=True)
+class _Record:
+    value: Any
+    seconds: float
+
+
+_CACHE: weakref.WeakKeyDictionary[Any, dict[tuple, _Record]] = weakref.WeakKeyDictionary()
+_STAGES: dict[str, Callable[..., Any]] = {}
+
+
+def stage(name: str) -> Callable[[F], F]:
+    """Decorate ``func(scene, *args)`` as the cached, timed stage ``name``.
+
+    Extra positional arguments must be hashable; they are part of the cache key.
+    """
+
+    def decorate(func: F) -> F:
+        @functools.wraps(func)
+        def wrapper(scene: Any, *args: Any) -> Any:
+            store = _CACHE.get(scene)
+            if store is None:
+                store = {}
+                _CACHE[scene] = store
+            key = (name, args)
+            record = store.get(key)
+            if record is None:
+                start = time.perf_counter()
+                value = func(scene, *args)
+                record = _Record(value, time.perf_counter() - start)
+                store[key] = record
+            return record.value
+
+        wrapper.stage_name = name  # type: ignore[attr-defined]
+        _STAGES[name] = wrapper
+        return wrapper  # type: ignore[return-value]
+
+    return decorate
+
+
+def profile(scene: Any) -> dict[str, float]:
+    """Wall time in seconds of each stage computed so far for ``scene`` (inclusive of the
+    stages it called), in the order they finished."""
+    store = _CACHE.get(scene, {})
+    out: dict[str, float] = {}
+    for (name, args), record in store.items():
+        label = name if not args else f"{name}{args}"
+        out[label] = record.seconds
+    return out
+
+
+def computed_stages(scene: Any) -> set[str]:
+    """Names of the stages already computed for ``scene``."""
+    return {name for name, _ in _CACHE.get(scene, {})}
+
+
+def clear(scene: Any) -> None:
+    """Forget everything computed for ``scene`` (for benchmarks: cold runs)."""
+    _CACHE.pop(scene, None)
+
+
+def force(scene: Any, names: list[str]) -> None:
+    """Compute the named argument-free stages (the 'full pipeline' of a benchmark)."""
+    for name in names:
+        _STAGES[name](scene)

@@ -1,0 +1,82 @@
+r"""Transfer functions built from scenes: the integrator approximations and ``G^{-1}(z)``.
+
+Each approximation of ``X_h(z) = Z{v_h/s}`` is *derived* from its recurrence (HVE paper,
+Section 3.1.1) by z-transforming it with the shift rule ``x(k+1) -> z X`` and solving for
+``X/V``; ``G^{-1}(z) = (b - z_a) + z^{-n} H(z) X_h(z)/V_h(z)`` (the three forms before eq. 17,
+and eqs. 21-22). The tests compare the integrators with ``sympy.physics.control``'s
+``forward_diff``, ``backward_diff`` and ``bilinear`` (an independent implementation).
+
+>>> import sympy as sp
+>>> from hapticproof.symbols import z
+>>> T = sp.Symbol('T', positive=True)
+>>> integrator("forward", T), integrator("backward", T), sp.factor(integrator("tustin", T))
+(T/(z - 1), T*z/(z - 1), T*(z + 1)/(2*(z - 1)))
+"""
+
+from __future__ import annotations
+
+from functools import lru_cache
+
+import sympy as sp
+
+from hapticproof.errors import SceneError
+from hapticproof.lazy import stage
+from hapticproof.scene import APPROXIMATIONS, SingleUserScene
+from hapticproof.symbols import z as Z_SYM
+
+__all__ = ["RECURRENCES", "integrator", "inverse_transfer", "environment_path"]
+
+# Recurrences relating samples of x_h and v_h = dx_h/dt, written with x(k), x(k+1), v(k), v(k+1)
+# (the HVE paper's forward, backward and Tustin forms, normalised to advance by one step).
+_xk, _xk1, _vk, _vk1, _T = sp.symbols("x_k x_k1 v_k v_k1 T")
+RECURRENCES: dict[str, sp.Eq] = {
+    "forward": sp.Eq(_xk1, _xk + _T * _vk),
+    "backward": sp.Eq(_xk1, _xk + _T * _vk1),
+    "tustin": sp.Eq(_xk1, _xk + _T * _vk + (_vk1 - _vk) * _T / 2),
+}
+
+
+@lru_cache(maxsize=None)
+def _integrator_template(approximation: str) -> sp.Expr:
+    """``X/V`` solved from the z-transformed recurrence (shift rule ``x(k+1) -> zX``)."""
+    X, V = sp.symbols("X V")
+    transformed = RECURRENCES[approximation].subs(
+        {_xk1: Z_SYM * X, _xk: X, _vk1: Z_SYM * V, _vk: V}, simultaneous=True
+    )
+    (solution,) = sp.solve(transformed, X)
+    return sp.factor(solution / V)
+
+
+def integrator(approximation: str, T: sp.Expr, z: sp.Symbol = Z_SYM) -> sp.Expr:
+    """Discrete approximation of ``1/s`` (the map ``V_h -> X_h``).
+
+    >>> integrator("trapezoid", 1)
+    Traceback (most recent call last):
+    ...
+    hapticproof.errors.SceneError: unknown approximation 'trapezoid'; choose one of forward, backward, tustin
+    """
+    if approximation not in APPROXIMATIONS:
+        raise SceneError(
+            f"unknown approximation {approximation!r}; choose one of {', '.join(APPROXIMATIONS)}"
+        )
+    expr = _integrator_template(approximation).subs(_T, T)
+    if z != Z_SYM:
+        expr = expr.subs(Z_SYM, z)
+    return expr
+
+
+@stage("environment_path")
+def environment_path(scene: SingleUserScene) -> sp.Expr:
+    """``H(z) X_h/V_h``: the velocity-to-force path through the environment, before delay."""
+    return sp.cancel(scene.H * integrator(scene.approximation, scene.T))
+
+
+@stage("inverse_transfer")
+def inverse_transfer(scene: SingleUserScene) -> sp.Expr:
+    """``G^{-1}(z)`` of the scene (force over velocity), eqs. (21)-(22) and the forms before (17).
+
+    >>> scene = SingleUserScene.virtual_wall(delay=2)
+    >>> sp.simplify(inverse_transfer(scene) - (scene.b + (scene.H * scene.T/(Z_SYM - 1)) / Z_SYM**2))
+    0
+    """
+    return (scene.b - scene.z_a) + Z_SYM ** (-scene.delay) * environment_path(scene)
