@@ -22,7 +22,7 @@ from typing import Any
 
 import sympy as sp
 
-__all__ = ["Decision", "Verdict", "Method", "Evidence", "Outcome", "to_jsonable", "exact"]
+__all__ = ["Decision", "Verdict", "Method", "Evidence", "Outcome", "Finding", "to_jsonable", "exact"]
 
 
 class Decision(enum.StrEnum):
@@ -142,7 +142,8 @@ class Evidence:
     facts: Mapping[str, Any] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
-        Method(self.method)  # reject unknown methods early
+        # reject unknown methods early; store the plain string
+        object.__setattr__(self, "method", Method(self.method).value)
 
     def to_json(self) -> dict[str, Any]:
         out: dict[str, Any] = {"method": str(self.method)}
@@ -184,3 +185,32 @@ class Outcome:
         if self.minimum is not None:
             out["minimum"] = to_jsonable(self.minimum)
         return out
+
+
+@dataclass(frozen=True)
+class Finding:
+    """The audit of one printed equation: exactly one :class:`Verdict` with its evidence.
+
+    Parameters
+    ----------
+    verdict : Verdict
+    detail : str
+        One sentence: what was compared and what was found (and any assumption made).
+    evidence : Evidence
+    derived : SymPy object, str or None
+        The toolkit's own derivation of the printed object (SymPy, or LaTeX text).
+    corrected : str or None
+        Corrected LaTeX for a defective equation (``typo``, ``wrong``, ``needs-assumption``,
+        ``inconsistent``, ``malformed``); ``None`` when the printed text is right.
+    """
+
+    verdict: Verdict
+    detail: str
+    evidence: Evidence
+    derived: Any = None
+    corrected: str | None = None
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "verdict", Verdict(self.verdict))
+        if not self.detail:
+            raise ValueError("a finding needs a one-sentence detail")

@@ -30,7 +30,10 @@ import sympy as sp
 
 from hapticproof.realroots import as_fmpq
 from hapticproof.symbols import c as C_SYM
+from hapticproof.symbols import cos_n as COS_N
 from hapticproof.symbols import s as S_SYM
+from hapticproof.symbols import sin_n as SIN_N
+from hapticproof.symbols import sin_theta as SIN_T
 from hapticproof.symbols import x as X_SYM
 from hapticproof.symbols import z as Z_SYM
 
@@ -44,6 +47,8 @@ __all__ = [
     "delayed_hermitian_part",
     "theta_form",
     "theta_to_cos",
+    "omega_to_c",
+    "canonical_theta",
     "real_part_x",
     "imaginary_axis_rational",
     "evaluate_on_circle",
@@ -345,6 +350,11 @@ class ThetaForm:
         sin_theta_sin_n = (1 - self.var**2) * sp.chebyshevu(k - 1, self.var) if k >= 1 else 0
         return sp.cancel(self.a + self.u * cos_n + self.v * sin_theta_sin_n)
 
+    def canonical(self) -> sp.Expr:
+        """The form in the canonical variables ``c``, ``sin(theta)``, ``cos(n theta)``,
+        ``sin(n theta)`` of :func:`canonical_theta`."""
+        return sp.expand(self.a + self.u * COS_N + self.v * SIN_T * SIN_N)
+
     def expr(self, theta: sp.Symbol) -> sp.Expr:
         """As an expression in ``theta`` (for display and numeric evaluation)."""
         subs = {self.var: sp.cos(theta)}
@@ -394,6 +404,58 @@ def theta_to_cos(expr: sp.Expr, theta: sp.Symbol, var: sp.Symbol = C_SYM) -> sp.
             raise ValueError("odd power of sin(theta): not a function of cos(theta) alone")
         out += coeff * (1 - var**2) ** (power // 2)
     return sp.cancel(out)
+
+
+def omega_to_c(expr: Any, omega: sp.Symbol, T: sp.Symbol, var: sp.Symbol = C_SYM) -> sp.Expr:
+    """A printed expression in ``cos(k omega T)``, ``sin(k omega T)`` as a function of ``c``.
+
+    >>> import sympy as sp
+    >>> w, T, B = sp.symbols('omega T B', positive=True)
+    >>> omega_to_c(B*sp.cos(w*T) + sp.sin(w*T)**2, w, T)
+    B*c - c**2 + 1
+    """
+    theta = sp.Dummy("theta")
+    return theta_to_cos(sp.sympify(expr).subs(omega, theta / T), theta, var)
+
+
+def canonical_theta(
+    expr: Any, omega: sp.Symbol, T: sp.Symbol, t_d: sp.Symbol, n: sp.Symbol, var: sp.Symbol = C_SYM
+) -> sp.Expr:
+    """A printed expression with a symbolic delay ``t_d = nT`` in canonical variables.
+
+    ``omega T -> theta`` and ``omega t_d -> n theta``; the result is a polynomial in
+    ``sin(theta)`` (reduced with ``sin^2 = 1 - c^2``), ``cos(n theta)`` and ``sin(n theta)`` with
+    coefficients rational in ``c`` — the form of :meth:`ThetaForm.canonical`, so two
+    expressions agree for every integer ``n`` exactly when their canonical forms are equal
+    (``cos(n theta)`` and ``sin(n theta)`` are then independent of ``c``). Angles that are not
+    integer combinations of ``theta`` and ``n theta`` (OCR damage such as ``omega t_d - T``)
+    are kept as they are, so they cannot cancel by accident.
+
+    >>> import sympy as sp
+    >>> w, T, t_d = sp.symbols('omega T t_d', positive=True)
+    >>> n = sp.Symbol('n', integer=True)
+    >>> canonical_theta(sp.cos(w*(t_d + T)), w, T, t_d, n)
+    C_n*c - S_n*s_theta
+    """
+    theta = sp.Dummy("theta", real=True)
+    e = sp.sympify(expr).subs(t_d, n * T).subs(omega, theta / T)
+    e = sp.expand(sp.expand_trig(sp.expand(e)))
+    e = e.subs({sp.cos(n * theta): COS_N, sp.sin(n * theta): SIN_N}).subs(
+        {sp.cos(theta): var, sp.sin(theta): SIN_T}
+    )
+    e = sp.together(sp.expand(e))
+    num, den = sp.fraction(e)
+    num = sp.expand(num)
+    den = sp.expand(den)
+
+    def reduce_sin(poly_expr: sp.Expr) -> sp.Expr:
+        p = sp.Poly(poly_expr, SIN_T)
+        out = sp.Integer(0)
+        for (power,), coeff in p.terms():
+            out += coeff * (1 - var**2) ** (power // 2) * SIN_T ** (power % 2)
+        return sp.expand(out)
+
+    return sp.expand(sp.cancel(reduce_sin(num) / reduce_sin(den)))
 
 
 def evaluate_on_circle(F: Any, omega_T: Any, z: sp.Symbol = Z_SYM, digits: int = 30):

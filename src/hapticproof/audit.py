@@ -1,0 +1,346 @@
+r"""Audit printed equations: registry entries, the audit run, and its reports.
+
+A paper module in ``derivations/`` creates one :class:`Paper` and registers each printed
+equation **verbatim** with a check function::
+
+    PAPER = Paper("hve", title=..., source=..., symbols=TABLE)
+
+    @PAPER.equation("17", kind="condition", section="3.1.1",
+                    printed=r"b > \frac{KT}{2} - B\cos(\omega T)",
+                    assumptions="b, K, T > 0; B >= 0",
+                    derivation="Re G_1^{-1}(e^{jwT}) >= 0, forward difference")
+    def eq17(ctx: AuditContext) -> Finding:
+        ...  # derive with the toolkit, compare with ctx.relation(), return a Finding
+
+The check derives its counterpart with the toolkit and compares, returning a
+:class:`~hapticproof.evidence.Finding` (one verdict with evidence). A printed string the parser
+rejects becomes ``malformed`` automatically (with the position), unless the check handles the
+parse error itself (for documented OCR readings). Reports render as a text table, Markdown,
+the JSON of DESIGN.md and a compilable LaTeX file.
+
+>>> paper = Paper("demo", title="Demo", source="none")
+>>> @paper.equation("1", kind="claim", printed="1 + 1 = 2")
+... def one(ctx):
+...     return Finding(Verdict.CONFIRMED, "arithmetic", Evidence("canonical-form"))
+>>> report = audit_paper(paper)
+>>> [(r.id, r.verdict.value) for r in report.results]
+[('1', 'confirmed')]
+"""
+
+from __future__ import annotations
+
+import json
+import textwrap
+import time
+from collections.abc import Callable, Iterable, Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+import sympy as sp
+
+from hapticproof import latex as tex
+from hapticproof.errors import LatexParseError, UnknownEquationError
+from hapticproof.evidence import Evidence, Finding, Method, Verdict, to_jsonable
+
+__all__ = [
+    "KINDS",
+    "Paper",
+    "Equation",
+    "AuditContext",
+    "EquationResult",
+    "AuditReport",
+    "audit_paper",
+    "malformed",
+]
+
+KINDS = ("expression", "condition", "claim")
+
+Check = Callable[["AuditContext"], Finding]
+
+
+@dataclass(frozen=True)
+class Equation:
+    """One printed equation or claim, registered verbatim with how to audit it."""
+
+    id: str
+    kind: str
+    printed: str
+    check: Check
+    section: str = ""
+    assumptions: str = ""
+    derivation: str = ""
+    parse: bool = True
+
+    def __post_init__(self) -> None:
+        if self.kind not in KINDS:
+            raise ValueError(f"kind must be one of {KINDS}, got {self.kind!r}")
+
+
+@dataclass
+class Paper:
+    """A registered paper: its printed-name table and its equations, in printed order."""
+
+    id: str
+    title: str
+    source: str
+    authors: str = ""
+    symbols: Any = None  # hapticproof.parse.SymbolTable
+    aliases: tuple[str, ...] = ()
+    equations: dict[str, Equation] = field(default_factory=dict)
+    #: rows (label, condition LaTeX, source) for the export's one-notation table
+    conditions: list[tuple[str, str, str]] = field(default_factory=list)
+
+    def equation(
+        self,
+        id: str,
+        *,
+        kind: str,
+        printed: str,
+        section: str = "",
+        assumptions: str = "",
+        derivation: str = "",
+        parse: bool | None = None,
+    ) -> Callable[[Check], Check]:
+        """Register a printed equation (decorator). ``parse`` defaults to True for expressions
+        and conditions, False for claims (whose printed text is a quoted sentence)."""
+
+        def register(check: Check) -> Check:
+            if id in self.equations:
+                raise ValueError(f"equation {id!r} registered twice in {self.id}")
+            self.equations[id] = Equation(
+                id=id,
+                kind=kind,
+                printed=printed,
+                check=check,
+                section=section,
+                assumptions=assumptions,
+                derivation=derivation,
+                parse=(kind != "claim") if parse is None else parse,
+            )
+            return check
+
+        return register
+
+    def get(self, id: str) -> Equation:
+        try:
+            return self.equations[id]
+        except KeyError:
+            known = ", ".join(self.equations)
+            raise UnknownEquationError(f"paper {self.id!r} has no equation {id!r} (known: {known})") from None
+
+    @property
+    def names(self) -> dict[sp.Symbol, str]:
+        """Printed names of the paper's symbols (for LaTeX in the paper's notation)."""
+        table = getattr(self.symbols, "symbols", None) or {}
+        return tex.symbol_names(table)
+
+
+class AuditContext:
+    """What a check function receives: the equation, the paper and the parsed printed text."""
+
+    def __init__(self, paper: Paper, equation: Equation):
+        self.paper = paper
+        self.equation = equation
+        self._statement: Any = None
+        self._error: LatexParseError | None = None
+        self._parsed = False
+
+    def parse(self, text: str | None = None) -> Any:
+        """Parse ``text`` (default: the printed string) with the paper's symbol table."""
+        from hapticproof.parse import parse_printed
+
+        return parse_printed(self.equation.printed if text is None else text, self.paper.symbols)
+
+    @property
+    def statement(self) -> Any:
+        """The parsed printed text (raises :class:`LatexParseError` if it does not parse)."""
+        if not self._parsed:
+            self._parsed = True
+            try:
+                self._statement = self.parse()
+            except LatexParseError as err:
+                self._error = err
+        if self._error is not None:
+            raise self._error
+        return self._statement
+
+    @property
+    def parse_error(self) -> LatexParseError | None:
+        try:
+            self.statement
+        except LatexParseError:
+            pass
+        return self._error
+
+    def relation(self) -> Any:
+        """The printed statement as one SymPy relational (the single relation of the display)."""
+        statement = self.statement
+        relations = statement.relations()
+        if len(relations) != 1:
+            raise ValueError(f"expected one relation in {self.equation.id}, found {len(relations)}")
+        return relations[0].as_sympy()
+
+    def names(self) -> dict[sp.Symbol, str]:
+        return self.paper.names
+
+
+def malformed(ctx: AuditContext, what: str, corrected: str | None = None, derived: Any = None) -> Finding:
+    """A ``malformed`` finding: the printed text is not a well-formed equation (say what is
+    missing); the parse result or error is the evidence."""
+    facts: dict[str, Any] = {}
+    error = ctx.parse_error if ctx.equation.parse else None
+    if error is not None:
+        facts = {"parse_error": error.reason, "position": error.position}
+    return Finding(Verdict.MALFORMED, what, Evidence(Method.PARSE, facts=facts), derived=derived, corrected=corrected)
+
+
+@dataclass(frozen=True)
+class EquationResult:
+    """One row of an audit report (the JSON object of DESIGN.md)."""
+
+    id: str
+    kind: str
+    printed: str
+    derived: str | None
+    verdict: Verdict
+    detail: str
+    corrected: str | None
+    evidence: Evidence
+    seconds: float
+    section: str = ""
+    assumptions: str = ""
+
+    def to_json(self) -> dict[str, Any]:
+        return {
+            "id": self.id,
+            "kind": self.kind,
+            "printed": self.printed,
+            "derived": self.derived,
+            "verdict": self.verdict.value,
+            "detail": self.detail,
+            "corrected": self.corrected,
+            "evidence": self.evidence.to_json(),
+            "seconds": round(self.seconds, 6),
+        }
+
+
+@dataclass(frozen=True)
+class AuditReport:
+    """The audit of one paper."""
+
+    paper: str
+    title: str
+    results: tuple[EquationResult, ...]
+
+    def to_json(self) -> dict[str, Any]:
+        return {"paper": self.paper, "title": self.title, "equations": [r.to_json() for r in self.results]}
+
+    def counts(self) -> dict[str, int]:
+        out: dict[str, int] = {}
+        for r in self.results:
+            out[r.verdict.value] = out.get(r.verdict.value, 0) + 1
+        return out
+
+    def to_table(self, width: int = 120) -> str:
+        """Plain-text table: equation, verdict, one-line detail."""
+        lines = [f"{self.paper}: {self.title}", ""]
+        id_w = max([len("eq")] + [len(r.id) for r in self.results])
+        v_w = max(len(v.value) for v in Verdict)
+        header = f"{'eq'.ljust(id_w)}  {'verdict'.ljust(v_w)}  detail"
+        lines += [header, "-" * min(width, len(header) + 60)]
+        detail_w = max(30, width - id_w - v_w - 4)
+        for r in self.results:
+            detail = textwrap.shorten(r.detail, detail_w, placeholder=" ...")
+            lines.append(f"{r.id.ljust(id_w)}  {r.verdict.value.ljust(v_w)}  {detail}")
+        summary = ", ".join(f"{k}: {v}" for k, v in sorted(self.counts().items()))
+        lines += ["", f"{len(self.results)} equations ({summary})"]
+        return "\n".join(lines)
+
+    def to_markdown(self) -> str:
+        def cell(text: str | None) -> str:
+            return (text or "").replace("|", r"\|").replace("\n", " ")
+
+        lines = [f"## {self.paper}: {self.title}", "", "| eq | kind | verdict | detail | corrected |", "|---|---|---|---|---|"]
+        for r in self.results:
+            corrected = f"`{cell(r.corrected)}`" if r.corrected else ""
+            lines.append(f"| {r.id} | {r.kind} | **{r.verdict.value}** | {cell(r.detail)} | {corrected} |")
+        return "\n".join(lines) + "\n"
+
+    def to_latex_sections(self) -> list[tuple[str, str]]:
+        sections = []
+        for r in self.results:
+            body = [
+                r"\textbf{Verdict:} \texttt{" + r.verdict.value + r"} --- " + tex.escape_text(r.detail),
+                r"\par\textbf{Printed:}",
+                tex.safe_math(r.printed) if r.kind != "claim" else tex.verbatim_block(r.printed),
+            ]
+            if r.derived:
+                body += [r"\textbf{Derived:}", tex.safe_math(r.derived)]
+            if r.corrected:
+                body += [r"\textbf{Corrected:}", tex.safe_math(r.corrected)]
+            sections.append((f"({r.id}) [{r.kind}]", "\n".join(body)))
+        return sections
+
+    def to_latex(self) -> str:
+        """A complete LaTeX document: printed vs derived side by side, corrections."""
+        return tex.document(f"Audit of {self.title} ({self.paper})", self.to_latex_sections())
+
+    def dumps(self, fmt: str) -> str:
+        if fmt == "json":
+            return json.dumps(self.to_json(), indent=2)
+        if fmt in ("markdown", "md"):
+            return self.to_markdown()
+        if fmt in ("tex", "latex"):
+            return self.to_latex()
+        return self.to_table()
+
+
+def _derived_latex(value: Any, names: Mapping[sp.Symbol, str]) -> str | None:
+    if value is None:
+        return None
+    if isinstance(value, str):
+        return value
+    try:
+        return tex.to_latex(value, names)
+    except Exception:  # noqa: BLE001 - a display problem must not hide the verdict
+        return sp.sstr(value)
+
+
+def run_equation(paper: Paper, equation: Equation) -> EquationResult:
+    """Audit one equation; the check's own errors propagate (they are bugs, not findings)."""
+    ctx = AuditContext(paper, equation)
+    start = time.perf_counter()
+    try:
+        finding = equation.check(ctx)
+    except LatexParseError as err:
+        finding = Finding(
+            Verdict.MALFORMED,
+            f"the printed text does not parse: {err.reason} at position {err.position}",
+            Evidence(Method.PARSE, facts={"parse_error": err.reason, "position": err.position}),
+        )
+    seconds = time.perf_counter() - start
+    return EquationResult(
+        id=equation.id,
+        kind=equation.kind,
+        printed=equation.printed,
+        derived=_derived_latex(finding.derived, paper.names),
+        verdict=finding.verdict,
+        detail=finding.detail,
+        corrected=finding.corrected,
+        evidence=finding.evidence,
+        seconds=seconds,
+        section=equation.section,
+        assumptions=equation.assumptions,
+    )
+
+
+def audit_paper(paper: Paper, only: Iterable[str] | None = None) -> AuditReport:
+    """Audit every registered equation of ``paper`` (or only the given ids), in order."""
+    equations = [paper.get(i) for i in only] if only else list(paper.equations.values())
+    results = tuple(run_equation(paper, eq) for eq in equations)
+    return AuditReport(paper.id, paper.title, results)
+
+
+def reports_to_json(reports: Iterable[AuditReport]) -> str:
+    """``{"papers": [...]}`` for an audit of several papers."""
+    return json.dumps({"papers": [r.to_json() for r in reports]}, indent=2, default=to_jsonable)

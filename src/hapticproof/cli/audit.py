@@ -1,0 +1,69 @@
+"""``hapticproof audit [PAPER ...]``: audit the printed equations of the registered papers."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+
+from hapticproof.audit import audit_paper
+from hapticproof.cli._common import write_text
+from hapticproof.registry import get_paper, papers
+
+__all__ = ["register"]
+
+FORMATS = ("table", "markdown", "json", "tex")
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    parser = sub.add_parser(
+        "audit",
+        help="audit the printed equations of the bundled papers",
+        description="Parse every printed equation of a paper verbatim, re-derive it and give a "
+        "verdict with evidence. With no paper (or --all), audit every registered paper and the "
+        "cross-paper checks.",
+    )
+    parser.add_argument("papers", nargs="*", metavar="PAPER", help="paper ids (e.g. hve); default: all")
+    parser.add_argument("--all", action="store_true", help="audit every registered paper")
+    parser.add_argument("--equation", "-e", action="append", default=[], metavar="ID",
+                        help="audit only this equation (repeatable; needs one PAPER)")
+    parser.add_argument("--format", "-f", choices=FORMATS, default="table")
+    parser.add_argument("--output", "-o", metavar="FILE", help="write to FILE instead of stdout")
+    parser.set_defaults(handler=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    if args.all or not args.papers:
+        selected = list(papers().values())
+    else:
+        selected = [get_paper(name) for name in args.papers]
+    if args.equation and len(selected) != 1:
+        raise_usage("--equation needs exactly one PAPER")
+    reports = [audit_paper(p, args.equation or None) for p in selected]
+    if args.format == "json":
+        if len(reports) == 1 and args.papers and not args.all:
+            text = json.dumps(reports[0].to_json(), indent=2)
+        else:
+            text = json.dumps({"papers": [r.to_json() for r in reports]}, indent=2)
+    elif args.format == "tex":
+        from hapticproof import latex as tex
+
+        sections = []
+        for report in reports:
+            sections.append((f"{report.paper}: {report.title}", ""))
+            sections += report.to_latex_sections()
+        text = tex.document("hapticproof audit", sections)
+    else:
+        text = "\n\n".join(r.dumps(args.format) for r in reports)
+    if args.output:
+        path = write_text(args.output, text)
+        print(f"wrote {path}", file=sys.stderr)
+    else:
+        print(text)
+    return 0
+
+
+def raise_usage(message: str) -> None:
+    from hapticproof.errors import InputFormatError
+
+    raise InputFormatError(message)

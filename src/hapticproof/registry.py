@@ -1,0 +1,57 @@
+"""Find the registered papers in ``derivations/`` (the ``hapticproof.derivations`` package).
+
+Every module there that defines ``PAPER`` (a :class:`~hapticproof.audit.Paper`) is a registered
+paper; it is found by its id or any of its aliases.
+
+>>> sorted(p.id for p in papers().values())[:1]
+['...']
+"""
+
+from __future__ import annotations
+
+import importlib
+import pkgutil
+from functools import lru_cache
+
+from hapticproof.audit import Paper
+from hapticproof.errors import UnknownPaperError
+
+__all__ = ["papers", "get_paper", "paper_order"]
+
+#: Audit order of the bundled papers (others follow alphabetically).
+paper_order = ("hve", "bilateral-3dof", "teleoperator", "classics", "cross-paper")
+
+
+@lru_cache(maxsize=1)
+def papers() -> dict[str, Paper]:
+    """All registered papers by id, in audit order."""
+    import hapticproof.derivations as package
+
+    found: dict[str, Paper] = {}
+    for info in pkgutil.iter_modules(package.__path__):
+        if info.name.startswith("_"):
+            continue
+        module = importlib.import_module(f"{package.__name__}.{info.name}")
+        paper = getattr(module, "PAPER", None)
+        if isinstance(paper, Paper):
+            if paper.id in found:
+                raise RuntimeError(f"two modules register the paper id {paper.id!r}")
+            found[paper.id] = paper
+    rank = {pid: i for i, pid in enumerate(paper_order)}
+    return dict(sorted(found.items(), key=lambda kv: (rank.get(kv[0], len(rank)), kv[0])))
+
+
+def get_paper(name: str) -> Paper:
+    """A registered paper by id or alias.
+
+    >>> get_paper("no-such-paper")
+    Traceback (most recent call last):
+    ...
+    hapticproof.errors.UnknownPaperError: unknown paper 'no-such-paper' (registered: ...)
+    """
+    registered = papers()
+    key = name.strip().lower()
+    for paper in registered.values():
+        if key == paper.id or key in paper.aliases:
+            return paper
+    raise UnknownPaperError(f"unknown paper {name!r} (registered: {', '.join(registered) or 'none'})")
