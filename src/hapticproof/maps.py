@@ -69,6 +69,7 @@ __all__ = [
     "plot_curves",
     "plot_map",
     "grid",
+    "refine_boundary_mp",
 ]
 
 SYSTEMS = ("single-user", "multi-user", "teleoperator")
@@ -351,18 +352,24 @@ class _Criterion:
 
 
 def _auto_search(crit: _Criterion) -> tuple[float, float] | None:
-    """``(lo, hi)`` around the first loss of stability found by doubling/halving from 1."""
+    """A search interval around a change of stability found by doubling/halving from 1.
+
+    Up from a stable 1 (to 2**30), else down (to 2**-30); with the adjacent pair
+    (stable s, unstable u) the interval spans six decades beyond the stable side and a factor
+    4 beyond the unstable side, so the scan also sees crossings past the first.
+    """
     value = 1.0
-    if crit(value) < 0:
-        for _ in range(80):
-            value *= 2
-            if crit(value) >= 0:
-                return value * 1e-6, value * 4
-        return None  # stable up to 2**80
-    for _ in range(80):
-        value /= 2
-        if crit(value) < 0:
-            return value * 1e-6 * 2, value * 8
+    stable = crit(value) < 0
+    for factor in (2.0, 0.5):
+        v = value
+        for _ in range(30):
+            nxt = v * factor
+            if (crit(nxt) < 0) != stable:
+                lo, hi = sorted((v, nxt))
+                if (factor > 1) == stable:  # unstable above: K-like parameter
+                    return lo * 1e-6, hi * 4
+                return lo / 4, hi * 1e6  # unstable below: b-like parameter
+            v = nxt
     return None
 
 
@@ -463,6 +470,66 @@ def _refine(crit: _Criterion, a: float, b: float, fa: float, rtol: float, method
             break
         tol *= 4
     return Crossing(float(x), direction, float(tol))
+
+
+def refine_boundary_mp(
+    family: SceneFamily,
+    vary: str,
+    bracket: tuple[Any, Any],
+    *,
+    at: Mapping[str, Any] | None = None,
+    dps: int = 50,
+    tol: Any = None,
+    max_iter: int = 200,
+):
+    """The boundary inside ``bracket`` at ``dps`` digits (the high-precision reference).
+
+    The spectral radius of the closed loop is computed with mpmath (exact discretisation at
+    ``dps`` digits, :func:`mpmath.eig`); ``rho - 1`` must change sign over ``bracket`` (checked
+    at that precision). The Illinois variant of regula falsi keeps a certified bracket and
+    stops when it is narrower than ``tol`` (default ``10**-(dps - 10)`` relative). Returns
+    ``(value, half_width)`` as mpmath numbers.
+
+    >>> import mpmath
+    >>> from hapticproof.sampled import free_device_boundary
+    >>> fam = SceneFamily("single-user", {"m": 0.015, "b": 0.02, "B": 0, "T": 0.001})
+    >>> k, w = refine_boundary_mp(fam, "K", (40.0, 40.02), dps=30)
+    >>> bool(abs(k - free_device_boundary(0.015, 0.02, 0.001, "mp", 30)) < 1e-15)
+    True
+    """
+    import mpmath
+
+    at = dict(at or {})
+    with mpmath.workdps(dps):
+        def f(value):
+            scene = family.scene(**at, **{vary: value})
+            return spectral_radius(scene, precision="mp", dps=dps) - 1
+
+        a, b = mpmath.mpf(to_fraction(bracket[0]).numerator) / to_fraction(bracket[0]).denominator, \
+            mpmath.mpf(to_fraction(bracket[1]).numerator) / to_fraction(bracket[1]).denominator
+        fa, fb = f(a), f(b)
+        if (fa < 0) == (fb < 0):
+            raise SceneError(f"no change of stability of {vary} inside {bracket}")
+        tol = mpmath.mpf(10) ** (-(dps - 10)) * abs(b) if tol is None else mpmath.mpf(tol)
+        side = 0
+        for _ in range(max_iter):
+            if b - a <= 2 * tol:
+                break
+            c = (a * fb - b * fa) / (fb - fa)
+            if not (a < c < b):
+                c = (a + b) / 2
+            fc = f(c)
+            if (fc < 0) == (fa < 0):
+                a, fa = c, fc
+                if side == -1:
+                    fb /= 2  # Illinois: halve the stale end's weight
+                side = -1
+            else:
+                b, fb = c, fc
+                if side == 1:
+                    fa /= 2
+                side = 1
+        return (a + b) / 2, (b - a) / 2
 
 
 # --------------------------------------------------------------------------------------------

@@ -50,6 +50,7 @@ from hapticproof.sampled import (
     _deflate,
     closed_loop_matrix,
     discretize,
+    is_stable,
     to_fraction,
 )
 
@@ -399,7 +400,8 @@ def tracking_mse(scene: Teleoperator, steps: int, excitation: Excitation) -> flo
     """Master-slave tracking error relative to the master's mean square, in percent.
 
     ``100 int (alpha x_m - x_s)^2 dt / int (alpha x_m)^2 dt`` over ``steps`` samples, both
-    integrals exact (teleoperator paper Table I); ``inf`` if the loop diverges.
+    integrals exact (teleoperator paper Table I); ``inf`` if the loop is unstable (spectral
+    radius, rigid mode removed) or the simulation overflows.
 
     >>> from hapticproof.sampled import Teleoperator
     >>> ex = Excitation((1.0, 0.0), 1.0)
@@ -410,6 +412,8 @@ def tracking_mse(scene: Teleoperator, steps: int, excitation: Excitation) -> flo
     """
     if not isinstance(scene, Teleoperator):
         raise SceneError("tracking_mse needs a Teleoperator scene")
+    if not is_stable(scene):
+        return math.inf
     alpha = _as_float(scene.alpha)
     with np.errstate(over="ignore", invalid="ignore"):
         traj = simulate(
