@@ -30,6 +30,7 @@ the JSON of DESIGN.md and a compilable LaTeX file.
 from __future__ import annotations
 
 import json
+import re
 import textwrap
 import time
 from collections.abc import Callable, Iterable, Mapping
@@ -70,10 +71,21 @@ class Equation:
     assumptions: str = ""
     derivation: str = ""
     parse: bool = True
+    after: str = ""
 
     def __post_init__(self) -> None:
         if self.kind not in KINDS:
             raise ValueError(f"kind must be one of {KINDS}, got {self.kind!r}")
+
+    @property
+    def position(self) -> tuple[int, str, int]:
+        """Place in the paper: the equation number (or the number of the equation a claim
+        follows, ``after``), then the letter of an unnumbered display; claims after displays."""
+        key = self.after or self.id
+        match = re.match(r"(\d+)([a-z]?)", key)
+        if not match:
+            return (10**6, key, 1)
+        return (int(match.group(1)), match.group(2), 1 if (self.after or self.kind == "claim") else 0)
 
 
 @dataclass
@@ -100,6 +112,7 @@ class Paper:
         assumptions: str = "",
         derivation: str = "",
         parse: bool | None = None,
+        after: str = "",
     ) -> Callable[[Check], Check]:
         """Register a printed equation (decorator). ``parse`` defaults to True for expressions
         and conditions, False for claims (whose printed text is a quoted sentence)."""
@@ -116,10 +129,15 @@ class Paper:
                 assumptions=assumptions,
                 derivation=derivation,
                 parse=(kind != "claim") if parse is None else parse,
+                after=after,
             )
             return check
 
         return register
+
+    def ordered(self) -> list[Equation]:
+        """Equations in paper order (stable for equal positions: registration order)."""
+        return sorted(self.equations.values(), key=lambda eq: eq.position)
 
     def get(self, id: str) -> Equation:
         try:
@@ -336,7 +354,7 @@ def run_equation(paper: Paper, equation: Equation) -> EquationResult:
 
 def audit_paper(paper: Paper, only: Iterable[str] | None = None) -> AuditReport:
     """Audit every registered equation of ``paper`` (or only the given ids), in order."""
-    equations = [paper.get(i) for i in only] if only else list(paper.equations.values())
+    equations = [paper.get(i) for i in only] if only else paper.ordered()
     results = tuple(run_equation(paper, eq) for eq in equations)
     return AuditReport(paper.id, paper.title, results)
 

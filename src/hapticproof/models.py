@@ -24,7 +24,7 @@ from hapticproof.lazy import stage
 from hapticproof.scene import APPROXIMATIONS, SingleUserScene
 from hapticproof.symbols import z as Z_SYM
 
-__all__ = ["RECURRENCES", "integrator", "inverse_transfer", "environment_path"]
+__all__ = ["RECURRENCES", "integrator", "inverse_transfer", "environment_path", "transfer_from_recurrence"]
 
 # Recurrences relating samples of x_h and v_h = dx_h/dt, written with x(k), x(k+1), v(k), v(k+1)
 # (the HVE paper's forward, backward and Tustin forms, normalised to advance by one step).
@@ -80,3 +80,42 @@ def inverse_transfer(scene: SingleUserScene) -> sp.Expr:
     0
     """
     return (scene.b - scene.z_a) + Z_SYM ** (-scene.delay) * environment_path(scene)
+
+
+def transfer_from_recurrence(
+    relation: sp.Basic, x: sp.Function, v: sp.Function, k: sp.Symbol, T: sp.Symbol, z: sp.Symbol = Z_SYM
+) -> sp.Expr:
+    """``X/V`` of a printed recurrence in the samples ``x(kT + jT)`` and ``v(kT + jT)``.
+
+    Each ``x(kT + jT)`` becomes ``z**j X`` and each ``v(kT + jT)`` becomes ``z**j V`` (the shift
+    rule); the transformed equation is solved for ``X/V``. A sample argument that is not
+    ``kT`` plus an integer multiple of ``T``, or a side that is not built from samples, raises
+    :class:`ValueError` naming it.
+
+    >>> x, v = sp.Function('x'), sp.Function('v')
+    >>> k, T = sp.symbols('k T', positive=True)
+    >>> transfer_from_recurrence(sp.Eq(x(k*T + T), x(k*T) + T*v(k*T)), x, v, k, T)
+    T/(z - 1)
+    >>> transfer_from_recurrence(sp.Eq(x(k*T + 3), x(k*T) + T*v(k*T)), x, v, k, T)
+    Traceback (most recent call last):
+    ...
+    ValueError: x(T*k + 3) is not a sample x(kT + jT) with an integer j
+    """
+    X, V = sp.symbols("X V")
+    replacements = {}
+    for func, target in ((x, X), (v, V)):
+        for call in relation.atoms(func):
+            (arg,) = call.args
+            shift = sp.simplify((arg - k * T) / T)
+            if not shift.is_integer:
+                raise ValueError(f"{call} is not a sample {func}(kT + jT) with an integer j")
+            replacements[call] = z**shift * target
+    transformed = relation.xreplace(replacements)
+    if any(s == k for s in transformed.free_symbols):
+        raise ValueError("the recurrence has terms that are not samples of x or v")
+    if not transformed.lhs.has(X) and not transformed.rhs.has(X):
+        raise ValueError("the recurrence has no sample of x")
+    solutions = sp.solve(transformed, X)
+    if len(solutions) != 1:
+        raise ValueError("the recurrence does not determine X")
+    return sp.factor(sp.cancel(solutions[0] / V))

@@ -287,7 +287,7 @@ def _ge(expr: sp.Expr) -> sp.Basic:
     expr = sp.expand(expr)
     pos = sp.Add(*[t for t in sp.Add.make_args(expr) if not t.could_extract_minus_sign()])
     neg = sp.Add(*[-t for t in sp.Add.make_args(expr) if t.could_extract_minus_sign()])
-    return sp.Ge(pos, neg)
+    return sp.Ge(pos, neg, evaluate=False)
 
 
 def _symbolic(condition: Any, minimiser: Any, minimum: Any, reason: str) -> WorstCase:
