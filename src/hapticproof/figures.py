@@ -59,6 +59,7 @@ __all__ = [
     "teleop_fig3",
     "teleop_table1",
     "FIG8_T",
+    "text_table",
 ]
 
 #: The sampling periods of HVE Fig. 8/9: 1 ms to 20 ms in 1 ms steps.
@@ -147,9 +148,10 @@ def hve_fig8(
     [1.0005, 1.0002, 1.0001]
     """
     if panel == "c":
-        a = hve_fig8("a", T_values, workers=workers, rtol=rtol).curves[1]
-        b = hve_fig8("b", T_values, workers=workers, rtol=rtol).curves[2]
-        curves = (_relabel(a, "no delay, z_a=0.5b"), _relabel(b, "t_d=10T, z_a=0.5b"))
+        curves = tuple(
+            _curve(_operator_family(*_FIG8[p][:4], 0.5 * _FIG8[p][2]), T_values, label, workers, rtol)
+            for p, label in (("a", "no delay, z_a=0.5b"), ("b", "t_d=10T, z_a=0.5b"))
+        )
     elif panel in _FIG8:
         system, m, b, delay, fractions = _FIG8[panel]
         curves = tuple(
@@ -201,6 +203,34 @@ def hve_fig9(
         plot_curves(curves, path, title=out.name, scale={"T": 1000})
         out = CurveFigure(out.name, curves, Path(path))
     return out
+
+
+def text_table(rows: Sequence[dict[str, Any]], digits: int = 4) -> str:
+    """Rows of dicts as an aligned text table, floats rounded to ``digits`` significant digits
+    (so printed tables do not depend on the last bits of a machine's arithmetic).
+
+    >>> print(text_table([{"T_ms": 1.0, "ratio": 1.000227}, {"T_ms": 2.0, "ratio": 0.6674}]))
+     T_ms   ratio
+    1.000   1.000
+    2.000  0.6674
+    """
+    def cell(value: Any) -> str:
+        if isinstance(value, float):
+            if not np.isfinite(value):
+                return str(value)
+            return f"{value:#.{digits}g}" if abs(value) >= 1e-3 or value == 0 else f"{value:.{digits - 1}e}"
+        if isinstance(value, list):
+            return ",".join(cell(v) for v in value) or "-"
+        return str(value)
+
+    if not rows:
+        return ""
+    keys = list(rows[0])
+    cells = [[cell(r[k]) for k in keys] for r in rows]
+    widths = [max(len(k), *(len(c[i]) for c in cells)) for i, k in enumerate(keys)]
+    lines = ["  ".join(k.rjust(w) for k, w in zip(keys, widths))]
+    lines += ["  ".join(c.rjust(w) for c, w in zip(row, widths)) for row in cells]
+    return "\n".join(line.rstrip() for line in lines)
 
 
 # --------------------------------------------------------------------------------------------
