@@ -13,13 +13,15 @@ Physical assumptions used throughout (the paper's model): device damping ``b``, 
 
 from __future__ import annotations
 
+import functools
+
 import sympy as sp
 
 from hapticproof.audit import AuditContext, Paper, malformed
-from hapticproof.certify import compare_bounds, compare_expressions, is_identically_zero
+from hapticproof.certify import as_bound, compare_bounds, compare_expressions, is_identically_zero
 from hapticproof.classics import colgate_bound
 from hapticproof.evidence import Decision, Evidence, Finding, Method, Outcome, Verdict
-from hapticproof.models import RECURRENCES, integrator, inverse_transfer
+from hapticproof.models import RECURRENCES, integrator, inverse_transfer, transfer_from_recurrence
 from hapticproof.parse import IndexedFamily, SymbolTable
 from hapticproof.positivereal import hermitian, residues, poles, worst_case
 from hapticproof.realroots import minimise_rational
@@ -33,6 +35,10 @@ omega = sp.Symbol("omega", real=True)
 s = sp.Symbol("s")
 #: The paper's S (defined after eq. 23).
 S_EXPR = sp.sin(omega * t_d) * sp.sin(omega * T) / (2 * (1 - sp.cos(omega * T)))
+
+# Samples in the printed recurrences (section 3.1.1): x_h(kT + jT) and its derivative.
+x_h, xdot_h = sp.Function("x_h"), sp.Function("xdot_h")
+k_idx = sp.Symbol("k", integer=True)
 
 # Signals that appear as functions of z in displays; the audit divides by V_h.
 F_h, V_h, X_h = sp.symbols("F_h V_h X_h")
@@ -50,14 +56,15 @@ def _signal(symbol: sp.Symbol):
 TABLE = SymbolTable(
     symbols={
         "K": K, "B": B, "b": b, "T": T, "t_d": t_d, "z_a": z_a, r"\omega": omega, "S": S_EXPR,
-        "z": z, "s": s, "n": n,
+        "z": z, "s": s, "n": n, "k": k_idx,
         "b_h": sp.Symbol("b_h", positive=True), "k_h": sp.Symbol("k_h", positive=True),
         "m_h": sp.Symbol("m_h", positive=True), "C": sp.Symbol("C", positive=True),
         "m": sp.Symbol("m", integer=True, positive=True),
     },
     functions={
         "F_h": _signal(F_h), "V_h": _signal(V_h), "X_h": _signal(X_h),
-        "G_1^{-1}": _signal(G_INV[1]), "G_2^{-1}": _signal(G_INV[2]), "G_3^{-1}": _signal(G_INV[3]),
+        "x_h": x_h, r"\dot{x}_h": xdot_h, r"\mathscr{D}": sp.Function("D"),
+        "G^{-1}": _signal(sp.Symbol("Ginv")), "G_1^{-1}": _signal(G_INV[1]), "G_2^{-1}": _signal(G_INV[2]), "G_3^{-1}": _signal(G_INV[3]),
         "H": H_FUN, "r": R_FUN, "G_T^*": G_T,
         r"\mathscr{M}": lambda *a: M_FUN(*a), r"\mathscr{N}": lambda *a: N_FUN(*a),
         r"\mathcal{M}": lambda *a: M_FUN(*a), r"\mathcal{N}": lambda *a: N_FUN(*a),
@@ -200,73 +207,75 @@ def def3(ctx: AuditContext) -> Finding:
 # ---------------------------------------------------------------------------------------------
 
 
-def _integrator_check(ctx: AuditContext, approximation: str, recurrence_note: str | None) -> Finding:
-    """The z-domain result of a printed approximation vs the derivation from its recurrence."""
-    statement = ctx.statement
+def _approximation_check(ctx: AuditContext, approximation: str, restore_lhs: bool = False) -> Finding:
+    """Re-derive a printed approximation: its recurrence (transformed by the shift rule) and its
+    final ``X_h(z) = ... V_h(z)`` against the integrator derived from the paper's recurrence."""
+    relations = [rel.as_sympy() for rel in ctx.statement.relations()]
     derived = integrator(approximation, T)
-    finals = [rel for rel in statement.relations() if rel.lhs == X_h and V_h in rel.rhs.free_symbols]
+    finals = [rel for rel in relations if rel.lhs == X_h and rel.rhs.has(V_h)]
     if not finals:
-        return malformed(ctx, "no final relation X_h(z) = ... V_h(z) found in the display")
-    printed = sp.cancel(finals[-1].rhs / V_h)
-    finding = compare_expressions(printed, derived, what="the printed X_h/V_h")
-    if finding.verdict != Verdict.CONFIRMED or recurrence_note is None:
-        return finding
+        return malformed(ctx, "no final relation X_h(z) = ... V_h(z) in the display")
+    final = compare_expressions(sp.cancel(finals[-1].rhs / V_h), derived, what="the printed result X_h/V_h")
+    if final.verdict != Verdict.CONFIRMED:
+        return final
+    recurrence = relations[0]
+    problems = []
+    try:
+        from_recurrence = transfer_from_recurrence(recurrence, x_h, xdot_h, k_idx, T)
+    except ValueError as err:
+        problems.append(f"the printed recurrence {sp.sstr(recurrence)} cannot be transformed: {err}")
+        from_recurrence = None
+        if restore_lhs:
+            # documented reading: the transcription lost 'x_h' before '(kT+T)'
+            repaired = sp.Eq(x_h(k_idx * T + T), recurrence.rhs)
+            from_recurrence = transfer_from_recurrence(repaired, x_h, xdot_h, k_idx, T)
+            problems.append("with x_h restored on the left")
+    if from_recurrence is not None and not is_identically_zero(from_recurrence - derived):
+        problems.append(f"it gives X_h/V_h = {sp.sstr(from_recurrence)} instead of {sp.sstr(derived)}")
+    if not problems:
+        return Finding(Verdict.CONFIRMED, f"recurrence and result X_h/V_h = {sp.sstr(derived)} both re-derived",
+                       Evidence(Method.CANONICAL_FORM), derived=sp.Eq(X_h, derived * V_h))
     return Finding(
         Verdict.TYPO,
-        f"the z-domain result X_h/V_h = {sp.sstr(derived)} is right, but {recurrence_note}",
-        Evidence(Method.CANONICAL_FORM, facts={"derived_from": sp.sstr(RECURRENCES[approximation])}),
+        f"the result X_h/V_h = {sp.sstr(derived)} is right, but " + "; ".join(problems),
+        Evidence(Method.CANONICAL_FORM, facts={"recurrence": recurrence, "derived_from": RECURRENCES[approximation]}),
         derived=sp.Eq(X_h, derived * V_h),
-        corrected=None,
+        corrected=CORRECT_RECURRENCES[approximation],
     )
 
 
-FORWARD_PRINTED = (
-    r"x_h(kT+K) = x_h(kT) + T\dot{x}_h(kT) \xrightarrow{\mathcal{Z}} zX_h(z) = X_h(z) + TV_h(z)"
-    r" \\ \implies X_h(z) = \frac{T}{z-1}V_h(z)"
+CORRECT_RECURRENCES = {
+    "forward": r"x_h(kT+T) = x_h(kT) + T\dot{x}_h(kT) \implies X_h(z) = \frac{T}{z-1}V_h(z)",
+    "backward": r"x_h(kT) = x_h(kT - T) + T\dot{x}_h(kT) \implies X_h(z) = \frac{Tz}{z-1}V_h(z)",
+    "tustin": r"x_h(kT+T) = x_h(kT) + \frac{T}{2}\left(\dot{x}_h(kT+T) + \dot{x}_h(kT)\right) \implies X_h(z) = \frac{T}{2}\frac{z+1}{z-1}V_h(z)",
+}
+
+
+@PAPER.equation(
+    "16a", kind="expression", section="3.1.1",
+    printed=r"x_h(kT+K) = x_h(kT) + T\dot{x}_h(kT) \xrightarrow{\mathcal{Z}} zX_h(z) = X_h(z) + TV_h(z) \\ \implies X_h(z) = \frac{T}{z-1}V_h(z)",
+    derivation="shift-rule z-transform of the printed recurrence; result vs x(k+1) = x(k) + T v(k)",
 )
-
-
-@PAPER.equation("16a", kind="expression", printed=FORWARD_PRINTED, section="3.1.1", parse=False,
-                derivation="z-transform of x(k+1) = x(k) + T v(k)")
 def eq16a(ctx: AuditContext) -> Finding:
-    # The time argument x_h(kT+K) uses the stiffness K where the step T belongs; the parser
-    # would read it faithfully as a product with K, so only the z-domain lines are compared.
-    zline = r"zX_h(z) = X_h(z) + TV_h(z) \\ \implies X_h(z) = \frac{T}{z-1}V_h(z)"
-    ctx._statement, ctx._parsed = ctx.parse(zline), True
-    return _integrator_check(ctx, "forward", "the recurrence prints x_h(kT+K): the step is T, x_h(kT+T)")
+    return _approximation_check(ctx, "forward")
 
 
-BACKWARD_PRINTED = (
-    r"\begin{aligned} x_h(kT) &= x_h(KT - T) + T\dot{x}_h(kT) \xrightarrow{\mathscr{D}} X_h(z) = z^{-1}X_h(z) + TV_h(z) \end{aligned}"
-    r" \\ \implies X_h(z) = \frac{Tz}{z - 1}V_h(z)"
+@PAPER.equation(
+    "16b", kind="expression", section="3.1.1",
+    printed=r"\begin{aligned} x_h(kT) &= x_h(KT - T) + T\dot{x}_h(kT) \xrightarrow{\mathscr{D}} X_h(z) = z^{-1}X_h(z) + TV_h(z) \\ &\Longrightarrow X_h(z) = \frac{Tz}{z - 1}V_h(z) \end{aligned}",
+    derivation="shift-rule z-transform of the printed recurrence; result vs x(k) = x(k-1) + T v(k)",
 )
-
-
-@PAPER.equation("16b", kind="expression", printed=BACKWARD_PRINTED, section="3.1.1", parse=False,
-                derivation="z-transform of x(k) = x(k-1) + T v(k)")
 def eq16b(ctx: AuditContext) -> Finding:
-    zline = r"X_h(z) = z^{-1}X_h(z) + TV_h(z) \\ \implies X_h(z) = \frac{Tz}{z - 1}V_h(z)"
-    ctx._statement, ctx._parsed = ctx.parse(zline), True
-    return _integrator_check(ctx, "backward", "the recurrence prints x_h(KT - T) with a capital K (the stiffness) for k, "
-                                              "and the transform arrow is labelled D instead of Z")
+    return _approximation_check(ctx, "backward")
 
 
-TUSTIN_PRINTED = (
-    r"\begin{aligned} (kT+T) &= x_h(kT) + T\dot{x}_h(kT) + (\dot{x}_h(kT+T) - \dot{x}_h(kT))\frac{1}{2} \\"
-    r" \xrightarrow{\mathscr{Z}} zX_h(z) &= X_h(z) + TV_h(z) + (zV_h(z) - V_h(z))\frac{T}{2} \\"
-    r" &\implies X_h(z) = \frac{T}{2}\frac{z+1}{z-1}V_h(z) \end{aligned}"
+@PAPER.equation(
+    "16c", kind="expression", section="3.1.1",
+    printed=r"\begin{aligned} (kT+T) &= x_h(kT) + T\dot{x}_h(kT) + (\dot{x}_h(kT+T) - \dot{x}_h(kT))\frac{1}{2} \\ \xrightarrow{\mathscr{Z}} zX_h(z) &= X_h(z) + TV_h(z) + (zV_h(z) - V_h(z))\frac{T}{2} \\ &\implies X_h(z) = \frac{T}{2}\frac{z+1}{z-1}V_h(z) \end{aligned}",
+    derivation="shift-rule z-transform of the printed recurrence (its left side x_h was lost in the transcription); result vs the trapezoidal rule",
 )
-
-
-@PAPER.equation("16c", kind="expression", printed=TUSTIN_PRINTED, section="3.1.1", parse=False,
-                derivation="z-transform of the trapezoidal rule x(k+1) = x(k) + T(v(k) + v(k+1))/2")
 def eq16c(ctx: AuditContext) -> Finding:
-    zline = (r"zX_h(z) = X_h(z) + TV_h(z) + (zV_h(z) - V_h(z))\frac{T}{2} \\"
-             r" \implies X_h(z) = \frac{T}{2}\frac{z+1}{z-1}V_h(z)")
-    ctx._statement, ctx._parsed = ctx.parse(zline), True
-    return _integrator_check(ctx, "tustin", "the printed recurrence multiplies (x'(kT+T) - x'(kT)) by 1/2 "
-                                            "instead of T/2 (the transformed line has T/2), and its left-hand side "
-                                            "lost x_h in the transcription")
+    return _approximation_check(ctx, "tustin", restore_lhs=True)
 
 
 G_FORMS = {
@@ -414,3 +423,473 @@ def forward_is_worst(ctx: AuditContext) -> Finding:
     return Finding(Verdict.CONFIRMED,
                    f"without delay proved for all parameters (19-worst); with delays n = 0..3 checked on {instances} exact instances",
                    Evidence(Method.INSTANCES, instances=instances))
+
+
+# ---------------------------------------------------------------------------------------------
+# (21)-(27): delay and active operator
+# ---------------------------------------------------------------------------------------------
+
+
+@PAPER.equation("21", kind="expression", section="3.1.1",
+                printed=r"F_h(z) = bV_h(z) + z^{-n}\left(K + \frac{B(z-1)}{Tz}\right)\frac{T}{z-1}V_h(z)",
+                derivation="force over velocity of the delayed scene, forward difference")
+def eq21(ctx: AuditContext) -> Finding:
+    relation = ctx.relation()
+    return compare_expressions(sp.cancel(relation.rhs / V_h), inverse_transfer(scene(delay=n)),
+                               what="the printed F_h/V_h")
+
+
+@PAPER.equation("22", kind="expression", section="3.1.1",
+                printed=r"G^{-1}(z) = b + z^{-n} \left(K + \frac{B(z-1)}{Tz}\right) \frac{T}{z-1}",
+                derivation="G^-1 of the delayed scene, forward difference")
+def eq22(ctx: AuditContext) -> Finding:
+    return compare_expressions(ctx.relation().rhs, inverse_transfer(scene(delay=n)), what="the printed G^-1(z)")
+
+
+@PAPER.equation("22-conditions", kind="claim", after="22", section="3.1.1",
+                printed="The first and third conditions in Definition 2 are readily satisfied leaving us with the third "
+                        "condition which requires Re{G^{-1}(z)} >= 0.",
+                derivation="poles and residue of (22) for symbolic n; which condition of Definition 2 is Re >= 0")
+def remaining_condition(ctx: AuditContext) -> Finding:
+    sc = scene(delay=n)
+    pole_list = poles(sc)
+    (res,) = residues(sc)
+    ok = all(p.location in ("inside", "on") for p in pole_list) and is_identically_zero(res.residue - K * T)
+    if not ok:
+        return Finding(Verdict.WRONG, "conditions 1 and 3 of Definition 2 are not satisfied", Evidence(Method.CANONICAL_FORM))
+    return Finding(
+        Verdict.TYPO,
+        "conditions 1 (poles at z = 0 and the simple pole z = 1) and 3 (residue KT >= 0) hold for every n, "
+        "but the remaining condition Re G^-1 >= 0 is the second condition of Definition 2, not the third",
+        Evidence(Method.CANONICAL_FORM, facts={"poles": [(p.value, p.location) for p in pole_list], "residue_at_1": res.residue}),
+        corrected=r"\text{leaving us with the second condition, } \Re\{G^{-1}(e^{j\omega T})\} \ge 0",
+    )
+
+
+def _theta_mismatch(printed: sp.Expr, derived_canonical: sp.Expr) -> sp.Expr:
+    return sp.simplify(canonical_theta(printed, omega, T, t_d, n) - derived_canonical)
+
+
+@PAPER.equation("23", kind="condition", section="3.1.1",
+                printed=r"b + B\cos(\omega t_d - T) - \frac{KT}{2}\cos(\omega t_d) - KTS > 0",
+                assumptions=ASSUME, derivation="exact theta-form of Re G^-1 for symbolic n (eq. 22)")
+def eq23(ctx: AuditContext) -> Finding:
+    relation = ctx.relation()
+    printed = relation.lhs - relation.rhs
+    derived = hermitian(scene(delay=n))
+    as_printed = _theta_mismatch(printed, derived.canonical())
+    # the evident intent, printed explicitly in (58)-(59): cos(omega (t_d - T))
+    intended = printed.subs(sp.cos(omega * t_d - T), sp.cos(omega * (t_d - T)))
+    as_intended = _theta_mismatch(intended, derived.canonical())
+    corrected_expr = printed.subs(sp.cos(omega * t_d - T), sp.cos(omega * (t_d + T)))
+    corrected_ok = _theta_mismatch(corrected_expr, derived.canonical()) == 0
+    if as_printed == 0:
+        return Finding(Verdict.CONFIRMED, "equals Re G^-1 for every integer n", Evidence(Method.CANONICAL_FORM))
+    # exact witness on the intended reading at n = 1 (t_d = T): compare as bounds on b, c in [-1, 1]
+    instance = {t_d: T}
+    printed_1 = omega_to_c(intended.subs(instance), omega, T)
+    exact_1 = hermitian(scene(delay=1)).expr()
+    witness = compare_bounds(sp.Gt(printed_1, 0), sp.Ge(exact_1, 0), b, verify=verify_pointwise("forward", delay=1),
+                             what="(23) read as cos(omega(t_d - T)), at n = 1")
+    return Finding(
+        Verdict.WRONG,
+        "not the real part of (22): the B-term must be B cos(omega(t_d + T)) (z^{-n} B/z = B z^{-(n+1)}); as printed "
+        "cos(omega t_d - T) mixes a time with an angle, and the evident reading cos(omega(t_d - T)), repeated in (58)-(59), "
+        f"differs by {sp.sstr(as_intended)} in the canonical variables; at n = 1 it holds where Re G^-1 < 0",
+        Evidence(Method.COUNTEREXAMPLE, witness=witness.evidence.witness,
+                 facts={"difference_as_printed": as_printed, "difference_intended": as_intended,
+                        "corrected_equals_derived_for_all_n": corrected_ok, **dict(witness.evidence.facts)}),
+        derived=sp.Gt(derived.expr(omega * T).subs(n, t_d / T), 0),
+        corrected=r"b + B\cos(\omega (t_d + T)) - \frac{KT}{2}\cos(\omega t_d) - KTS > 0",
+    )
+
+
+@PAPER.equation("23a", kind="expression", section="3.1.1",
+                printed=r"\lim_{\cos(\omega T)\to 1} KTS = \lim_{\cos(\omega T)\to 1} KT \frac{\sin(\omega t_d)\sin(\omega T)}{2(1-\cos(\omega T))} = Kt_d",
+                derivation="limit theta -> 0 of KT sin(n theta) sin(theta) / (2(1 - cos theta)), t_d = nT")
+def eq23a(ctx: AuditContext) -> Finding:
+    theta = sp.Symbol("theta", positive=True)
+    limit = sp.limit(K * T * sp.sin(n * theta) * sp.sin(theta) / (2 * (1 - sp.cos(theta))), theta, 0)
+    derived = sp.simplify(limit.subs(n, t_d / T))
+    terms = ctx.statement.terms
+    final = compare_expressions(terms[-1], derived, what="the printed limit Kt_d")
+    if final.verdict != Verdict.CONFIRMED:
+        return final
+    middle_is_S = is_identically_zero(terms[0].expr - terms[1].expr)
+    return Finding(Verdict.CONFIRMED if middle_is_S else Verdict.TYPO,
+                   "the limit is KTn = Kt_d (SymPy limit of the exact expression, theta -> 0) and the middle member is KTS written out",
+                   Evidence(Method.CANONICAL_FORM, facts={"limit": limit}), derived=sp.Eq(sp.Symbol("lim"), derived))
+
+
+@functools.lru_cache(maxsize=None)
+def delay_analysis(active: bool) -> dict:
+    """Exact facts about the worst case of the delayed wall, for the (23)-(27) verdicts."""
+    za = z_a if active else 0
+    instances = __import__("hapticproof.delayed", fromlist=["check_dirichlet_identity"]).check_dirichlet_identity(12)
+    thresholds = {}
+    from hapticproof.delayed import small_damping_threshold
+
+    for k in range(1, 5):
+        th = small_damping_threshold(k)
+        thresholds[k] = th.lo if th.lo == th.hi else (th.lo, th.hi)
+    return {"dirichlet_instances": instances, "kappa": thresholds, "z_a": za}
+
+
+def required_damping(approximation: str, delay: int, values: dict, active: bool):
+    """Certified damping needed by a numeric instance: ``b >= z_a - min_c Re G^-1|_{b=0}``."""
+    numeric = SingleUserScene.virtual_wall(K=values[K], B=values[B], b=0, T=values[T], approximation=approximation,
+                                           delay=delay, z_a=values.get(z_a, 0) if active else 0)
+    form = hermitian(numeric).numeric()
+    minimum = minimise_rational(form.num, form.den, -1, 1)
+    return -minimum.exact if minimum.exact is not None else -minimum.value
+
+
+def instance_counterexample(printed: sp.Basic, delay: int, values: dict, active: bool) -> dict | None:
+    """Parameters where the printed condition holds and the exact worst case fails, re-verified."""
+    bound = as_bound(printed.subs(t_d, delay * T).subs(values), b)
+    need = required_damping("forward", delay, values, active)
+    printed_bound = sp.Rational(bound.bound)
+    need_low = need if isinstance(need, sp.Rational) else sp.Rational(need.lower().str(40, radius=False))
+    if not need_low > printed_bound:
+        return None
+    witness_b = (printed_bound + need_low) / 2
+    point = {**{str(k): v for k, v in values.items()}, "b": witness_b, "n": delay}
+    check = verify_worst_case("forward", delay=delay, active=active)({sp.Symbol(k): v for k, v in point.items()})
+    assert check.decision == Decision.DISPROVED, "witness not confirmed by the exact decision"
+    return {"point": point, "printed_bound": printed_bound, "exact_bound": need if isinstance(need, sp.Rational) else need.str(15),
+            "recheck": check.to_json()}
+
+
+def _delayed_condition_check(ctx: AuditContext, active: bool) -> Finding:
+    printed = ctx.relation()
+    za = z_a if active else 0
+    facts = delay_analysis(active)
+    # B = 0: exact for all n (structural, Dirichlet kernel): b - z_a >= KT/2 + KTn
+    at_b0 = compare_bounds(printed.subs(B, 0), sp.Ge(b - za, K * T / 2 + K * t_d), b, what="the printed condition at B = 0")
+    if at_b0.verdict != Verdict.CONFIRMED:
+        return at_b0
+    # B > kappa_1 KT at n = 1: exact worst case by root isolation
+    values = {K: sp.Integer(1), T: sp.Integer(1), B: sp.Integer(1)}
+    if active:
+        values[z_a] = sp.Rational(1, 10)
+    counter = instance_counterexample(printed, 1, values, active)
+    # t_d = 0: the printed condition becomes b - z_a + B > KT/2, the exact one b - z_a >= KT/2 + B
+    at_n0 = compare_bounds(printed.subs(t_d, 0), exact_worst(scene(active=active)), b,
+                           verify=verify_worst_case(active=active), what="the printed condition at t_d = 0")
+    if counter is None:
+        return Finding(Verdict.UNDECIDED, "no counterexample at the instance tried", Evidence(Method.INSTANCES, instances=1))
+    return Finding(
+        Verdict.NEEDS_ASSUMPTION,
+        "exact when B = 0 for every n (Re G^-1 = b - z_a - KT/2 - KT sum_{k<=n} cos k wT + B cos((n+1) wT) is smallest "
+        "as c -> 1; identity checked for n = 0..12, the bound on the sum is termwise); for B > 0 it is exact only while "
+        "B <= kappa_n KT with kappa_n = n(2n+1)/(6(n+1)) (certified for n = 1..4: 1/4, 5/9, 7/8, 6/5) - the paper's "
+        "'B small' - and it is not sufficient beyond that (witness at n = 1) nor for any B > 0 at t_d = 0",
+        Evidence(Method.COUNTEREXAMPLE, witness=counter["point"],
+                 facts={**facts, "printed_bound": counter["printed_bound"], "exact_bound": counter["exact_bound"],
+                        "recheck": counter["recheck"], "t_d=0": at_n0.evidence.to_json(), "B=0": at_b0.detail}),
+        derived=sp.Ge(b - za, K * T / 2 + K * t_d),
+        corrected=(r"b - z_a > \frac{KT}{2} + Kt_d + B" if active else r"b > \frac{KT}{2} + Kt_d + B")
+        + r"\quad (\text{sufficient for all } B \ge 0;\ \text{the printed form is exact iff } B \le \tfrac{n(2n+1)}{6(n+1)} KT)",
+    )
+
+
+@PAPER.equation("24", kind="condition", section="3.1.1",
+                printed=r"b + B - \frac{KT}{2} - t_d / T \cos(\omega T/2) > 0",
+                assumptions=ASSUME, derivation="(23) in the limit c -> 1 (S -> n)")
+def eq24(ctx: AuditContext) -> Finding:
+    derived_limit = b + B - K * T / 2 - K * t_d
+    try:
+        relation = ctx.relation()
+        readings = {"as printed": relation.lhs - relation.rhs}
+    except Exception:  # noqa: BLE001 - the slash is ambiguous: compare both readings
+        readings = {}
+        for name, text in (("(t_d/T) cos(wT/2)", r"b + B - \frac{KT}{2} - \frac{t_d}{T} \cos(\omega T/2) > 0"),
+                           ("t_d/(T cos(wT/2))", r"b + B - \frac{KT}{2} - \frac{t_d}{T \cos(\omega T/2)} > 0")):
+            rel = ctx.parse(text).relations()[0].as_sympy()
+            readings[name] = rel.lhs - rel.rhs
+    # the limit c -> 1 means omega -> 0: cos(omega T/2) -> 1
+    values = {name: sp.simplify(expr.subs(omega, 0)) for name, expr in readings.items()}
+    if any(is_identically_zero(v - derived_limit) for v in values.values()):
+        return Finding(Verdict.CONFIRMED, "equals the c -> 1 limit of (23)", Evidence(Method.CANONICAL_FORM))
+    diff = find_point(values, derived_limit)
+    return Finding(
+        Verdict.TYPO,
+        "the c -> 1 limit of (23) is b + B - KT/2 - Kt_d; the printed last term t_d/T cos(omega T/2) (ambiguous slash; "
+        "both readings tried) lacks the factor K T (KT * t_d/T = K t_d) and its cos(omega T/2) is 1 in the limit",
+        Evidence(Method.COUNTEREXAMPLE, witness=diff["point"], facts={"printed_limits": values, "derived_limit": derived_limit,
+                                                                       "values_at_witness": diff["values"]}),
+        derived=sp.Gt(derived_limit, 0),
+        corrected=r"b + B - \frac{KT}{2} - Kt_d > 0",
+    )
+
+
+def find_point(readings: dict, derived: sp.Expr) -> dict:
+    from hapticproof.certify import find_difference
+
+    first = next(iter(readings.values()))
+    found = find_difference(first, derived)
+    return {"point": {str(k): v for k, v in found["point"].items()}, "values": found["values"]}
+
+
+@PAPER.equation("23-worst", kind="claim", after="23", section="3.1.1",
+                printed="With the assumption that t_d/T = n and B is small, the worst-case condition will happen if cos(omega T) = 1.",
+                derivation="exact minimiser of Re G^-1 over c for B = 0 (all n) and B > 0 (instances)")
+def worst_at_one(ctx: AuditContext) -> Finding:
+    facts = delay_analysis(False)
+    # B = 0: structural; B > 0, n = 1: minimiser moves off c = 1 when B > KT/4
+    numeric = SingleUserScene.virtual_wall(K=1, B=1, b=2, T=1, delay=1)
+    wc = worst_case(numeric)
+    return Finding(
+        Verdict.NEEDS_ASSUMPTION,
+        "true for B = 0 (every n) and for 0 < B <= kappa_n KT (kappa_1 = 1/4, ...); for larger B the minimum moves inside "
+        f"(n = 1, K = T = B = 1: minimiser c = {wc.minimiser}) and at n = 0 it is at c = -1 for any B > 0",
+        Evidence(Method.ROOT_ISOLATION, witness={"n": 1, "K": 1, "T": 1, "B": 1, "c_min": wc.minimiser}, facts=facts),
+    )
+
+
+@PAPER.equation("25", kind="condition", printed=r"b+B > \frac{KT}{2} + Kt_d", section="3.1.1",
+                assumptions=ASSUME + "; B small (paper)", derivation="exact worst case of (22) over c")
+def eq25(ctx: AuditContext) -> Finding:
+    return _delayed_condition_check(ctx, active=False)
+
+
+@PAPER.equation("26", kind="condition", printed=r"b - z_a > \frac{KT}{2} + B", section="3.1.1",
+                assumptions=ASSUME, derivation="exact worst case of Re G^-1 with b replaced by b - z_a")
+def eq26(ctx: AuditContext) -> Finding:
+    return compare_bounds(ctx.relation(), exact_worst(scene(active=True)), b,
+                          verify=verify_worst_case(active=True), what="the printed condition")
+
+
+@PAPER.equation("27", kind="condition", printed=r"b - z_a + B > Kt_d + \frac{KT}{2}", section="3.1.1",
+                assumptions=ASSUME + "; B small (paper)", derivation="exact worst case of (22) with b - z_a")
+def eq27(ctx: AuditContext) -> Finding:
+    return _delayed_condition_check(ctx, active=True)
+
+
+@PAPER.equation("26-extends", kind="claim", after="26", section="3.1.1",
+                printed="Evidently, the proposed condition (27) extends the condition in [3] by both allowing the operator "
+                        "to be active and for the delay to exist, and extends the condition in [7] by allowing the operator to be active.",
+                derivation="(27) at z_a = 0, t_d = 0 vs (3); (27) at z_a = 0 vs (5)")
+def extends(ctx: AuditContext) -> Finding:
+    p27 = ctx.parse(PAPER.get("27").printed).relations()[0].as_sympy()
+    p3 = ctx.parse(PAPER.get("3").printed).relations()[0].as_sympy()
+    reduced = p27.subs({z_a: 0, t_d: 0})
+    vs3 = compare_bounds(reduced, sp.Ge(p3.lhs, p3.rhs), b, what="(27) at z_a = 0, t_d = 0")
+    if vs3.verdict == Verdict.CONFIRMED:
+        return Finding(Verdict.CONFIRMED, "(27) reduces to (3)", vs3.evidence)
+    return Finding(
+        Verdict.INCONSISTENT,
+        "(27) with z_a = 0 and t_d = 0 is b + B > KT/2 (Gil's (4)), not Colgate's (3) b > KT/2 + B: for B > 0 it does not "
+        "contain (3) as a special case (it is weaker; see the witness)",
+        Evidence(Method.COUNTEREXAMPLE, witness=vs3.evidence.witness, facts={"ids": ["27", "3"], "reduced": reduced}),
+        corrected=r"b - z_a > \frac{KT}{2} + Kt_d + B \ \text{reduces to (3) at } z_a = t_d = 0",
+    )
+
+
+# ---------------------------------------------------------------------------------------------
+# Section 3.1.2: small-gain approach (28)-(36)
+# ---------------------------------------------------------------------------------------------
+
+BETA = b - z_a
+G_sym, N_sym, M_sym = sp.Symbol("G_T"), sp.Symbol("N"), sp.Symbol("M")
+# (29) and (32) use the maps M and N as operands; they are read as plain symbols there.
+OPERAND_TABLE = SymbolTable(
+    symbols={**dict(TABLE.symbols), r"\mathscr{M}": M_sym, r"\mathscr{N}": N_sym, r"\mathcal{MN}": M_sym * N_sym},
+    functions={name: f for name, f in TABLE.functions.items() if "M" not in name and "N" not in name},
+    families=list(TABLE.families.values()),
+)
+
+
+def _derived_r() -> sp.Expr:
+    from hapticproof.smallgain import region_factor
+
+    return region_factor(omega, T, t_d)
+
+
+def _derived_M(argument: sp.Expr) -> sp.Expr:
+    from hapticproof.smallgain import disk_map
+
+    return disk_map(G_T(argument), R_FUN(argument), BETA)
+
+
+def _derived_N(argument: sp.Expr) -> sp.Expr:
+    from hapticproof.smallgain import lft_partner
+
+    return lft_partner(_derived_M(argument), G_T(argument), H_FUN(sp.exp(argument * T))).subs(G_sym, G_T(argument))
+
+
+@PAPER.equation("28", kind="expression", section="3.1.2",
+                printed=r"r(j\omega) = e^{-j\omega t_d} \frac{T}{2} \frac{e^{-j\omega T} - 1}{1 - \cos(\omega T)}",
+                assumptions="t_d an integer multiple of T",
+                derivation="convex hull of R_1 weighted by sum_k 1/(w + k w_s)^2 = T^2/(2(1 - cos wT)) (checked with mpmath)")
+def eq28(ctx: AuditContext) -> Finding:
+    from hapticproof.smallgain import check_weights_sum
+
+    finding = compare_expressions(ctx.relation().rhs, _derived_r(), what="the printed r(jw)")
+    error = check_weights_sum(4)
+    return Finding(finding.verdict, finding.detail + f"; the weight-sum identity agrees with a direct 30-digit sum to {error:.1e}",
+                   Evidence(finding.evidence.method, facts={"weights_sum_relative_error": error}), derived=finding.derived)
+
+
+@PAPER.equation("29", kind="condition", printed=r"\|\mathscr{M}\mathscr{N}\|_{\infty} < 1", section="3.1.2",
+                derivation="small-gain theorem for 1 + MN = 0 with M mapping the region of G_T^* into the unit disk")
+def eq29(ctx: AuditContext) -> Finding:
+    from hapticproof.parse import Norm, parse_printed
+    from hapticproof.smallgain import disk_identity
+
+    relation = parse_printed(ctx.equation.printed, OPERAND_TABLE).relations()[0].as_sympy()
+    norm = relation.lhs
+    if not (isinstance(norm, Norm) and is_identically_zero(norm.args[0] - M_sym * N_sym) and relation.rhs == 1):
+        return Finding(Verdict.WRONG, f"not the small-gain condition on MN: {relation}", Evidence(Method.PARSE))
+    # |M| <= 1 on the region: M = 2 beta (G/r - rho) and G/r in the disk |y - rho| <= rho, with
+    # R_1 the Moebius image of Re p >= 0 (identity |beta+p|^2 - |beta-p|^2 = 4 beta Re p)
+    if disk_identity() != 0 or not is_identically_zero(_derived_M(s) - (2 * BETA * G_T(s) / R_FUN(s) - 1)):
+        return Finding(Verdict.WRONG, "M does not map the region of G_T^* into the unit disk", Evidence(Method.STRUCTURAL))
+    return Finding(Verdict.CONFIRMED,
+                   "the infinity-norm small-gain condition on the loop MN; M maps the region r R_1 of G_T^* onto the closed "
+                   "unit disk (so |N| < 1 suffices, eq. 35)",
+                   Evidence(Method.STRUCTURAL, facts={"disk_identity": disk_identity()}))
+
+
+def _m_check(ctx: AuditContext) -> Finding:
+    relation = ctx.relation()
+    argument = s
+    return compare_expressions(relation.rhs, _derived_M(argument), what="the printed M{s, G_T^*}")
+
+
+def _n_check(ctx: AuditContext) -> Finding:
+    derived = _derived_N(s)
+    error = ctx.parse_error
+    printed_text = ctx.equation.printed
+    note = ""
+    if error is not None:
+        repaired = printed_text.replace("r(s)H(s))}", "r(s)H(s)}")
+        note = "the display has an unbalanced ')' (removed to read it)"
+        relation = ctx.parse(repaired).relations()[0].as_sympy()
+    else:
+        relation = ctx.relation()
+    printed = relation.rhs
+    if is_identically_zero(printed - derived):
+        return Finding(Verdict.CONFIRMED if not note else Verdict.TYPO, "N equals the derived partner" + (f"; {note}" if note else ""),
+                       Evidence(Method.CANONICAL_FORM), derived=derived)
+    # witness: any environment with H(s) != H(e^{sT}); take H(z) = z, r = 1, beta = 1, s = 1
+    values = {H_FUN: sp.Lambda(z, z), R_FUN: sp.Lambda(s, 1)}
+    point = {s: 1, T: 1, b: 1, z_a: 0}
+    pv = sp.simplify(printed.subs(values).subs(point))
+    dv = sp.simplify(derived.subs(values).subs(point))
+    return Finding(
+        Verdict.TYPO,
+        "N = rH(e^{sT})/(2(b - z_a) + rH(e^{sT})) solves 1 + MN = 0 <=> 1 + H G_T^* = 0; the printed denominator has "
+        f"H(s) instead of H(e^{{sT}}) ({note})",
+        Evidence(Method.COUNTEREXAMPLE, witness={"H(z)": "z", "r": 1, "s": 1, "T": 1, "b": 1, "z_a": 0},
+                 facts={"printed_value": pv, "derived_value": dv}),
+        derived=derived,
+        corrected=r"\mathscr{N}\{s, G_T^*(s)\} = \frac{r(s)H(e^{sT})}{2(b-z_a) + r(s)H(e^{sT})}",
+    )
+
+
+for _id, _printed in (("30", r"\mathscr{M}\{s, G_T^*(s)\} = -1 + \frac{2(b - z_a)}{r(s)} G_T^*(s)"),
+                      ("33", r"\mathscr{M}\{s, G_T^*(s)\} = -1 + \frac{2(b-z_a)}{r(s)}G_T^*(s)")):
+    PAPER.equation(_id, kind="expression", printed=_printed, section="3.1.2",
+                   derivation="affine map of the disk r R_1 (centre r/(2(b - z_a)), radius |r|/(2(b - z_a))) onto the unit disk")(_m_check)
+
+for _id, _printed in (("31", r"\mathcal{N}\{s, G_T^*(s)\} = \frac{r(s)H(e^{sT})}{2(b-z_a) + r(s)H(s))}"),
+                      ("34", r"\mathscr{N}\{s, G_T^*(s)\} = \frac{r(s)H(e^{sT})}{2(b-z_a) + r(s)H(s))}")):
+    PAPER.equation(_id, kind="expression", printed=_printed, section="3.1.2",
+                   derivation="N from 1 + MN = 0 <=> 1 + H(e^{sT}) G_T^*(s) = 0")(_n_check)
+
+
+@PAPER.equation("32", kind="condition", printed=r"1 + \mathcal{MN} = 0", section="3.1.2",
+                derivation="1 + MN with the derived M and N equals 2(b - z_a)(1 + H G_T^*)/(2(b - z_a) + rH)")
+def eq32(ctx: AuditContext) -> Finding:
+    from hapticproof.parse import parse_printed
+
+    relation = parse_printed(ctx.equation.printed, OPERAND_TABLE).relations()[0].as_sympy()
+    printed = relation.lhs - relation.rhs
+    HsT = H_FUN(sp.exp(s * T))
+    substituted = printed.subs({M_sym: _derived_M(s), N_sym: _derived_N(s)})
+    target = 2 * BETA * (1 + HsT * G_T(s)) / (2 * BETA + R_FUN(s) * HsT)
+    return compare_expressions(substituted, target, what="1 + MN with the derived M, N",
+                               note="it vanishes exactly where 1 + H G_T^* does (the factor 2(b - z_a) + rH is finite there)")
+
+
+@PAPER.equation("35", kind="condition", section="3.1.2",
+                printed=r"\left|\frac{r(j\omega)H(e^{\ell}j\omega T)}{2(b-z_a)+r(j\omega)H(e^{j\omega T})}\right| < 1",
+                derivation="|N(jw)| < 1 with N = rH/(2(b - z_a) + rH)")
+def eq35(ctx: AuditContext) -> Finding:
+    derived = sp.Abs(_derived_N(sp.I * omega))
+    note = ""
+    if ctx.parse_error is not None:
+        note = f"the printed H(e^{{\\ell}} j w T) does not parse ({ctx.parse_error.reason}); read as H(e^{{j w T}})"
+        relation = ctx.parse(ctx.equation.printed.replace(r"e^{\ell}j\omega T", r"e^{j\omega T}")).relations()[0].as_sympy()
+    else:
+        relation = ctx.relation()
+    finding = compare_expressions(relation.lhs, derived, what="the printed |N(jw)|")
+    if finding.verdict == Verdict.CONFIRMED and note:
+        return Finding(Verdict.TYPO, f"|N(jw)| < 1 as derived; {note} (OCR damage)", Evidence(Method.PARSE, facts={"reading": "H(e^{jwT})"}),
+                       derived=sp.Lt(derived, 1),
+                       corrected=r"\left|\frac{r(j\omega)H(e^{j\omega T})}{2(b-z_a)+r(j\omega)H(e^{j\omega T})}\right| < 1")
+    return finding
+
+
+def _rhs36_canonical(expr: sp.Expr) -> sp.Expr:
+    """Canonical theta-form of an expression with H the virtual wall."""
+    wall = sp.Lambda(z, virtual_wall(K, B, T))
+    expanded = sp.expand_complex(expr.subs(H_FUN, wall).rewrite(sp.cos))
+    return canonical_theta(expanded, omega, T, t_d, n)
+
+
+@PAPER.equation("36", kind="condition", section="3.1.2",
+                printed=r"b - z_a > \frac{T}{2} \frac{1}{1 - \cos(\omega T)} \Re\{e^{-j\omega t_d} (1 - e^{-j\omega T}) H(e^{j\omega T})\}",
+                derivation="|w| < |2 beta + w| <=> beta + Re w > 0 with w = rH (and -r written out)")
+def eq36(ctx: AuditContext) -> Finding:
+    from hapticproof.smallgain import small_gain_margin
+
+    relation = ctx.relation()
+    bound = as_bound(relation, b)
+    derived_bound = z_a - sp.re(_derived_r() * H_FUN(sp.exp(sp.I * omega * T)))
+    # |N| < 1 <=> beta + Re(rH) > 0: the margin identity
+    x_, y_ = sp.symbols("x y", real=True)
+    identity = sp.simplify(small_gain_margin(BETA, x_ + sp.I * y_) - 4 * BETA * (BETA + x_))
+    difference = sp.simplify(_rhs36_canonical(bound.bound) - _rhs36_canonical(derived_bound))
+    if identity != 0 or difference != 0:
+        return Finding(Verdict.WRONG, f"the bound differs from -Re(rH): {difference}", Evidence(Method.CANONICAL_FORM))
+    return Finding(Verdict.CONFIRMED,
+                   "equivalent to |N(jw)| < 1 (|2 beta + w|^2 - |w|^2 = 4 beta (beta + Re w)); the right side equals -Re(r H) "
+                   "identically for every integer n (virtual wall, canonical theta-form)",
+                   Evidence(Method.CANONICAL_FORM, facts={"margin_identity": identity, "difference": difference}),
+                   derived=sp.Gt(b, derived_bound))
+
+
+@PAPER.equation("36-agree", kind="claim", after="36", section="3.1",
+                printed="It is shown that both methods result in the same stability conditions for single-user HVE systems.",
+                derivation="b - z_a - RHS(36) vs Re G^-1 (forward difference, delay n, active operator), identity")
+def methods_agree(ctx: AuditContext) -> Finding:
+    rhs = as_bound(ctx.parse(PAPER.get("36").printed).relations()[0].as_sympy(), b).bound - z_a
+    small_gain = sp.expand(_rhs36_canonical(b - z_a - rhs))
+    circle = hermitian(scene(delay=n, active=True)).canonical()
+    if not is_identically_zero(small_gain - circle):
+        return Finding(Verdict.INCONSISTENT, "the two conditions differ", Evidence(Method.CANONICAL_FORM, facts={"difference": small_gain - circle}))
+    # general H: 1/(z - 1) = -(1 - 1/z)/(2(1 - cos wT)) on |z| = 1, checked in canonical variables
+    general = canonical_theta(sp.expand_complex((1 / (sp.exp(sp.I * omega * T) - 1)
+                                                 + (1 - sp.exp(-sp.I * omega * T)) / (2 * (1 - sp.cos(omega * T)))).rewrite(sp.cos)),
+                              omega, T, t_d, n)
+    if sp.simplify(general) != 0:
+        return Finding(Verdict.INCONSISTENT, "the unit-circle identity behind the general case fails",
+                       Evidence(Method.CANONICAL_FORM, facts={"identity": general}))
+    return Finding(Verdict.CONFIRMED,
+                   "the small-gain condition (36) and the circle-criterion condition Re G^-1 >= 0 (forward difference, delay n, "
+                   "b - z_a) are the same function of w for every integer n; for any H(z) this follows from "
+                   "1/(z - 1) = -(1 - z^-1)/(2(1 - cos wT)) on |z| = 1",
+                   Evidence(Method.CANONICAL_FORM, facts={"unit_circle_identity": sp.simplify(general)}))
+
+
+@PAPER.equation("36-reduces", kind="claim", after="36", section="3.1.2",
+                printed="For the virtual wall H(z) = K + B(z-1)/(Tz) and assuming that B is small enough, this stability "
+                        "condition will again reduce to (27)",
+                derivation="(36) is Re G^-1 >= 0 (36-agree); its exact worst case vs (27)")
+def reduces_to_27(ctx: AuditContext) -> Finding:
+    inner = AuditContext(PAPER, PAPER.get("27"))
+    finding = _delayed_condition_check(inner, active=True)
+    return Finding(finding.verdict, "(36) is Re G^-1 >= 0 at every frequency (see 36-agree), so its worst case is that of (27): "
+                   + finding.detail, finding.evidence, derived=finding.derived, corrected=finding.corrected)
