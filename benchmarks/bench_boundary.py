@@ -108,6 +108,10 @@ def main() -> None:
                 print(f"  tol={tol:.0e} {method:>10}: error {error:9.2e}  time {seconds * 1e3:9.2f} ms"
                       f"  ({bnd.evaluations} evaluations)")
         for sim in [r for r in rows if r["case"] == name and r["method"] == "simulation"]:
+            if not math.isfinite(sim["relative_error"]):
+                print(f"  simulation tol={sim['rtol']:.0e}: horizon {sim['horizon']} too short, "
+                      "no boundary found in the bracket")
+                continue
             better = [r for r in rows if r["case"] == name and r["method"] == "spectral"
                       and r["relative_error"] <= sim["relative_error"]]
             best = min(better, key=lambda r: r["seconds"])
