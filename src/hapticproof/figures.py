@@ -178,11 +178,6 @@ def _with_condition(curve: BoundaryCurve, key: str) -> BoundaryCurve:
                          printed, border.condition.label, f"{curve.label} vs {border.condition.label}")
 
 
-def _relabel(curve: BoundaryCurve, label: str) -> BoundaryCurve:
-    return BoundaryCurve(curve.family, curve.vary, curve.over, curve.grid, curve.boundaries,
-                         curve.printed, curve.printed_label, label)
-
-
 def hve_fig9(
     panel: str,
     T_values: Sequence[float] = FIG8_T,
