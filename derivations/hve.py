@@ -157,12 +157,23 @@ def exact_worst(sc: SingleUserScene) -> sp.Basic:
 
 
 @PAPER.equation("1", kind="condition", printed="", section="1", parse=False,
-                derivation="Minsky et al.'s condition announced in the text")
+                derivation="Minsky et al.'s model (Fig. 1): the hold as a one-sample delay, second-order Taylor series, Routh-Hurwitz")
 def eq1(ctx: AuditContext) -> Finding:
+    # m s^2 + b s + K e^{-sT}, with e^{-sT} replaced by its second-order Taylor polynomial: a
+    # quadratic, Hurwitz iff all its coefficients are positive
+    m_, s_ = sp.Symbol("m", positive=True), sp.Symbol("s")
+    taylor = sp.series(sp.exp(-s_ * T), s_, 0, 3).removeO()
+    poly = sp.Poly(sp.expand(m_ * s_**2 + b * s_ + K * taylor), s_)
+    conditions = [sp.Gt(coeff, 0, evaluate=False) for coeff in poly.all_coeffs()]
+    binding = [c for c in conditions if not (c.lhs - c.rhs).is_positive]
+    (derived,) = binding
     return malformed(
         ctx,
-        "the display of (1) is missing from the text: 'It was shown that the system in Figure 1 is "
-        "stable if' is followed by no condition",
+        "the display of (1) is missing from the text ('... is stable if' is followed by no condition); the model it "
+        "describes gives b > KT (Routh-Hurwitz of m s^2 + b s + K(1 - sT + s^2 T^2/2)), consistent with the text's remark "
+        "that the true condition is b > C KT with C about 1/2",
+        corrected=r"b > KT",
+        derived=derived,
     )
 
 
@@ -522,17 +533,15 @@ def eq23a(ctx: AuditContext) -> Finding:
 
 
 @functools.lru_cache(maxsize=None)
-def delay_analysis(active: bool) -> dict:
+def delay_analysis() -> dict:
     """Exact facts about the worst case of the delayed wall, for the (23)-(27) verdicts."""
-    za = z_a if active else 0
-    instances = __import__("hapticproof.delayed", fromlist=["check_dirichlet_identity"]).check_dirichlet_identity(12)
-    thresholds = {}
-    from hapticproof.delayed import small_damping_threshold
+    from hapticproof.delayed import check_dirichlet_identity, small_damping_threshold
 
+    thresholds = {}
     for k in range(1, 5):
         th = small_damping_threshold(k)
         thresholds[k] = th.lo if th.lo == th.hi else (th.lo, th.hi)
-    return {"dirichlet_instances": instances, "kappa": thresholds, "z_a": za}
+    return {"dirichlet_instances": check_dirichlet_identity(12), "kappa": thresholds}
 
 
 def required_damping(approximation: str, delay: int, values: dict, active: bool):
@@ -563,7 +572,7 @@ def instance_counterexample(printed: sp.Basic, delay: int, values: dict, active:
 def _delayed_condition_check(ctx: AuditContext, active: bool) -> Finding:
     printed = ctx.relation()
     za = z_a if active else 0
-    facts = delay_analysis(active)
+    facts = delay_analysis()
     # B = 0: exact for all n (structural, Dirichlet kernel): b - z_a >= KT/2 + KTn
     at_b0 = compare_bounds(printed.subs(B, 0), sp.Ge(b - za, K * T / 2 + K * t_d), b, what="the printed condition at B = 0")
     if at_b0.verdict != Verdict.CONFIRMED:
@@ -635,7 +644,7 @@ def find_point(readings: dict, derived: sp.Expr) -> dict:
                 printed="With the assumption that t_d/T = n and B is small, the worst-case condition will happen if cos(omega T) = 1.",
                 derivation="exact minimiser of Re G^-1 over c for B = 0 (all n) and B > 0 (instances)")
 def worst_at_one(ctx: AuditContext) -> Finding:
-    facts = delay_analysis(False)
+    facts = delay_analysis()
     # B = 0: structural; B > 0, n = 1: minimiser moves off c = 1 when B > KT/4
     numeric = SingleUserScene.virtual_wall(K=1, B=1, b=2, T=1, delay=1)
     wc = worst_case(numeric)
@@ -706,12 +715,14 @@ def _derived_r() -> sp.Expr:
     return region_factor(omega, T, t_d)
 
 
+@functools.lru_cache(maxsize=None)
 def _derived_M(argument: sp.Expr) -> sp.Expr:
     from hapticproof.smallgain import disk_map
 
     return disk_map(G_T(argument), R_FUN(argument), BETA)
 
 
+@functools.lru_cache(maxsize=None)
 def _derived_N(argument: sp.Expr) -> sp.Expr:
     from hapticproof.smallgain import lft_partner
 

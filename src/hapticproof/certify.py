@@ -125,18 +125,34 @@ def is_identically_zero(expr: sp.Expr) -> bool:
         return True
     if expr.has(sp.sin, sp.cos, sp.exp):
         return sp.simplify(sp.expand_trig(expr)) == 0
+    if expr.is_rational_function():
+        return False  # cancel is a canonical form for rational functions
     return sp.simplify(expr) == 0
 
 
 def _evaluate(expr: sp.Expr, values: Mapping[sp.Symbol, Any]) -> sp.Expr | None:
+    """Exact value at a point (rational when the expression is rational; exact transcendental
+    numbers such as ``cos(1)`` otherwise, which compare correctly through evalf)."""
     try:
         value = sp.sympify(expr).xreplace(dict(values))
-        value = sp.nsimplify(value) if value.is_Float else value
         if value.has(sp.zoo, sp.nan, sp.oo, -sp.oo):
             return None
-        return sp.simplify(value) if not value.is_Rational else value
+        if not value.is_Rational and not value.free_symbols:
+            value = sp.cancel(value)
+        return None if value.has(sp.zoo, sp.nan) else value
     except (ZeroDivisionError, TypeError):
         return None
+
+
+def _nonzero(value: sp.Expr) -> bool:
+    """Certified ``value != 0`` for an exact number (evalf with increasing precision)."""
+    if value.is_Rational:
+        return value != 0
+    for digits in (30, 100):
+        approx = sp.N(value, digits)
+        if approx.is_number and abs(approx) > sp.Float(10) ** (-digits // 2):
+            return True
+    return sp.simplify(value) != 0
 
 
 def find_difference(
@@ -152,10 +168,9 @@ def find_difference(
     symbols = list(symbols) if symbols is not None else sorted(a.free_symbols | b.free_symbols, key=str)
     for point in Sampler(symbols, seed).draw(tries):
         va, vb = _evaluate(a, point), _evaluate(b, point)
-        if va is None or vb is None:
+        if va is None or vb is None or va.free_symbols or vb.free_symbols:
             continue
-        diff = sp.nsimplify(sp.N(va - vb, 60)) if not (va - vb).is_Rational else va - vb
-        if diff != 0 and sp.simplify(va - vb) != 0:
+        if _nonzero(va - vb):
             return {"point": point, "values": (va, vb)}
     return None
 
@@ -241,7 +256,7 @@ def as_bound(condition: sp.Basic, var: sp.Symbol) -> Bound:
     rest = sp.expand(expr - coeff * var)
     if not coeff.is_positive:
         raise ValueError(f"coefficient of {var} is not provably positive: {coeff}")
-    return Bound(var, sp.simplify(-rest / coeff), isinstance(condition, sp.StrictGreaterThan))
+    return Bound(var, sp.cancel(-rest / coeff), isinstance(condition, sp.StrictGreaterThan))
 
 
 def sign_on_box(expr: sp.Expr, box: Mapping[sp.Symbol, tuple[Any, Any]] | None = None) -> int | None:
@@ -260,9 +275,9 @@ def sign_on_box(expr: sp.Expr, box: Mapping[sp.Symbol, tuple[Any, Any]] | None =
         if sp.Poly(expr, s).degree() > 1:
             return None
     corners = [expr.subs(dict(zip(boxed, corner))) for corner in itertools.product(*(box[s] for s in boxed))]
-    if all(sp.simplify(v).is_nonnegative for v in corners):
+    if all(sp.factor(v).is_nonnegative for v in corners):
         return 1
-    if all(sp.simplify(v).is_nonpositive for v in corners):
+    if all(sp.factor(v).is_nonpositive for v in corners):
         return -1
     return None
 
@@ -291,7 +306,7 @@ def compare_bounds(
     return a ``disproved`` outcome for a not-sufficient witness.
     """
     p, e = as_bound(printed, var), as_bound(exact, var)
-    difference = sp.simplify(p.bound - e.bound)
+    difference = sp.cancel(sp.together(p.bound - e.bound))
     suffix = f" ({note})" if note else ""
     strictness = "" if p.strict == e.strict else f"; compared up to the boundary ({'>' if p.strict else '>='} vs {'>' if e.strict else '>='})"
     symbols = sorted((p.bound.free_symbols | e.bound.free_symbols) - {var}, key=str)

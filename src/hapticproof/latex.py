@@ -105,13 +105,18 @@ def verbatim_block(text: str) -> str:
 
 
 def _balanced(text: str) -> bool:
-    depth = 0
-    for ch in re.sub(r"\\[{}]", "", text):
-        depth += ch == "{"
-        depth -= ch == "}"
-        if depth < 0:
+    """Braces and parentheses nest properly (escaped braces and ``\\left``/``\\right`` ignored)."""
+    stripped = re.sub(r"\\(left|right|big|Big)[()\[\]|.]|\\[{}]", "", text)
+    for opening, closing in ("{}", "()"):
+        depth = 0
+        for ch in stripped:
+            depth += ch == opening
+            depth -= ch == closing
+            if depth < 0:
+                return False
+        if depth:
             return False
-    return depth == 0
+    return True
 
 
 def display(latex: str) -> str:
@@ -156,7 +161,8 @@ _KNOWN = set(
     Re Im min max sum lim to infty cdot times leq geq le ge neq ne quad qquad text mathrm
     operatorname mathbf mathcal det dots cdots ldots vdots ddots begin end bmatrix pmatrix
     matrix aligned gathered boxed ell hline mathbb partial mu sigma tau lambda
-    implies Rightarrow rightarrow xrightarrow infty vert Vert lvert rvert prime""".split()
+    implies Rightarrow rightarrow xrightarrow infty vert Vert lvert rvert prime succeq preceq iff
+    operatorname Res displaystyle tfrac""".split()
 )
 
 

@@ -1,0 +1,135 @@
+"""Summaries of a scene's derivation: what ``hapticproof derive`` prints and notebooks show.
+
+>>> from hapticproof.scene import SingleUserScene
+>>> summary = summarize_single_user(SingleUserScene.virtual_wall(K=2, B=0, b="0.0012", T="0.001"))
+>>> summary.verdict, summary.witness
+('proved', None)
+>>> sorted(summary.to_json())[:4]
+['G_inverse', 'approximation', 'delay', 'hermitian_part']
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+from typing import Any
+
+import sympy as sp
+
+from hapticproof import latex as tex
+from hapticproof.evidence import Decision, to_jsonable
+from hapticproof.lazy import profile
+from hapticproof.models import inverse_transfer
+from hapticproof.positivereal import hermitian, poles, residues, worst_case
+from hapticproof.scene import SingleUserScene
+from hapticproof.unitcircle import ThetaForm
+
+__all__ = ["SceneSummary", "summarize_single_user"]
+
+COS = r"\cos(\omega T)"
+
+
+@dataclass(frozen=True)
+class SceneSummary:
+    """The derived conditions of one scene, ready to print as text, LaTeX or JSON."""
+
+    system: str
+    approximation: str
+    delay: Any
+    G_inverse: sp.Expr
+    hermitian_part: Any
+    poles: list
+    residues: list
+    worst_case: Any
+    verdict: str
+    witness: Any
+    reason: str
+    minimiser: Any = None
+    minimum: Any = None
+    stages: dict = field(default_factory=dict)
+
+    def to_json(self) -> dict[str, Any]:
+        out = {
+            "system": self.system,
+            "approximation": self.approximation,
+            "delay": self.delay,
+            "G_inverse": sp.sstr(self.G_inverse),
+            "hermitian_part": sp.sstr(self.hermitian_part),
+            "poles": [{"z": p.value, "multiplicity": p.multiplicity, "location": p.location} for p in self.poles],
+            "residues": [{"z": r.pole, "residue": r.residue, "condition": r.outcome.decision.value} for r in self.residues],
+            "worst_case": sp.sstr(self.worst_case) if self.worst_case is not None else None,
+            "verdict": self.verdict,
+            "witness": self.witness,
+            "reason": self.reason,
+            "minimiser": self.minimiser,
+            "minimum": self.minimum,
+        }
+        if self.stages:
+            out["stages_seconds"] = self.stages
+        return to_jsonable(out)
+
+    def to_text(self) -> str:
+        lines = [
+            f"system:          {self.system} ({self.approximation} difference, delay n = {self.delay})",
+            f"G^-1(z)          = {sp.sstr(self.G_inverse)}",
+            f"Re G^-1 (c = cos wT) = {sp.sstr(self.hermitian_part)}",
+            "poles:           " + ", ".join(f"z = {p.value} ({p.location}{'' if p.multiplicity == 1 else f', x{p.multiplicity}' if p.multiplicity > 0 else ', multiplicity n+...'})" for p in self.poles),
+            "residues:        " + (", ".join(f"Res(z = {r.pole}) = {sp.sstr(r.residue)} [{r.outcome.reason}]" for r in self.residues) or "none on |z| = 1"),
+            f"worst case:      {sp.sstr(self.worst_case) if self.worst_case is not None else 'see reason'}",
+            f"verdict:         {self.verdict}  ({self.reason})",
+        ]
+        if self.witness is not None:
+            lines.append(f"witness:         c = {self.witness}")
+        if self.minimiser is not None:
+            lines.append(f"minimiser:       c = {self.minimiser}, minimum = {self.minimum}")
+        if self.stages:
+            lines.append("stages (s):      " + ", ".join(f"{k} {v:.4f}" for k, v in self.stages.items()))
+        return "\n".join(lines)
+
+    def to_latex(self) -> str:
+        herm = self.hermitian_part
+        rows = [
+            r"G^{-1}(z) &= " + tex.to_latex(self.G_inverse),
+            r"\Re\, G^{-1}(e^{j\omega T}) &= " + (tex.to_latex(herm, cos_name=COS) if not isinstance(herm, str) else herm),
+        ]
+        for r in self.residues:
+            rows.append(r"\operatorname{Res}_{z=" + tex.to_latex(r.pole) + r"} G^{-1} &= " + tex.to_latex(r.residue))
+        if self.worst_case is not None and self.worst_case not in (sp.true, sp.false):
+            rows.append(r"\text{worst case: } & " + tex.to_latex(self.worst_case, cos_name=COS))
+        return "\\begin{aligned}\n" + " \\\\\n".join(rows) + "\n\\end{aligned}"
+
+    def dumps(self, fmt: str) -> str:
+        if fmt == "json":
+            return json.dumps(self.to_json(), indent=2)
+        if fmt == "latex":
+            return self.to_latex()
+        return self.to_text()
+
+
+def summarize_single_user(scene: SingleUserScene, with_profile: bool = False) -> SceneSummary:
+    """Derive and collect everything ``hapticproof derive single-user`` reports."""
+    form = hermitian(scene)
+    if isinstance(form, ThetaForm):
+        theta = sp.Symbol("theta")
+        herm = form.expr(theta)
+    else:
+        herm = sp.expand(form.expr()) if not form.is_numeric else form.expr()
+    wc = worst_case(scene)
+    decision = wc.decision
+    witness = wc.outcome.witness.get("c") if (wc.outcome.witness and decision == Decision.DISPROVED) else None
+    return SceneSummary(
+        system="single-user",
+        approximation=scene.approximation,
+        delay=scene.delay,
+        G_inverse=inverse_transfer(scene),
+        hermitian_part=herm,
+        poles=poles(scene),
+        residues=residues(scene),
+        worst_case=wc.condition,
+        verdict=decision.value,
+        witness=witness,
+        reason=wc.outcome.reason,
+        minimiser=wc.minimiser,
+        minimum=wc.minimum,
+        stages=profile(scene) if with_profile else {},
+    )

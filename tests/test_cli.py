@@ -1,0 +1,63 @@
+"""The command-line interface: outputs, formats and one-line errors with non-zero exit."""
+
+import json
+
+import pytest
+
+from hapticproof.cli import main
+
+
+def run(capsys, *argv):
+    code = main(list(argv))
+    out = capsys.readouterr()
+    return code, out.out, out.err
+
+
+def test_derive_single_user_json_numeric(capsys):
+    code, out, _ = run(capsys, "derive", "single-user", "--param", "K=2", "--param", "T=0.001", "--param", "b=0.0009",
+                       "--param", "B=0", "--format", "json")
+    data = json.loads(out)
+    assert code == 0
+    assert {"hermitian_part", "worst_case", "verdict", "witness"} <= set(data)
+    assert data["verdict"] == "disproved" and data["witness"] == "-1"   # b < KT/2 = 0.001
+
+
+def test_derive_single_user_symbolic(capsys):
+    code, out, _ = run(capsys, "derive", "single-user", "--approximation", "tustin", "--delay", "3", "--format", "json")
+    data = json.loads(out)
+    assert code == 0 and data["verdict"] == "symbolic" and data["witness"] is None
+
+
+def test_derive_proved_with_profile(capsys):
+    code, out, _ = run(capsys, "derive", "single-user", "--param", "K=2", "--param", "T=1/1000", "--param", "b=0.0011",
+                       "--param", "B=0", "--delay", "0", "--profile")
+    assert code == 0 and "proved" in out and "stages" in out
+
+
+@pytest.mark.parametrize(
+    "argv, message",
+    [
+        (["derive", "single-user", "--param", "T=-1"], "T must be positive"),
+        (["derive", "single-user", "--param", "T=0.003", "--param", "t_d=0.01"], "t_d/T must be an integer"),
+        (["derive", "single-user", "--param", "K"], "NAME=VALUE"),
+        (["derive", "single-user", "--param", "Q=1"], "unknown parameter"),
+        (["derive", "single-user", "--delay", "1.5"], "non-negative integer"),
+        (["audit", "no-such-paper"], "unknown paper"),
+        (["audit", "hve", "--equation", "999"], "no equation"),
+        (["derive", "single-user", "--environment", "K +* z"], "cannot read"),
+    ],
+)
+def test_user_errors_are_one_line(capsys, argv, message):
+    code, out, err = run(capsys, *argv)
+    assert code == 2
+    assert message in err and err.count("\n") == 1 and "Traceback" not in err
+
+
+def test_audit_one_equation_formats(capsys, tmp_path):
+    code, out, _ = run(capsys, "audit", "hve", "--equation", "20", "--format", "json")
+    assert code == 0 and json.loads(out)["equations"][0]["verdict"] == "confirmed"
+    code, out, _ = run(capsys, "audit", "hve", "-e", "19", "--format", "markdown")
+    assert "| 19 |" in out and "malformed" in out
+    target = tmp_path / "audit.tex"
+    code, _, _ = run(capsys, "audit", "hve", "-e", "23", "-e", "25", "--format", "tex", "--output", str(target))
+    assert code == 0 and target.read_text().startswith("\\documentclass")
