@@ -162,7 +162,7 @@ _KNOWN = set(
     operatorname mathbf mathcal det dots cdots ldots vdots ddots begin end bmatrix pmatrix
     matrix aligned gathered boxed ell hline mathbb partial mu sigma tau lambda
     implies Rightarrow rightarrow xrightarrow infty vert Vert lvert rvert prime succeq preceq iff
-    operatorname Res displaystyle tfrac""".split()
+    operatorname Res displaystyle tfrac dot ddot bar hat tilde mathcal Longrightarrow Leftrightarrow""".split()
 )
 
 
