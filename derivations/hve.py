@@ -795,7 +795,7 @@ def _n_check(ctx: AuditContext) -> Finding:
         Evidence(Method.COUNTEREXAMPLE, witness={"H(z)": "z", "r": 1, "s": 1, "T": 1, "b": 1, "z_a": 0},
                  facts={"printed_value": pv, "derived_value": dv}),
         derived=derived,
-        corrected=r"\mathscr{N}\{s, G_T^*(s)\} = \frac{r(s)H(e^{sT})}{2(b-z_a) + r(s)H(e^{sT})}",
+        corrected=r"\mathcal{N}\{s, G_T^*(s)\} = \frac{r(s)H(e^{sT})}{2(b-z_a) + r(s)H(e^{sT})}",
     )
 
 
