@@ -1,0 +1,11 @@
+"""Test-session settings shared by the unit tests, doctests and notebooks (kernels inherit them).
+
+Small dense matrices are the common case here; multi-threaded BLAS makes them several times
+slower on a shared 2-core machine, so BLAS is pinned to one thread. Plots use the Agg backend.
+"""
+
+import os
+
+for _variable in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_variable, "1")
+os.environ.setdefault("MPLBACKEND", "Agg")
