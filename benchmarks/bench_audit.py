@@ -1,0 +1,114 @@
+"""Wall time of the audit from a cold process, and time per derivation.
+
+Runs ``hapticproof audit PAPER --format json`` in fresh processes (cold: imports and caches
+included), repeats, and reports medians; the per-equation times come from the JSON's
+``seconds``. Writes ``benchmarks/results/audit.json`` and a bar plot of the slowest equations.
+
+    python benchmarks/bench_audit.py [--papers hve ...] [--repeat 3]
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import statistics
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+RESULTS = Path(__file__).resolve().parent / "results"
+
+
+def cold_run(paper: str | None, single_core: bool = True) -> tuple[float, dict]:
+    env = dict(os.environ)
+    if single_core:
+        env.update(OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1", MKL_NUM_THREADS="1")
+    cmd = [sys.executable, "-m", "hapticproof", "audit", "--format", "json"] + ([paper] if paper else ["--all"])
+    if single_core and sys.platform.startswith("linux"):
+        cmd = ["taskset", "-c", "0"] + cmd
+    start = time.perf_counter()
+    out = subprocess.run(cmd, capture_output=True, text=True, env=env, check=True).stdout
+    return time.perf_counter() - start, json.loads(out)
+
+
+def derivation_times(repeat: int) -> dict[str, float]:
+    """Median time of each single-user derivation (cold scene cache, warm process)."""
+    from hapticproof.lazy import clear
+    from hapticproof.scene import SingleUserScene
+    from hapticproof.summary import summarize_single_user
+
+    cases = {
+        "symbolic forward": dict(),
+        "symbolic tustin delay 3": dict(approximation="tustin", delay=3),
+        "symbolic delay n": dict(delay="n"),
+        "numeric forward": dict(K=2, B=0, b="0.0011", T="0.001"),
+        "numeric delay 10": dict(K=2, B="0.0001", b="0.03", T="0.001", delay=10),
+        "numeric delay 100": dict(K=2, B="0.0001", b="0.3", T="0.001", delay=100),
+    }
+    out = {}
+    for name, kw in cases.items():
+        if kw.get("delay") == "n":
+            from hapticproof.scene import SYMBOLS
+
+            kw = dict(kw, delay=SYMBOLS["n"])
+        times = []
+        for _ in range(repeat):
+            scene = SingleUserScene.virtual_wall(**kw)
+            clear(scene)
+            start = time.perf_counter()
+            summarize_single_user(scene)
+            times.append(time.perf_counter() - start)
+        out[name] = statistics.median(times)
+    return out
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--papers", nargs="*", default=["hve"])
+    parser.add_argument("--repeat", type=int, default=3)
+    args = parser.parse_args()
+    RESULTS.mkdir(parents=True, exist_ok=True)
+    report: dict = {"machine": {"cpus": os.cpu_count(), "python": sys.version.split()[0]}, "papers": {}}
+    for paper in args.papers:
+        walls, per_equation = [], {}
+        for _ in range(args.repeat):
+            wall, data = cold_run(paper)
+            walls.append(wall)
+            for eq in data["equations"]:
+                per_equation.setdefault(eq["id"], []).append(eq["seconds"])
+        medians = {k: statistics.median(v) for k, v in per_equation.items()}
+        report["papers"][paper] = {
+            "cold_wall_seconds_median": statistics.median(walls),
+            "cold_wall_seconds": walls,
+            "equations": len(medians),
+            "slowest": sorted(medians.items(), key=lambda kv: -kv[1])[:10],
+        }
+        print(f"{paper}: cold wall median {statistics.median(walls):.2f} s over {args.repeat} runs; "
+              f"{len(medians)} equations; slowest: "
+              + ", ".join(f"{k} {v:.2f}s" for k, v in report["papers"][paper]["slowest"][:5]))
+    report["derivations_seconds_median"] = derivation_times(args.repeat)
+    for name, t in report["derivations_seconds_median"].items():
+        print(f"derivation {name}: {t * 1000:.1f} ms")
+    (RESULTS / "audit.json").write_text(json.dumps(report, indent=2))
+    try:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+
+        fig, ax = plt.subplots(figsize=(7, 4))
+        for paper, data in report["papers"].items():
+            names = [k for k, _ in data["slowest"]][::-1]
+            ax.barh([f"{paper}:{n}" for n in names], [v for _, v in data["slowest"]][::-1])
+        ax.set_xlabel("seconds (median)")
+        ax.set_title("slowest audited equations")
+        fig.tight_layout()
+        fig.savefig(RESULTS / "audit.png", dpi=120)
+    except ImportError:  # pragma: no cover
+        pass
+
+
+if __name__ == "__main__":
+    main()
