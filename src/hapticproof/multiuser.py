@@ -1,0 +1,899 @@
+r"""m-user haptic virtual environments (HVE paper, Section 3.2): scenes, ``G^{-1}(z)`` as an
+``m x m`` matrix, and exact positive-realness with its structured worst cases.
+
+The model (Fig. 7b, eqs. 37-39, 47, 56), derived rather than copied
+---------------------------------------------------------------------
+Device ``i`` obeys ``b_i V_i = F_i - U_i`` (37) with the environment force
+``U_i = z^{-n_i} sum_j H_ij(z) X_j`` (per-user delay ``n_i = t_di/T``) and
+``H(z) = Kmat + Bmat (z-1)/(Tz)``, where ``Kmat = diag(K_0) + L_K`` and
+``Bmat = diag(B_0) + L_B`` are a ground coupling plus the weighted Laplacian of the coupling
+graph (``L_ii = sum_k w_ik``, ``L_ij = -w_ij``). With ``X_j = I(z) V_j`` (forward difference
+``I = T/(z-1)`` by default, backward or Tustin allowed) and an active operator's shortage of
+passivity ``z_ai`` moved from ``b_i`` (as eq. 26 does),
+
+.. math:: G^{-1}(z) = \operatorname{diag}(b - z_a) + D(z)\, H(z)\, I(z),
+          \qquad D(z) = \operatorname{diag}(z^{-n_i}).
+
+Hermitian part by kernels
+-------------------------
+``G_ij = (b_i - z_ai) delta_ij + z^{-n_i} (T Kmat_ij k_K(z) + Bmat_ij k_B(z))`` with the scalar
+kernels ``k_K = I(z)/T`` and ``k_B = I(z)(z-1)/(Tz)``, so every entry of
+``M = G + G^H`` is a parameter-linear combination of the kernels' exact ``c``-forms
+(:mod:`hapticproof.unitcircle`), computed once per delay. This is the fast path behind
+:func:`hermitian`; the tests check it against the generic
+:func:`hapticproof.psd.hermitian_part_matrix` of :func:`inverse_transfer_matrix`.
+
+Structure (proved in :func:`worst_case` and the tests)
+-------------------------------------------------------
+* **Undelayed, forward difference**: ``M(c) = 2 diag(b - z_a) - T Kmat + 2 c Bmat`` is affine in
+  ``c`` with slope ``2 Bmat >= 0`` (``B >= 0``), so the worst case is ``c = -1`` for any ``m``
+  and any graph (Loewner order): ``M(-1) = 2 diag(b - z_a) - diag(K_0 T + 2 B_0) - L_w`` with
+  ``w_ij = K_ij T + 2 B_ij``.
+* **Equal delays**: ``M(c) = 2 diag(b - z_a) + 2 Re k_K(c) T Kmat + 2 Re k_B(c) Bmat``; with
+  ``Re k_K >= -kappa_K`` and ``Re k_B >= -kappa_B`` (exact minima over ``[-1, 1]``; forward
+  difference: ``kappa_K = n + 1/2`` from the Dirichlet kernel, ``kappa_B = 1``)
+
+  .. math:: M/2 \succeq \operatorname{diag}(b - z_a) - \kappa_K T\,Kmat - \kappa_B Bmat ,
+
+  which is exact when ``B = 0`` (the minimum of ``Re k_K`` is attained).
+* **Loewner monotonicity**: smaller ``b_i`` and larger ``K_0i, B_0i, K_ij, B_ij`` decrease the
+  bound; ``L_w <= max(w) L_{K_m}`` and ``lambda_max(L_{K_m}) = m``, so
+  ``min_i (b_i - z_ai) >= max_i(kappa_K T K_0i + kappa_B B_0i) + m max_ij(kappa_K T K_ij + kappa_B B_ij)``
+  is sufficient for every graph (:func:`sufficient_condition`) -- the corrected form of the
+  paper's (54), (55), (62), (63).
+* **Uniform parameters** (equal ``b``, ``K_0``, ``B_0``, ``K``, ``B``, delays, ``z_a``): ``Kmat``
+  and ``Bmat`` are polynomials in the unweighted Laplacian, so ``G^{-1}`` decouples into one
+  single-user virtual wall per Laplacian eigenvalue ``lambda`` with ``K' = K_0 + lambda K`` and
+  ``B' = B_0 + lambda B`` (:func:`uniform_modes`; complete graph: ``lambda`` in ``{0, m}``).
+
+>>> scene = MultiUserScene.uniform(3)
+>>> sp.factor(inverse_transfer_matrix(scene)[0, 1])
+-(B*z - B + K*T*z)/(z*(z - 1))
+>>> worst_case(scene).condition
+b >= 3*B + B_0 + 3*K*T/2 + K_0*T/2
+"""
+
+from __future__ import annotations
+
+import itertools
+from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import dataclass, field, replace
+from functools import lru_cache
+from typing import Any
+
+import flint
+import sympy as sp
+
+from hapticproof.errors import SceneError
+from hapticproof.evidence import Decision, Evidence, Method, Outcome
+from hapticproof.lazy import stage
+from hapticproof.models import integrator
+from hapticproof.positivereal import worst_case as single_worst_case
+from hapticproof.psd import (
+    HermitianPart,
+    Minor,
+    PolyRing,
+    affine_worst_case,
+    decide_psd_on_circle,
+    nonnegative_certificate,
+    residue_matrices as matrix_residues,
+)
+from hapticproof.psd import principal_minors as psd_minors
+from hapticproof.realroots import minimise_rational
+from hapticproof.scene import APPROXIMATIONS, SYMBOLS, SingleUserScene, as_parameter
+from hapticproof.symbols import c as C_SYM
+from hapticproof.symbols import z as Z_SYM
+from hapticproof.unitcircle import hermitian_part_rational, imaginary_part_rational
+
+__all__ = [
+    "UNIFORM_SYMBOLS",
+    "MultiUserScene",
+    "Mode",
+    "MatrixWorstCase",
+    "complete_graph",
+    "user_symbols",
+    "inverse_transfer_matrix",
+    "stiffness_matrix",
+    "damping_matrix",
+    "residues",
+    "hermitian",
+    "principal_minors",
+    "worst_case",
+    "positive_real",
+    "kernel_bounds",
+    "worst_case_matrix",
+    "uniform_modes",
+    "uniform_condition",
+    "sufficient_condition",
+    "hve_leading_minor_counterexample",
+    "to_sampled",
+]
+
+#: Symbols of the uniform (worst-case) parameters, named as the paper prints them.
+UNIFORM_SYMBOLS: dict[str, sp.Symbol] = {
+    "b": SYMBOLS["b"],
+    "T": SYMBOLS["T"],
+    "K_0": sp.Symbol("K_0", positive=True),
+    "B_0": sp.Symbol("B_0", nonnegative=True),
+    "K": SYMBOLS["K"],
+    "B": SYMBOLS["B"],
+    "z_a": SYMBOLS["z_a"],
+}
+
+
+def _index(i: int, j: int | None = None) -> str:
+    """Subscript text for 1-based indices (a separator once an index has two digits)."""
+    if j is None:
+        return str(i)
+    return f"{i}{j}" if i < 10 and j < 10 else f"{i}_{j}"
+
+
+def user_symbols(m: int) -> dict[str, Any]:
+    """The paper's per-user symbols for ``m`` users (complete graph): ``b_i``, ``K_0i``,
+    ``B_0i``, ``z_ai``, ``K_ij``, ``B_ij`` with its assumptions (damping, stiffness positive;
+    virtual damping and shortage of passivity non-negative).
+
+    >>> s = user_symbols(2)
+    >>> s["b"], s["K0"], s["K"][(0, 1)], s["z_a"][1]
+    ((b_1, b_2), (K_01, K_02), K_12, z_a2)
+    """
+    users = range(1, m + 1)
+    return {
+        "b": tuple(sp.Symbol(f"b_{i}", positive=True) for i in users),
+        "K0": tuple(sp.Symbol(f"K_0{_index(i)}", positive=True) for i in users),
+        "B0": tuple(sp.Symbol(f"B_0{_index(i)}", nonnegative=True) for i in users),
+        "z_a": tuple(sp.Symbol(f"z_a{_index(i)}", nonnegative=True) for i in users),
+        "K": {(i - 1, j - 1): sp.Symbol(f"K_{_index(i, j)}", positive=True) for i, j in itertools.combinations(users, 2)},
+        "B": {(i - 1, j - 1): sp.Symbol(f"B_{_index(i, j)}", nonnegative=True) for i, j in itertools.combinations(users, 2)},
+    }
+
+
+def complete_graph(m: int) -> tuple[tuple[int, int], ...]:
+    """Edges ``(i, j)``, ``0 <= i < j < m``, of the complete graph."""
+    return tuple(itertools.combinations(range(m), 2))
+
+
+def _tuple(values: Any, m: int, name: str) -> tuple[sp.Expr, ...]:
+    if isinstance(values, (list, tuple)):
+        if len(values) != m:
+            raise SceneError(f"{name} needs one value per user ({m}), got {len(values)}")
+        return tuple(as_parameter(name, v) for v in values)
+    return (as_parameter(name, values),) * m
+
+
+def _edge_values(values: Any, edges: Sequence[tuple[int, int]], m: int, name: str) -> tuple[sp.Expr, ...]:
+    """Edge weights from a scalar, a mapping ``{(i, j): w}`` (0-based) or an ``m x m`` matrix."""
+    if isinstance(values, Mapping):
+        out = []
+        for i, j in edges:
+            if (i, j) in values:
+                out.append(as_parameter(name, values[(i, j)]))
+            elif (j, i) in values:
+                out.append(as_parameter(name, values[(j, i)]))
+            else:
+                raise SceneError(f"{name}: no value for the edge ({i + 1}, {j + 1})")
+        return tuple(out)
+    if isinstance(values, (list, tuple, sp.MatrixBase)) and not isinstance(values, str):
+        rows = sp.Matrix(values)
+        if rows.shape == (m, m):
+            for i in range(m):
+                for j in range(m):
+                    if sp.simplify(rows[i, j] - rows[j, i]) != 0:
+                        raise SceneError(f"{name} must be symmetric")
+            return tuple(as_parameter(name, rows[i, j]) for i, j in edges)
+        if rows.shape in ((len(edges), 1), (1, len(edges))):
+            return tuple(as_parameter(name, v) for v in rows)
+        raise SceneError(f"{name} must be a scalar, an edge mapping or an {m}x{m} matrix")
+    return (as_parameter(name, values),) * len(edges)
+
+
+@dataclass(frozen=True, slots=True, weakref_slot=True)
+class MultiUserScene:
+    """An m-user sampled-data HVE (HVE paper Fig. 6/7, eqs. 37-39, 47, 56).
+
+    Parameters
+    ----------
+    b, K0, B0, z_a : tuple
+        Per-user device damping ``b_i``, ground stiffness ``K_0i``, ground damping ``B_0i`` and
+        the operators' shortage of passivity ``z_ai``.
+    T : expr
+        Sampling period.
+    edges : tuple of (int, int)
+        The coupling graph (0-based ``i < j``); complete by default in the constructors.
+    K, B : tuple
+        Coupling stiffness ``K_ij`` and damping ``B_ij``, one per edge.
+    delays : tuple of int
+        Per-user delays ``n_i = t_di/T`` (integers; the row of user ``i`` is delayed).
+    approximation : {'forward', 'backward', 'tustin'}
+        Approximation of ``X_h = Z{v_h/s}``.
+    """
+
+    b: tuple
+    T: sp.Expr
+    K0: tuple
+    B0: tuple
+    edges: tuple
+    K: tuple
+    B: tuple
+    delays: tuple
+    z_a: tuple
+    approximation: str = "forward"
+
+    def __post_init__(self) -> None:
+        m = len(self.b)
+        if m < 1:
+            raise SceneError("an m-user scene needs at least one user")
+        for name in ("b", "K0", "B0", "z_a"):
+            object.__setattr__(self, name, _tuple(tuple(getattr(self, name)), m, name))
+        object.__setattr__(self, "T", as_parameter("T", self.T))
+        edges = tuple(tuple(sorted((int(i), int(j)))) for i, j in self.edges)
+        if any(i == j or i < 0 or j >= m for i, j in edges) or len(set(edges)) != len(edges):
+            raise SceneError(f"edges must be distinct pairs of distinct users in 0..{m - 1}")
+        object.__setattr__(self, "edges", edges)
+        for name in ("K", "B"):
+            values = tuple(as_parameter(name, v) for v in getattr(self, name))
+            if len(values) != len(edges):
+                raise SceneError(f"{name} needs one value per edge ({len(edges)})")
+            object.__setattr__(self, name, values)
+        delays = tuple(self.delays)
+        if len(delays) != m:
+            raise SceneError(f"delays needs one value per user ({m})")
+        checked = []
+        for n in delays:
+            value = as_parameter("delay", n)
+            if not (value.is_Integer and value >= 0):
+                raise SceneError(f"the delays n_i = t_di/T must be non-negative integers, got {n}")
+            checked.append(int(value))
+        object.__setattr__(self, "delays", tuple(checked))
+        if self.approximation not in APPROXIMATIONS:
+            raise SceneError(f"unknown approximation {self.approximation!r}; choose one of {', '.join(APPROXIMATIONS)}")
+        if self.T.is_number and not self.T > 0:
+            raise SceneError(f"the sampling period T must be positive, got {self.T}")
+        numbers = [*self.b, *self.K0, *self.B0, *self.z_a, *self.K, *self.B]
+        if any(v.is_number and v < 0 for v in numbers):
+            raise SceneError("dampings, stiffnesses and shortages of passivity must be non-negative")
+
+    # -- constructors ---------------------------------------------------------------------------
+    @classmethod
+    def symbolic(
+        cls,
+        m: int,
+        *,
+        edges: Iterable[tuple[int, int]] | None = None,
+        delays: Any = 0,
+        active: bool = False,
+        approximation: str = "forward",
+        T: Any = None,
+    ) -> MultiUserScene:
+        """Every parameter its own symbol (``b_i``, ``K_0i``, ``B_0i``, ``K_ij``, ``B_ij`` and,
+        when ``active``, ``z_ai``).
+
+        >>> MultiUserScene.symbolic(2).K
+        (K_12,)
+        """
+        _check_users(m)
+        sym = user_symbols(m)
+        graph = complete_graph(m) if edges is None else tuple(tuple(sorted(e)) for e in edges)
+        K = tuple(sym["K"].get(e) or sp.Symbol(f"K_{_index(e[0] + 1, e[1] + 1)}", positive=True) for e in graph)
+        B = tuple(sym["B"].get(e) or sp.Symbol(f"B_{_index(e[0] + 1, e[1] + 1)}", nonnegative=True) for e in graph)
+        return cls(
+            b=sym["b"], T=SYMBOLS["T"] if T is None else T, K0=sym["K0"], B0=sym["B0"], edges=graph, K=K, B=B,
+            delays=_delays(delays, m), z_a=sym["z_a"] if active else (0,) * m, approximation=approximation,
+        )
+
+    @classmethod
+    def uniform(
+        cls,
+        m: int,
+        *,
+        b: Any = None,
+        K0: Any = None,
+        B0: Any = None,
+        K: Any = None,
+        B: Any = None,
+        T: Any = None,
+        delay: int = 0,
+        z_a: Any = 0,
+        edges: Iterable[tuple[int, int]] | None = None,
+        approximation: str = "forward",
+    ) -> MultiUserScene:
+        """All users alike: one ``b``, ``K_0``, ``B_0``, ``z_a`` and delay, one ``K`` and ``B``
+        on every edge (complete graph by default); unspecified values are the symbols
+        :data:`UNIFORM_SYMBOLS`.
+
+        >>> MultiUserScene.uniform(2, b=1, K0=2, B0=0, K=2, B=0, T="0.001").is_numeric
+        True
+        """
+        _check_users(m)
+        u = UNIFORM_SYMBOLS
+        graph = complete_graph(m) if edges is None else tuple(tuple(sorted(e)) for e in edges)
+        pick = lambda value, key: u[key] if value is None else value  # noqa: E731
+        return cls(
+            b=(pick(b, "b"),) * m, T=pick(T, "T"), K0=(pick(K0, "K_0"),) * m, B0=(pick(B0, "B_0"),) * m,
+            edges=graph, K=(pick(K, "K"),) * len(graph), B=(pick(B, "B"),) * len(graph),
+            delays=(delay,) * m, z_a=(z_a,) * m, approximation=approximation,
+        )
+
+    @classmethod
+    def from_values(
+        cls,
+        *,
+        b: Any,
+        T: Any,
+        K0: Any,
+        K: Any = 0,
+        B0: Any = 0,
+        B: Any = 0,
+        delays: Any = 0,
+        z_a: Any = 0,
+        users: int | None = None,
+        edges: Iterable[tuple[int, int]] | None = None,
+        approximation: str = "forward",
+    ) -> MultiUserScene:
+        """Numeric (or mixed) parameters; per-user values as lists, couplings as a scalar, an
+        edge mapping ``{(i, j): w}`` (0-based) or an ``m x m`` matrix.
+
+        >>> s = MultiUserScene.from_values(b=[1, 2, 3], T="0.01", K0=5, K={(0, 1): 1, (0, 2): 2, (1, 2): 3})
+        >>> s.users, s.K
+        (3, (1, 2, 3))
+        """
+        m = users
+        for value in (b, K0, B0, z_a, delays):
+            if isinstance(value, (list, tuple)):
+                m = len(value)
+                break
+        if m is None:
+            raise SceneError("give per-user values as lists or the number of users")
+        graph = complete_graph(m) if edges is None else tuple(tuple(sorted(e)) for e in edges)
+        return cls(
+            b=_tuple(b, m, "b"), T=T, K0=_tuple(K0, m, "K_0"), B0=_tuple(B0, m, "B_0"), edges=graph,
+            K=_edge_values(K, graph, m, "K"), B=_edge_values(B, graph, m, "B"), delays=_delays(delays, m),
+            z_a=_tuple(z_a, m, "z_a"), approximation=approximation,
+        )
+
+    # -- properties -----------------------------------------------------------------------------
+    @property
+    def users(self) -> int:
+        return len(self.b)
+
+    @property
+    def parameters(self) -> set[sp.Symbol]:
+        out: set[sp.Symbol] = set()
+        for v in (*self.b, *self.K0, *self.B0, *self.z_a, *self.K, *self.B, self.T):
+            out |= sp.sympify(v).free_symbols
+        return out
+
+    @property
+    def is_numeric(self) -> bool:
+        return not self.parameters
+
+    @property
+    def has_delay(self) -> bool:
+        return any(self.delays)
+
+    @property
+    def equal_delays(self) -> bool:
+        return len(set(self.delays)) == 1
+
+    @property
+    def is_uniform(self) -> bool:
+        """Equal per-user values and equal edge weights (the paper's worst-case reading)."""
+        same = lambda values: len({sp.sympify(v) for v in values}) <= 1  # noqa: E731
+        return all(same(v) for v in (self.b, self.K0, self.B0, self.z_a, self.K, self.B, self.delays))
+
+    @property
+    def is_complete(self) -> bool:
+        return set(self.edges) == set(complete_graph(self.users))
+
+    @property
+    def damped(self) -> bool:
+        """Some virtual damping is (possibly) non-zero."""
+        return any(sp.sympify(v) != 0 for v in (*self.B0, *self.B))
+
+    def with_values(self, values: Mapping[Any, Any] | None = None, **named: Any) -> MultiUserScene:
+        """Substitute exact values for parameters (by symbol or by name).
+
+        >>> MultiUserScene.uniform(2).with_values(b=1, K_0=1, B_0=0, K=1, B=0, T="0.01").is_numeric
+        True
+        """
+        by_name = {s.name: s for s in self.parameters}
+        mapping: dict[sp.Symbol, sp.Expr] = {}
+        for key, value in list((values or {}).items()) + list(named.items()):
+            symbol = by_name.get(key) if isinstance(key, str) else key
+            if symbol is None:
+                raise SceneError(f"unknown parameter {key!r}; the scene has {sorted(by_name)}")
+            mapping[symbol] = as_parameter(str(key), value)
+        sub = lambda vals: tuple(sp.sympify(v).xreplace(mapping) for v in vals)  # noqa: E731
+        return replace(self, b=sub(self.b), T=sp.sympify(self.T).xreplace(mapping), K0=sub(self.K0), B0=sub(self.B0),
+                       K=sub(self.K), B=sub(self.B), z_a=sub(self.z_a))
+
+    def weights(self, values: Sequence[Any]) -> sp.Matrix:
+        """The symmetric ``m x m`` matrix of edge weights (zero diagonal, zero off the graph)."""
+        W = sp.zeros(self.users, self.users)
+        for (i, j), w in zip(self.edges, values):
+            W[i, j] = W[j, i] = w
+        return W
+
+
+def _check_users(m: Any) -> None:
+    if isinstance(m, bool) or not isinstance(m, int) or m < 1:
+        raise SceneError(f"the number of users must be a positive integer, got {m!r}")
+
+
+def _delays(delays: Any, m: int) -> tuple:
+    if isinstance(delays, (list, tuple)):
+        if len(delays) != m:
+            raise SceneError(f"delays needs one value per user ({m})")
+        return tuple(delays)
+    return (delays,) * m
+
+
+def _laplacian(ground: Sequence[Any], W: sp.Matrix) -> sp.Matrix:
+    m = W.rows
+    L = -W
+    for i in range(m):
+        L[i, i] = ground[i] + sum(W[i, k] for k in range(m))
+    return L
+
+
+# ---------------------------------------------------------------------------------------------
+# G^{-1}(z) and its pieces (stages)
+# ---------------------------------------------------------------------------------------------
+
+
+@stage("stiffness_matrix")
+def stiffness_matrix(scene: MultiUserScene) -> sp.ImmutableMatrix:
+    """``Kmat = diag(K_0) + L_K`` (``Kmat_ii = K_0i + sum_k K_ik``, ``Kmat_ij = -K_ij``)."""
+    return sp.ImmutableMatrix(_laplacian(scene.K0, scene.weights(scene.K)))
+
+
+@stage("damping_matrix")
+def damping_matrix(scene: MultiUserScene) -> sp.ImmutableMatrix:
+    """``Bmat = diag(B_0) + L_B``."""
+    return sp.ImmutableMatrix(_laplacian(scene.B0, scene.weights(scene.B)))
+
+
+@stage("inverse_transfer_matrix")
+def inverse_transfer_matrix(scene: MultiUserScene) -> sp.ImmutableMatrix:
+    """``G^{-1}(z) = diag(b - z_a) + D(z) H(z) I(z)`` (eqs. 39, 47, 56 for m = 2, 3)."""
+    m = scene.users
+    Kmat, Bmat = stiffness_matrix(scene), damping_matrix(scene)
+    I = integrator(scene.approximation, scene.T)
+    H = Kmat + Bmat * (Z_SYM - 1) / (scene.T * Z_SYM)
+    out = sp.zeros(m, m)
+    for i in range(m):
+        for j in range(m):
+            entry = Z_SYM ** (-scene.delays[i]) * H[i, j] * I
+            if i == j:
+                entry += scene.b[i] - scene.z_a[i]
+            out[i, j] = entry
+    return sp.ImmutableMatrix(out)
+
+
+@stage("residues")
+def residues(scene: MultiUserScene):
+    """Residue matrices of ``G^{-1}`` at its unit-circle poles (``z = 1``: ``T Kmat``)."""
+    return matrix_residues(inverse_transfer_matrix(scene))
+
+
+@lru_cache(maxsize=None)
+def _kernels(approximation: str, n: int) -> tuple[tuple[flint.fmpq_poly, flint.fmpq_poly], ...]:
+    """``(Re, Im/sin)`` of ``k_K = z^-n I/T`` and ``k_B = z^-n I (z-1)/(Tz)`` as (num, den)."""
+    iota = integrator(approximation, 1)
+    out = []
+    for kernel in (Z_SYM ** (-n) * iota, Z_SYM ** (-n) * sp.cancel(iota * (Z_SYM - 1) / Z_SYM)):
+        re = hermitian_part_rational(kernel).numeric()
+        im = imaginary_part_rational(kernel).numeric()
+        out.append(((re.num, re.den), (im.num, im.den)))
+    return tuple(out)  # ((reK, imK), (reB, imB))
+
+
+def _combine(p: tuple, q: tuple, sign: int) -> tuple[flint.fmpq_poly, flint.fmpq_poly]:
+    """``p + sign*q`` for (num, den) pairs, reduced, with a denominator positive at c = 0."""
+    num = p[0] * q[1] + sign * q[0] * p[1]
+    den = p[1] * q[1]
+    if num.is_zero():
+        return flint.fmpq_poly([0]), flint.fmpq_poly([1])
+    g = num.gcd(den)
+    num, den = num / g, den / g
+    if den(flint.fmpq(0)) < 0:
+        num, den = -num, -den
+    return num, den
+
+
+@stage("hermitian")
+def hermitian(scene: MultiUserScene) -> HermitianPart:
+    """``M = G^{-1} + G^{-H}`` on the unit circle, built from the kernels (fast path).
+
+    Entrywise real when the delays are equal; with unequal delays ``S != 0`` (complex
+    Hermitian, rows delayed differently).
+    """
+    m = scene.users
+    Kmat, Bmat = stiffness_matrix(scene), damping_matrix(scene)
+    ring = PolyRing.over(scene.parameters)
+    kern = {n: _kernels(scene.approximation, n) for n in set(scene.delays)}
+    combos: dict[tuple[int, int, int], tuple] = {}   # (n_i, n_j, which) -> (reK, reB) sums and (imK, imB) diffs
+    for ni in kern:
+        for nj in kern:
+            (reKi, imKi), (reBi, imBi) = kern[ni]
+            (reKj, imKj), (reBj, imBj) = kern[nj]
+            combos[(ni, nj, 0)] = (_combine(reKi, reKj, 1), _combine(reBi, reBj, 1))
+            combos[(ni, nj, 1)] = (_combine(imKi, imKj, -1), _combine(imBi, imBj, -1))
+    den = flint.fmpq_poly([1])
+    for pair in combos.values():
+        for _, d in pair:
+            den = den * d / den.gcd(d)
+    if den(flint.fmpq(0)) < 0:
+        den = -den
+
+    lifted: dict[int, Any] = {}
+
+    def lift(poly_pair: tuple) -> Any:
+        key = id(poly_pair)
+        if key not in lifted:
+            num, d = poly_pair
+            lifted[key] = ring.from_c_poly(num * (den / d))
+        return lifted[key]
+
+    to_ring: dict[sp.Expr, Any] = {}
+
+    def param(expr: Any) -> Any:
+        key = sp.sympify(expr)
+        if key not in to_ring:
+            to_ring[key] = ring.constant(key) if key.is_Rational else ring.from_expr(key)
+        return to_ring[key]
+
+    T = param(scene.T)
+    zero = ring.zero
+    A, S = [], []
+    for i in range(m):
+        row_a, row_s = [], []
+        for j in range(m):
+            ni, nj = scene.delays[i], scene.delays[j]
+            (kre, bre), (kim, bim) = combos[(ni, nj, 0)], combos[(ni, nj, 1)]
+            a = zero
+            s = zero
+            if Kmat[i, j] != 0:
+                kij = param(Kmat[i, j]) * T
+                a = a + kij * lift(kre)
+                s = s + kij * lift(kim)
+            if Bmat[i, j] != 0:
+                bij = param(Bmat[i, j])
+                a = a + bij * lift(bre)
+                s = s + bij * lift(bim)
+            if i == j:
+                a = a + param(2 * (scene.b[i] - scene.z_a[i])) * ring.from_c_poly(den)
+            row_a.append(a)
+            row_s.append(s)
+        A.append(tuple(row_a))
+        S.append(tuple(row_s))
+    return HermitianPart(ring, tuple(A), tuple(S), ring.from_c_poly(den))
+
+
+@stage("principal_minors")
+def principal_minors(scene: MultiUserScene) -> dict[tuple[int, ...], Minor]:
+    """All principal minors of the Hermitian part, exact in ``c`` (and the parameters)."""
+    return psd_minors(hermitian(scene))
+
+
+# ---------------------------------------------------------------------------------------------
+# structured worst cases
+# ---------------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True, slots=True)
+class KernelBounds:
+    """``kappa_K = -min Re k_K`` and ``kappa_B = -min Re k_B`` over ``c`` in ``[-1, 1]`` (exact
+    minima, with their minimisers): ``Re k_K >= -kappa_K``, ``Re k_B >= -kappa_B``."""
+
+    approximation: str
+    delay: int
+    kappa_K: Any
+    kappa_B: Any
+    argmin_K: Any
+    argmin_B: Any
+
+
+@lru_cache(maxsize=None)
+def kernel_bounds(approximation: str = "forward", delay: int = 0) -> KernelBounds:
+    """Exact worst values of the two kernels (forward difference: ``n + 1/2`` at ``c = 1``
+    (Dirichlet kernel) and ``1`` at the minimiser of ``T_{n+1}``).
+
+    >>> kb = kernel_bounds("forward", 2)
+    >>> kb.kappa_K, kb.argmin_K, kb.kappa_B
+    (5/2, 1, 1)
+    """
+    (reK, _), (reB, _) = _kernels(approximation, delay)
+    out = []
+    for num, den in (reK, reB):
+        mn = minimise_rational(num, den, -1, 1)
+        value = mn.exact if mn.exact is not None else mn.value
+        argmin = mn.argmin if not hasattr(mn.argmin, "as_sympy") else mn.argmin.as_sympy()
+        out.append((-value, argmin))
+    return KernelBounds(approximation, delay, out[0][0], out[1][0], out[0][1], out[1][1])
+
+
+@dataclass(frozen=True, slots=True)
+class Mode:
+    """One decoupled mode of a uniform scene: a single-user virtual wall with stiffness
+    ``K_0 + lambda K`` and damping ``B_0 + lambda B`` (``lambda`` a Laplacian eigenvalue of the
+    unweighted coupling graph, with its multiplicity)."""
+
+    eigenvalue: sp.Expr
+    multiplicity: int
+    scene: SingleUserScene
+
+
+@stage("uniform_modes")
+def uniform_modes(scene: MultiUserScene) -> tuple[Mode, ...]:
+    """The single-user walls a uniform scene decouples into (complete graph: ``lambda = 0``
+    once and ``lambda = m`` with multiplicity ``m - 1``).
+
+    >>> [(md.eigenvalue, md.multiplicity, md.scene.H) for md in uniform_modes(MultiUserScene.uniform(3))]
+    [(0, 1, B_0*(z - 1)/(T*z) + K_0), (3, 2, 3*K + K_0 + (3*B + B_0)*(z - 1)/(T*z))]
+    """
+    if not scene.is_uniform:
+        raise SceneError("uniform_modes needs a uniform scene (equal per-user values and edge weights)")
+    m = scene.users
+    if scene.is_complete:
+        spectrum = {sp.Integer(0): 1, sp.Integer(m): m - 1} if m > 1 else {sp.Integer(0): 1}
+    else:
+        spectrum = _laplacian([0] * m, scene.weights([1] * len(scene.edges))).eigenvals()
+    K0, B0 = scene.K0[0], scene.B0[0]
+    K = scene.K[0] if scene.K else sp.Integer(0)
+    B = scene.B[0] if scene.B else sp.Integer(0)
+    modes = []
+    for lam, mult in sorted(spectrum.items(), key=lambda kv: float(kv[0])):
+        wall = SingleUserScene.virtual_wall(K=K0 + lam * K, B=B0 + lam * B, b=scene.b[0], T=scene.T,
+                                            approximation=scene.approximation, delay=scene.delays[0], z_a=scene.z_a[0])
+        modes.append(Mode(sp.nsimplify(lam), int(mult), wall))
+    return tuple(modes)
+
+
+def worst_case_matrix(scene: MultiUserScene) -> sp.ImmutableMatrix:
+    """``2 diag(b - z_a) - 2 kappa_K T Kmat - 2 kappa_B Bmat`` (equal delays): ``M(c)`` is
+    above it in the Loewner order for every ``c``; undelayed forward difference:
+    ``M(-1) = 2 diag(b - z_a) - diag(K_0 T + 2 B_0) - L_w``, ``w = K T + 2 B``.
+
+    >>> worst_case_matrix(MultiUserScene.symbolic(2))[0, 1]
+    2*B_12 + K_12*T
+    """
+    if not scene.equal_delays:
+        raise SceneError("the Loewner bound needs equal delays")
+    kb = kernel_bounds(scene.approximation, scene.delays[0])
+    kK, kB = max(kb.kappa_K, 0), max(kb.kappa_B, 0)
+    bz = sp.diag(*[bi - zi for bi, zi in zip(scene.b, scene.z_a)])
+    return sp.ImmutableMatrix((2 * bz - 2 * kK * scene.T * stiffness_matrix(scene) - 2 * kB * damping_matrix(scene)).applyfunc(sp.expand))
+
+
+def sufficient_condition(scene: MultiUserScene) -> sp.Basic:
+    """The corrected general condition (any graph, equal delays, ``B >= 0``):
+
+    ``min_i (b_i - z_ai) >= max_i(kappa_K T K_0i + kappa_B B_0i) + m max_ij(kappa_K T K_ij + kappa_B B_ij)``.
+
+    Sufficient by Loewner monotonicity and ``lambda_max(L_w) <= m max w``; exact for uniform
+    scenes on the complete graph when the two kernel minima coincide (no delay, or ``B = 0``).
+    For the forward difference ``kappa_K T = t_d + T/2`` and ``kappa_B = 1``.
+
+    >>> sufficient_condition(MultiUserScene.uniform(3))
+    b >= 3*B + B_0 + 3*K*T/2 + K_0*T/2
+    """
+    if not scene.equal_delays:
+        raise SceneError("the closed form needs equal delays")
+    kb = kernel_bounds(scene.approximation, scene.delays[0])
+    kK, kB = max(kb.kappa_K, 0), max(kb.kappa_B, 0)
+    lhs = _extremum(sp.Min, [bi - zi for bi, zi in zip(scene.b, scene.z_a)])
+    ground = _extremum(sp.Max, [kK * scene.T * k0 + kB * b0 for k0, b0 in zip(scene.K0, scene.B0)])
+    pair = _extremum(sp.Max, [kK * scene.T * k + kB * bb for k, bb in zip(scene.K, scene.B)]) if scene.edges else 0
+    rhs = ground + scene.users * pair
+    return sp.Ge(lhs, rhs if rhs.has(sp.Max) else sp.expand(rhs))
+
+
+def _extremum(func, values: Sequence[Any]) -> Any:
+    unique = []
+    for v in values:
+        v = sp.expand(v)
+        if not any(sp.expand(v - u) == 0 for u in unique):
+            unique.append(v)
+    return unique[0] if len(unique) == 1 else func(*unique)
+
+
+def uniform_condition(m: int, delay: int = 0, approximation: str = "forward", damped: bool = True) -> sp.Basic:
+    """The exact PR condition of the uniform complete-graph scene with the symbols of
+    :data:`UNIFORM_SYMBOLS`, when it has a closed form: no delay (any ``B >= 0``), or a delay
+    with ``B_0 = B = 0`` (``damped=False``).
+
+    >>> uniform_condition(2)
+    b - z_a >= 2*B + B_0 + K*T + K_0*T/2
+    >>> uniform_condition(3, delay=2, damped=False)
+    b - z_a >= 15*K*T/2 + 5*K_0*T/2
+    """
+    u = UNIFORM_SYMBOLS
+    scene = MultiUserScene.uniform(m, z_a=u["z_a"], delay=delay, approximation=approximation,
+                                   B0=None if damped else 0, B=None if damped else 0)
+    if delay and damped:
+        raise SceneError("with a delay and virtual damping the uniform worst case has no closed form (see worst_case)")
+    kb = kernel_bounds(approximation, delay)
+    top = max(md.eigenvalue for md in uniform_modes(scene))
+    bound = kb.kappa_K * u["T"] * (u["K_0"] + top * u["K"])
+    if damped:
+        bound += kb.kappa_B * (u["B_0"] + top * u["B"])
+    return sp.Ge(u["b"] - u["z_a"], sp.expand(bound))
+
+
+@dataclass(frozen=True, slots=True)
+class MatrixWorstCase:
+    """Worst case over frequency of ``M(c) >= 0`` for an m-user scene.
+
+    ``outcome`` decides (numeric) or states (symbolic) the condition; ``condition`` is the
+    equivalent condition on the parameters (SymPy; ``True``/``False`` when numeric);
+    ``minimiser`` the worst ``c`` when known; ``method`` names the route
+    (``root-isolation``, ``loewner-affine``, ``loewner-dirichlet``, ``uniform-modes``).
+    """
+
+    outcome: Outcome
+    condition: Any
+    method: str
+    minimiser: Any = None
+    details: Mapping[str, Any] = field(default_factory=dict)
+
+    @property
+    def decision(self) -> Decision:
+        return self.outcome.decision
+
+
+def _and(conditions: Sequence[sp.Basic]) -> sp.Basic:
+    kept = [cnd for cnd in conditions if cnd is not sp.true]
+    if not kept:
+        return sp.true
+    return kept[0] if len(kept) == 1 else sp.And(*kept, evaluate=False)
+
+
+def _dominates(a: sp.Basic, b: sp.Basic) -> bool:
+    """``a`` implies ``b`` for ``lhs >= rhs`` conditions with the same lhs and a rhs larger
+    by a non-negative-coefficient polynomial in non-negative symbols."""
+    if a.lhs != b.lhs:
+        return False
+    diff = sp.expand(a.rhs - b.rhs)
+    if diff == 0:
+        return True
+    if not all(s.is_nonnegative for s in diff.free_symbols):
+        return False
+    poly = sp.Poly(diff, *sorted(diff.free_symbols, key=str)) if diff.free_symbols else None
+    return (poly is None and diff >= 0) or (poly is not None and all(cf >= 0 for cf in poly.coeffs()))
+
+
+@stage("worst_case")
+def worst_case(scene: MultiUserScene) -> MatrixWorstCase:
+    """Exact worst case of the Hermitian part over ``c`` in ``[-1, 1]``.
+
+    Numeric parameters: exact decision by root isolation of the characteristic coefficients
+    (any delays). Symbolic: the structured routes of the module docstring -- uniform modes,
+    the affine Loewner argument (no delay), the Dirichlet bound (equal delays, ``B = 0``);
+    otherwise ``undecided`` (give numbers).
+    """
+    if scene.is_numeric:
+        decision = decide_psd_on_circle(hermitian(scene))
+        holds = decision.decision == Decision.PROVED
+        return MatrixWorstCase(decision.outcome, sp.true if holds else sp.false, "root-isolation",
+                               decision.witness, {"failing_k": decision.failing})
+    if scene.is_uniform and (not scene.has_delay or not scene.damped):
+        conditions = []
+        modes = uniform_modes(scene)
+        for md in modes:
+            wc = _mode_condition(md.scene)
+            conditions.append(wc)
+        kept = [cnd for cnd in conditions if not any(o is not cnd and _dominates(o, cnd) and not _dominates(cnd, o) for o in conditions)]
+        kept = list(dict.fromkeys(kept))
+        condition = _and(kept)
+        outcome = Outcome(Decision.SYMBOLIC,
+                          Evidence(Method.STRUCTURAL, facts={"modes": [(md.eigenvalue, md.multiplicity) for md in modes],
+                                                            "mode_conditions": conditions}),
+                          "uniform couplings: G^-1 decouples into single-user walls K_0 + lambda K, B_0 + lambda B "
+                          "(lambda: Laplacian eigenvalues); exact per mode")
+        minimiser = sp.Integer(-1) if not scene.has_delay else kernel_bounds(scene.approximation, scene.delays[0]).argmin_K
+        return MatrixWorstCase(outcome, condition, "uniform-modes", minimiser)
+    H = hermitian(scene)
+    if not scene.has_delay:
+        aff = affine_worst_case(H)
+        if aff is not None:
+            conditions = [cnd for k, mn in aff.minors.items()
+                          if not nonnegative_certificate(H.ring, mn.num) for cnd in [sp.Ge(mn.expr(), 0)]]
+            outcome = Outcome(Decision.SYMBOLIC,
+                              Evidence(Method.STRUCTURAL, facts={"endpoint": aff.endpoint, "certificate": aff.slope_certificate}),
+                              f"M(c) = M0 + c M1 with M1 certified semidefinite: the worst case is c = {aff.endpoint} "
+                              "(Loewner order); PR iff every principal minor of M(endpoint) is >= 0")
+            return MatrixWorstCase(outcome, _and(conditions), "loewner-affine", sp.Integer(aff.endpoint),
+                                   {"minors": aff.minors})
+    if scene.equal_delays and not scene.damped:
+        W = worst_case_matrix(scene)
+        ring = PolyRing.over(W.free_symbols)
+        HW = HermitianPart(ring, tuple(tuple(ring.from_expr(v) for v in W.row(i)) for i in range(W.rows)), None, ring.one)
+        minors = psd_minors(HW)
+        conditions = [sp.Ge(mn.expr(), 0) for mn in minors.values() if not nonnegative_certificate(ring, mn.num)]
+        kb = kernel_bounds(scene.approximation, scene.delays[0])
+        outcome = Outcome(Decision.SYMBOLIC,
+                          Evidence(Method.STRUCTURAL, facts={"kappa_K": kb.kappa_K, "argmin": kb.argmin_K}),
+                          f"B = 0: M(c) = 2 diag(b - z_a) + 2 Re k_K(c) T Kmat with Kmat >= 0 and min Re k_K = "
+                          f"-{kb.kappa_K} attained at c = {kb.argmin_K}: exact")
+        return MatrixWorstCase(outcome, _and(conditions), "loewner-dirichlet", kb.argmin_K, {"minors": minors})
+    outcome = Outcome(Decision.UNDECIDED, Evidence(Method.STRUCTURAL, facts={"reason": "no structure applies"}),
+                      "symbolic parameters with delays and damping (or unequal delays): substitute numbers for an exact decision")
+    return MatrixWorstCase(outcome, None, "none")
+
+
+def _mode_condition(wall: SingleUserScene) -> sp.Basic:
+    """Exact worst-case condition of one mode, as ``b - z_a >= bound``."""
+    K = wall.H
+    if wall.has_delay:
+        # B = 0: Dirichlet kernel, exact (see hapticproof.delayed)
+        stiffness = sp.cancel(K).subs(Z_SYM, 1)
+        kb = kernel_bounds(wall.approximation, int(wall.delay))
+        return sp.Ge(wall.b - wall.z_a, sp.expand(kb.kappa_K * wall.T * stiffness))
+    cond = single_worst_case(wall).condition
+    bound = sp.solve(sp.Eq(cond.lhs - cond.rhs, 0), wall.b)
+    if len(bound) != 1:
+        return cond
+    return sp.Ge(wall.b - wall.z_a, sp.expand(bound[0] - wall.z_a))
+
+
+@stage("positive_real")
+def positive_real(scene: MultiUserScene) -> Outcome:
+    """All three conditions of Definition 2 for ``G^{-1}``: poles (``z = 0``, ``z = 1``),
+    residue matrices (``T Kmat >= 0``) and the Hermitian part."""
+    for r in residues(scene):
+        if r.outcome.decision == Decision.DISPROVED:
+            return r.outcome
+    wc = worst_case(scene)
+    if wc.decision in (Decision.DISPROVED, Decision.UNDECIDED):
+        return wc.outcome
+    if wc.decision == Decision.SYMBOLIC:
+        return Outcome(Decision.SYMBOLIC, wc.outcome.evidence, f"positive real iff {sp.sstr(wc.condition)}")
+    return Outcome(Decision.PROVED, wc.outcome.evidence,
+                   "G^-1 is positive real: poles in the closed disk, residue matrix T Kmat >= 0, Hermitian part >= 0 for all c")
+
+
+# ---------------------------------------------------------------------------------------------
+# the leading-minor shortcut on an HVE, and the link to the time domain
+# ---------------------------------------------------------------------------------------------
+
+
+def hve_leading_minor_counterexample() -> tuple[MultiUserScene, Any]:
+    """A dual-user HVE the leading-minor shortcut (HVE Definition 3) declares positive real at
+    *every* frequency although it is not: two uncoupled users, user 1 exactly at Colgate's
+    bound (``b_1 = K_01 T/2``, ``B_01 = 0``) so that ``M_11 = 0`` identically, user 2 below it.
+    Returns the scene and the :class:`~hapticproof.psd.CircleDecision` of the exact test.
+
+    >>> scene, decision = hve_leading_minor_counterexample()
+    >>> decision.decision.value, decision.witness, decision.failing
+    ('disproved', -1, 1)
+    """
+    scene = MultiUserScene.from_values(b=[sp.Rational(1, 2), sp.Rational(1, 4)], T=1, K0=[1, 1], B0=[0, 0], edges=())
+    H = hermitian(scene)
+    lead = psd_minors(H, subsets=[(0,), (0, 1)])
+    assert all(mn.num.is_zero() for mn in lead.values()), "the leading minors should vanish identically"
+    return scene, decide_psd_on_circle(H)
+
+
+def to_sampled(scene: MultiUserScene, masses: Sequence[Any] | Any, operators: Sequence[Any] | Any = None):
+    """The exact sampled-data loop (:class:`hapticproof.sampled.MultiUser`) of a numeric scene
+    with device masses and operator impedances (``z_a`` stays in the operators there).
+
+    >>> s = MultiUserScene.uniform(2, b="0.01822", K0=10, B0=0, K=10, B=0, T="0.001")
+    >>> from hapticproof.sampled import is_stable
+    >>> is_stable(to_sampled(s, "0.015"))
+    True
+    """
+    from hapticproof.sampled import MultiUser
+
+    if not scene.is_numeric:
+        raise SceneError("to_sampled needs numeric parameters")
+    if scene.approximation != "forward":
+        raise SceneError("the sampled-data loop implements the virtual coupling itself; use approximation='forward'")
+    m = scene.users
+    masses = tuple(masses) if isinstance(masses, (list, tuple)) else (masses,) * m
+    ops = tuple(operators) if isinstance(operators, (list, tuple)) else (operators,) * m
+    W = lambda values: scene.weights(values).tolist()  # noqa: E731
+    return MultiUser(masses=masses, dampings=tuple(scene.b), T=scene.T, ground_stiffness=tuple(scene.K0),
+                     ground_damping=tuple(scene.B0), coupling_stiffness=W(scene.K), coupling_damping=W(scene.B),
+                     delays=tuple(scene.delays), operators=ops)
