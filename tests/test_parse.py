@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 import sympy as sp
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from hapticproof import symbols as hs
@@ -996,6 +996,7 @@ def polynomials(draw, depth=2):
 
 @settings(max_examples=40, deadline=None)
 @given(polynomials())
+@example(("1 (1 (1)) + 1 (2)", sp.Integer(3)))  # a spaced '(2)' is a factor, not an equation number
 def test_printed_polynomials_parse_back_equal(case):
     latex, value = case
     parsed = parse_expression(latex, PROPERTY_TABLE)
@@ -1010,3 +1011,59 @@ def test_normalise_name_is_idempotent(base, sub, braced):
     once = normalise_name(printed)
     assert normalise_name(once) == once
     assert normalise_name(once.replace("{", "{ ").replace("}", " }")) == once
+
+
+def test_hve_16_names_registered_with_their_superscript():
+    ustar, xstar, = symbol_for("u^*"), symbol_for("x_h^*")
+    table = HVE.with_symbols({"u^*": ustar, "x_h^*": xstar})
+    stmt = parse_printed(r"""u^* = z^{-n} H(z) x_h^* \tag{16}""", table)
+    assert_relation(stmt, ("=",), ustar, z**-n * wall(z) * xstar)
+    rejects(r"""u^* = z^{-n} H(z) x_h^* \tag{16}""", HVE.with_symbols(u=ustar), 1, "not a power")
+
+
+def test_concrete_members_of_function_families():
+    table = HVE
+    assert parse_expression("X_{h2}(z) + b_{2}", table) == sp.Function("X_h2")(z) + b2
+    rejects("X_{h2} + 1", table, 0, "used without an argument")
+
+
+def test_layout_separators_inside_groups_are_spaces():
+    x = sp.Symbol("x")
+    table = SymbolTable({"x": x, "a": sp.Symbol("a")})
+    assert parse_expression(r"(x \quad + \ 1)", table) == x + 1
+    assert parse_expression(r"\begin{bmatrix} x \quad & 1 \end{bmatrix}", table) == sp.ImmutableMatrix([[x, 1]])
+    assert parse_expression(r"\frac ax + \frac12 x", table) == sp.Symbol("a") / x + x / 2
+
+
+def test_pass_28_continuation_line_indented_with_quad():
+    text = r"""\begin{aligned} & \int_{-\infty}^{\infty} \bar{C}^-(\omega) \sum_{n=-\infty}^{\infty} \frac{1}{(\omega + n\omega_s)^2} V_m(j\omega) V_m^c(j\omega) d\omega + \\ & \int_{-\infty}^{\infty} \bar{C}^-(\omega) \sum_{n=-\infty}^{\infty} \frac{1}{(\omega + n\omega_s)^2} V_s(j\omega) V_s^c(j\omega) d\omega \\ & + \int_{-\infty}^{\infty} \bar{C}^-(\omega) \sum_{n=-\infty}^{\infty} \frac{1}{(\omega + n\omega_s)^2} \\ & \quad \times \{V_m(j\omega) V_m^c(j\omega) + V_s^c(j\omega) V_s(j\omega)\} d\omega \end{aligned} \quad (28)"""
+    Vm, Vs, Cminus = map(sp.Function, ("V_m", "V_s", "Cminus"))
+    table = PASS.with_functions({"V_m": Vm, "V_s": Vs, r"\bar{C}^-": Cminus})
+    stmt = parse_printed(text, table)
+    nn = index_symbol("n")
+
+    def integral(power):
+        summand = power / (w + nn * w_s) ** 2
+        return sp.Integral(Cminus(w) * sp.Sum(summand, (nn, -sp.oo, sp.oo)), (w, -sp.oo, sp.oo))
+
+    vm2, vs2 = Vm(jw) * sp.conjugate(Vm(jw)), Vs(jw) * sp.conjugate(Vs(jw))
+    assert isinstance(stmt, Expression) and stmt.tag == "28"
+    assert stmt.expr == integral(vm2) + integral(vs2) + integral(vm2 + vs2)
+
+
+def test_more_operators_and_delimiters():
+    x, y = sp.Symbol("x"), sp.Symbol("y")
+    table = SymbolTable({"x": x, "y": y, "z": z, "b_1": b1, "b_2": b2}, {"H": sp.Function("H")})
+    assert parse_expression(r"\left. H(z) \right|_{z=1}", table) == sp.Function("H")(1)
+    assert parse_expression("diag(b_1, b_2)", table) == sp.ImmutableMatrix([[b1, 0], [0, b2]])
+    assert parse_expression(r"\text{diag}(x, y)", table) == sp.ImmutableMatrix([[x, 0], [0, y]])
+    assert parse_expression(r"\text{Re}\left(\begin{bmatrix} x & 1 \end{bmatrix}\right)", table) == sp.ImmutableMatrix([[sp.re(x), 1]])
+    assert parse_expression(r"\mathrm{d} x", table.with_symbols({r"\mathrm{d}": y})) == x * y
+    assert parse_printed("x <= y", table).ops == ("<=",)
+    assert parse_printed(r"0 < x \leq y \le 1 \ne y", table).ops == ("<", "<=", "<=", "!=")
+    rejects(r"\left( x \right]", table, 9, "closed by \\right]")
+    rejects(r"H^{x}(z)", table, 1, "ambiguous")
+    rejects(r"diag(x, \dots)", table, 0, "ellipsis")
+    cases = r"\begin{cases} x & \text{if} x > 0 \\ y \end{cases}"
+    rejects(cases, table, cases.index(r"\end"), "expected '&'")
+    rejects(r"\begin{aligned} x \end{aligned} + 1", table, 0, "must enclose the whole display")

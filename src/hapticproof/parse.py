@@ -33,12 +33,17 @@ Elementary functions
 Real parts, determinants, norms
     ``\Re``, ``\text{Re}``, ``\operatorname{Re}``, ``\mathrm{Re}`` with ``( )``, ``\{ \}``, or an
     implicit-product argument give ``re``; ``det``/``\det`` give an unevaluated
-    :class:`sympy.Determinant`; ``|x|`` gives ``Abs``; ``\|X\|_\infty`` gives an unevaluated
-    :class:`Norm`.
+    :class:`sympy.Determinant`; ``|x|`` gives ``Abs`` (a ``|`` after an operand closes the
+    innermost open bar: nest with ``\left|``); ``\|X\|_\infty`` gives an unevaluated
+    :class:`Norm`.  Superscripts that are not powers (the teleoperation paper's ``^c``) get their
+    meaning from the table's ``superscripts``.
 Indexed operators
     ``\min(a, b)``/``\max(...)`` are ``Min``/``Max``.  ``\min_i``, ``\max_{i,j \neq i}\{...\}``
     give unevaluated :class:`IndexedMin`/:class:`IndexedMax` over the users ``1..m`` and
-    ``\sum_{k=1, k \neq i}^{m}`` gives a ``Sum`` (the condition becomes a ``Piecewise``).  Inside
+    ``\sum_{k=1, k \neq i}^{m}`` gives a ``Sum`` (the condition becomes a ``Piecewise``).  The
+    body of ``\min_i``/``\max_i`` is the ``\{...\}`` group after it, else the implicit product
+    that follows; a summand extends over the whole product (``\sum_j (a_j + b)X_j`` sums
+    ``(a_j + b)X_j``), as the papers' multi-user sums need.  Inside
     them, subscripts such as ``b_i``, ``K_{0i}``, ``K_{ij}`` or ``z_{3i-2,3j}`` are members of the
     table's :class:`IndexedFamily` s; :func:`expand_indexed` turns everything into concrete
     symbols for a given number of users ``m``.  ``\lim_{x \to a}`` gives :class:`PrintedLimit`
@@ -59,7 +64,8 @@ Statements
     possibly ``\boxed``), comma-separated clauses and ``\implies``/``\xrightarrow{}`` steps.  A
     ``\\`` is a line *wrap*, not a new statement, when the line before it has no relation yet,
     ends with an operator, or the next line starts with an operator or a relation.  ``\tag{..}``,
-    a final ``\quad (15a)`` and a final `` (48)`` are equation numbers; ``\text{A)}`` at the
+    a final ``\quad (15a)`` and, after a relation, a final `` (48)`` are equation numbers (a
+    lone ``(36)`` is an orphaned number and raises); ``\text{A)}`` at the
     start is a label; ``\quad``, ``\,``, ``\;``, ``\left``/``\right`` sizes and final ``.``/``,``
     are layout.
 
@@ -95,6 +101,7 @@ from sympy.core.symbol import Str
 from hapticproof.errors import LatexParseError
 
 __all__ = [
+    "DEFAULT_CONSTANTS",
     "SymbolTable",
     "IndexedFamily",
     "Span",
@@ -185,13 +192,13 @@ _UNSUPPORTED_RELATIONS = frozenset(
 )
 _ARROWS = frozenset({"\\implies", "\\Longrightarrow", "\\Rightarrow", "\\xrightarrow", "\\iff"})
 _ELLIPSES = frozenset({"\\dots", "\\ldots", "\\cdots", "\\vdots", "\\ddots", "\\dotsc", "\\dotsb"})
-_MULTIPLY = frozenset({"*", "\\cdot", "\\times", "\\ast"})
+_MULTIPLY = frozenset({"*", "\\cdot", "\\times"})
 #: Layout commands that are dropped (sizes, styles) -- they carry no mathematics.
 _IGNORED = frozenset(
     "\\" + c
     for c in (
         "displaystyle textstyle limits nolimits hline big Big bigg Bigg bigl bigr Bigl Bigr "
-        "biggl biggr Biggl Biggr middle mathstrut nonumber notag"
+        "biggl biggr Biggl Biggr mathstrut nonumber notag"
     ).split()
 )
 _SEPARATOR_COMMANDS = frozenset({"\\quad", "\\qquad"})
@@ -199,10 +206,11 @@ _ALIGN_ENVS = frozenset(
     "aligned align align* split gathered gather gather* equation equation* multline multline* "
     "eqnarray eqnarray* alignedat".split()
 )
-_MATRIX_ENVS = frozenset({"bmatrix", "pmatrix", "matrix", "Bmatrix", "smallmatrix", "vmatrix", "Vmatrix"})
+_MATRIX_ENVS = frozenset({"bmatrix", "pmatrix", "matrix", "Bmatrix", "smallmatrix", "vmatrix"})
 #: ``\text{...}`` words that join clauses (``..., \text{ where } i = 1, 2``).
 _CONNECTORS = frozenset({"where", "and", "with", "for", "for all", "for any", "when"})
-_WORDS = {"det": "\\det", "diag": "diag"}
+#: Operator names recognised when spelled with plain letters (``det(R_0)`` in the HVE paper).
+_WORDS = ("diag", "det")
 _OPS = frozenset("+-*/=<>()[]|,'^_{}&.;:!")
 _OPENERS = {"{": "}", "(": ")", "[": "]", "\\{": "\\}"}
 _CLOSERS = {v: k for k, v in _OPENERS.items()}
@@ -1305,8 +1313,12 @@ def _extract_tag(text: str, toks: list[_Tok]) -> tuple[list[_Tok], str | None]:
         if not _is_tag_number(mid[0]) or (width == 4 and mid[1].kind != "letter"):
             continue
         before = body[n - width - 1] if n > width else None
-        if before is None or o.space or before.kind == "sep":
-            return _strip_trailing(body[: n - width]), "".join(t.value for t in mid)
+        rest = body[: n - width]
+        # Why: 'a > 0 (48)' is numbered (HVE eq. (48)), but in a bare expression '1 + 1 (2)'
+        # the spaced '(2)' may be a factor; only '\quad (2)' or a relation makes it a number.
+        spaced = o.space and any(_is_relation(x) for _, x in _top_level(text, rest))
+        if before is None or before.kind == "sep" or spaced:
+            return _strip_trailing(rest), "".join(t.value for t in mid)
     return body, None
 
 
@@ -1626,11 +1638,16 @@ class _Parser:
             if self.skip_separators():
                 continue
             if self.at_arrow():
+                arrow = self.peek()
                 self.skip_arrows()
+                if self.peek().kind == "eof":
+                    raise self.error(f"nothing follows {arrow.value}", arrow)
                 steps.append([])
                 continue
             if self.peek().kind != "eof":
                 raise self.unexpected("the statement")
+        if not steps[0]:
+            raise self.error("an arrow without a statement", first)
         statements = [self.assemble(step, first) for step in steps]
         if len(statements) == 1:
             return statements[0]
@@ -1738,35 +1755,40 @@ class _Parser:
             self.next()
             names.append(self.next().value)
         self.next()  # '='
-        values = [self.range_value()]
-        while self.at("op", ",") and self.range_value_at(1):
+        value = self.range_value()
+        if value is None:
+            raise self.unexpected("an index range")
+        values = [value]
+        while self.at("op", ","):
+            saved = (self.i, self.last_end)
             self.next()
-            values.append(self.range_value())
+            value = self.range_value()
+            if value is None:  # the comma ends the range: 'i = 1, 2, j \neq i'
+                self.i, self.last_end = saved
+                break
+            values.append(value)
         return IndexRange(tuple(index_symbol(n) for n in names), tuple(values), self.span_from(first))
 
-    def range_value_at(self, k: int) -> bool:
-        if self.at("op", "-", k):
-            k += 1
-        t = self.peek(k)
-        single = t.kind in ("number", "letter") or (
-            t.kind == "cmd" and (t.value in _ELLIPSES or t.value in _GREEK)
-        )
-        return single and self.at_clause_end(k + 1)
-
-    def range_value(self) -> Any:
-        if not self.range_value_at(0):
-            raise self.unexpected("an index range")
-        sign = -1 if self.at("op", "-") and self.next() else 1
-        t = self.next()
-        if t.kind == "number":
-            return sign * sp.Rational(t.value)
-        if t.value in _ELLIPSES:
+    def range_value(self) -> Any | None:
+        r"""One value of an index range (a number, ``\dots``, ``m``, ``n_1``...) or None."""
+        t = self.peek()
+        if t.kind == "cmd" and t.value in _ELLIPSES and self.at_clause_end(1):
+            self.next()
             return Elision(t.value)
-        known = self.table.symbols.get(t.value)
-        if known is not None:
-            return sign * known
-        # Why: 'i = x, y, z' enumerates axis labels, which are not quantities of the table.
-        return sign * sp.Symbol(t.value.lstrip("\\"))
+        if t.kind == "letter" and self.at_clause_end(1) and normalise_name(t.value) not in self.table.symbols:
+            self.next()
+            # Why: 'i = x, y, z' enumerates axis labels, which are not quantities of the table.
+            return sp.Symbol(t.value)
+        saved = (self.i, self.last_end)
+        try:
+            with self.indexing():
+                value = self.parse_unary_factor()
+        except LatexParseError:
+            value = None
+        if value is None or not self.at_clause_end() or self.index_name(0) is not None:
+            self.i, self.last_end = saved
+            return None
+        return value
 
     def parse_condition(self) -> _Condition:
         first = self.peek()
@@ -2075,7 +2097,7 @@ class _Parser:
 
     def letter_word(self) -> str | None:
         """A built-in word (``det``, ``diag``) spelled by adjacent letters at the cursor."""
-        for word in sorted(_WORDS, key=len, reverse=True):
+        for word in _WORDS:  # longest first
             toks = [self.peek(k) for k in range(len(word))]
             if all(t.kind == "letter" for t in toks) and "".join(t.value for t in toks) == word:
                 if all(not t.space for t in toks[1:]) and word not in self.table._words:
@@ -2442,9 +2464,8 @@ class _Parser:
                 self.toks[self.i] = replace(t, value=t.value[1:], pos=t.pos + 1, space=False)
             return sp.Integer(t.value[0])
         if t.kind == "letter" or (t.kind == "cmd" and t.value in _GREEK):
-            base, _ = self.read_base()
-            self.next()
-            return self.resolve(t, t.value if t.kind == "letter" else base, 0, None, None)
+            self.next()  # TeX takes one token: \frac ab is a/b
+            return self.resolve(t, t.value, 0, None, None)
         raise self.error(f"{context} needs braces")
 
     def parse_sqrt(self) -> Any:
@@ -2727,7 +2748,7 @@ class _Parser:
         begin = self.peek()
         if begin.value in _MATRIX_ENVS:
             matrix = self.parse_matrix()
-            if begin.value in ("vmatrix", "Vmatrix"):
+            if begin.value == "vmatrix":
                 return self.combine(lambda: sp.Determinant(matrix), begin, "a determinant")
             return matrix
         if begin.value == "cases":
