@@ -1067,3 +1067,16 @@ def test_more_operators_and_delimiters():
     cases = r"\begin{cases} x & \text{if} x > 0 \\ y \end{cases}"
     rejects(cases, table, cases.index(r"\end"), "expected '&'")
     rejects(r"\begin{aligned} x \end{aligned} + 1", table, 0, "must enclose the whole display")
+
+
+def test_remaining_spellings():
+    x = sp.Symbol("x")
+    ell = sp.Symbol("ell")
+    table = HVE.with_symbols({"x": x})
+    assert expand_indexed(parse_expression(r"\min_i b_i", table), 3, table) == sp.Min(b1, b2, b3)
+    assert parse_expression(r"\Re\left\{x\right\} \; + \, x", table) == sp.re(x) + x
+    # The brief's spelling of the OCR-damaged HVE eq. (35): parsed as written once \ell is read.
+    text = r"H(e^{\ell j\omega T})"
+    rejects(text, table, text.index(r"\ell"), "unknown name \\ell")
+    assert parse_expression(text, table.with_symbols({r"\ell": ell})) == wall(sp.exp(ell * sp.I * w * T))
+    assert parse_expression(r"\lim_{x \to 0} \frac{\sin x}{x}", table).as_sympy().doit() == 1

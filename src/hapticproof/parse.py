@@ -285,7 +285,13 @@ class IndexedExtremum(sp.Expr):
 
 
 class IndexedMin(IndexedExtremum):
-    r"""``\min_{i} \{...\}`` over the users ``1..m`` (see :class:`IndexedExtremum`)."""
+    r"""``\min_{i} \{...\}`` over the users ``1..m`` (see :class:`IndexedExtremum`).
+
+    >>> i = index_symbol('i')
+    >>> low = IndexedMin(sp.IndexedBase('b_{i}')[i], (i,))
+    >>> low.indices, i in low.free_symbols
+    ((i,), False)
+    """
 
     _combine = sp.Min
 
@@ -557,10 +563,21 @@ class IndexRange:
     values: tuple[Any, ...]
     span: Span
 
+    def __post_init__(self) -> None:
+        if not self.indices or not self.values:
+            raise ValueError("an index range needs indices and values")
+
 
 @dataclass(frozen=True, slots=True)
 class Qualified(Statement):
-    r"""A statement with index ranges and index conditions, e.g. ``..., \quad i = 1, \dots, 6``."""
+    r"""A statement with index ranges and index conditions, e.g. ``..., \quad i = 1, \dots, 6``.
+
+    >>> z = sp.Symbol('z_1')
+    >>> q = parse_printed(r'z_{i} \geq 0, \quad i = 1, 2, \dots, 6',
+    ...                   SymbolTable(families=[IndexedFamily('z_{i}')]))
+    >>> q.body.lhs, q.ranges[0].values
+    (z_{i}[i], (1, 2, \dots, 6))
+    """
 
     body: Statement
     ranges: tuple[IndexRange, ...]
@@ -585,6 +602,11 @@ class Lines(Statement):
 
     ``kind`` is ``'lines'`` (``\\`` breaks), ``'list'`` (comma-separated clauses) or ``'steps'``
     (``\implies`` / ``\xrightarrow{}`` derivation steps).
+
+    >>> a, b = sp.symbols('a b')
+    >>> both = parse_printed(r'a \geq 0, \quad b \geq 0 \quad (39a)', SymbolTable({'a': a, 'b': b}))
+    >>> both.kind, [r.lhs for r in both.relations()], both.tag
+    ('list', [a, b], '39a')
     """
 
     statements: tuple[Statement, ...]
@@ -1062,10 +1084,6 @@ class _FamilySpec:
     base: str
     comma: bool
     slots: tuple[str | None, ...]  # literal canonical text, or None for an index placeholder
-
-    @property
-    def arity(self) -> int:
-        return sum(s is None for s in self.slots)
 
 
 def _sub_slots(toks: Iterable[_Tok]) -> list[tuple[str, _Tok]]:
