@@ -99,11 +99,28 @@ def _primitive_int(p: flint.fmpq_poly) -> flint.fmpz_poly:
 def sign_at(p: flint.fmpq_poly | flint.fmpz_poly, point: Number) -> int:
     """Exact sign of ``p(point)``.
 
+    A ball evaluation decides it whenever the ball excludes zero (certified); only then-unclear
+    cases pay for exact rational arithmetic, whose numbers grow with the degree times the
+    point's denominator size.
+
     >>> sign_at(flint.fmpq_poly([-1, 0, 2]), Fraction(1, 2))
     -1
     """
-    value = p(as_fmpq(point))
-    return (value > 0) - (value < 0)
+    point = as_fmpq(point)
+    if p.degree() > 8:
+        integer = p.numer() if isinstance(p, flint.fmpq_poly) else p
+        old = flint.ctx.prec
+        try:
+            flint.ctx.prec = integer.height_bits() + int(point.q).bit_length() + int(point.p).bit_length() + 64
+            value = flint.arb_poly(integer)(flint.arb(point))
+        finally:
+            flint.ctx.prec = old
+        if value > 0:
+            return 1
+        if value < 0:
+            return -1
+    exact = p(point)
+    return (exact > 0) - (exact < 0)
 
 
 @dataclass(frozen=True, slots=True)
@@ -124,23 +141,65 @@ class RealRoot:
         return self.lo == self.hi
 
     def refine(self, width: Number) -> RealRoot:
-        """Bisect until ``hi - lo <= width`` (exact rational arithmetic)."""
+        """Shrink the isolating interval until ``hi - lo <= width``.
+
+        Bisection with exact signs to a moderate width, then Newton's iteration in ball
+        arithmetic; the final interval is accepted only after two exact sign evaluations
+        certify that it still brackets the root (else bisection continues).
+        """
         width = as_fmpq(width)
         lo, hi = self.lo, self.hi
-        if lo == hi:
+        if lo == hi or hi - lo <= width:
             return self
+        coarse = max(width, (hi - lo) / 2**24)
+        lo, hi = self._bisect(lo, hi, coarse)
+        if lo != hi and hi - lo > width:
+            newton = self._newton(lo, hi, width)
+            lo, hi = newton if newton is not None else self._bisect(lo, hi, width)
+        return RealRoot(lo, hi, self.poly, self.multiplicity)
+
+    def _bisect(self, lo: flint.fmpq, hi: flint.fmpq, width: flint.fmpq) -> tuple[flint.fmpq, flint.fmpq]:
         s_lo = sign_at(self.poly, lo)
         while hi - lo > width:
             mid = (lo + hi) / 2
             s_mid = sign_at(self.poly, mid)
             if s_mid == 0:
-                lo = hi = mid
-                break
+                return mid, mid
             if s_mid == s_lo:
                 lo = mid
             else:
                 hi = mid
-        return RealRoot(lo, hi, self.poly, self.multiplicity)
+        return lo, hi
+
+    def _newton(self, lo: flint.fmpq, hi: flint.fmpq, width: flint.fmpq) -> tuple[flint.fmpq, flint.fmpq] | None:
+        """Newton in ball arithmetic from the midpoint, then an exact bracket check."""
+        inverse = 1 / width
+        target_bits = max(1, int(inverse.p).bit_length() - int(inverse.q).bit_length() + 2)
+        poly = flint.fmpq_poly(self.poly)
+        deriv = poly.derivative()
+        old = flint.ctx.prec
+        try:
+            flint.ctx.prec = target_bits + 2 * self.poly.height_bits() + 64
+            P, D = flint.arb_poly(poly), flint.arb_poly(deriv)
+            x = flint.arb((lo + hi) / 2)
+            for _ in range(2 * int(math.log2(target_bits + 2)) + 6):
+                step = P(x) / D(x)
+                if not step.is_finite():
+                    return None
+                x = flint.arb(x.mid()) - flint.arb(step.mid())
+            centre = _dyadic(x, target_bits + 4)
+        finally:
+            flint.ctx.prec = old
+        half = width / 2
+        a, b = max(lo, centre - half), min(hi, centre + half)
+        if a >= b:
+            return None
+        s_a, s_b = sign_at(self.poly, a), sign_at(self.poly, b)
+        if s_a == 0:
+            return a, a
+        if s_b == 0:
+            return b, b
+        return (a, b) if s_a != s_b else None
 
     def ball(self, bits: int = 64) -> flint.arb:
         """An ``arb`` ball containing the root, radius at most ``2**-bits`` (relative to 1)."""
@@ -484,14 +543,42 @@ def _arb_eval(p: flint.fmpq_poly, point: flint.arb) -> flint.arb:
     return p.numer()(point) / flint.arb(p.denom())
 
 
+#: Up to this total degree every stationary point is isolated; above it the minimum is
+#: localised on a ball-arithmetic grid and certified by one non-negativity proof.
+_EXHAUSTIVE_DEGREE = 24
+
+
+def _dyadic(value: flint.arb, bits: int) -> flint.fmpq:
+    """The ball's midpoint rounded to a dyadic rational with ``bits`` fractional bits."""
+    scaled = value.mid() * flint.arb(2) ** bits
+    return flint.fmpq(int(scaled.floor().unique_fmpz()), 2**bits)
+
+
+def _floor_to(value: flint.fmpq, grain: flint.fmpq) -> flint.fmpq:
+    return grain * int((value / grain).floor())
+
+
+def _ceil_to(value: flint.fmpq, grain: flint.fmpq) -> flint.fmpq:
+    return grain * int((value / grain).ceil())
+
+
+def _arb_to_fmpq(value: flint.arb) -> flint.fmpq:
+    man, exp = value.mid().man_exp()
+    return flint.fmpq(man) * (flint.fmpq(2) ** int(exp) if exp >= 0 else flint.fmpq(1, 2 ** int(-exp)))
+
+
 def minimise_rational(
     num: Any, den: Any, lo: Number, hi: Number, var: sp.Symbol | None = None, bits: int = 200
 ) -> Minimum:
     """Exact minimum of ``num/den`` over the closed interval ``[lo, hi]``.
 
     ``den`` must not vanish on ``[lo, hi]`` (cancel removable singularities first). The
-    minimiser is an endpoint or a root of ``num' den - num den'``; candidates are compared with
-    certified ball arithmetic, refining until their order is decided.
+    minimiser is an endpoint or a root of ``num' den - num den'``. For low degrees every such
+    root is isolated and the candidates are compared with certified ball arithmetic; for high
+    degrees (long delays) the minimum is localised on a ball-arithmetic grid, the derivative's
+    roots are isolated only there, and global optimality is *proved* by one exact
+    non-negativity test of ``num - m den`` with ``m`` just below the candidate minimum (falling
+    back to the exhaustive method if that proof fails).
 
     >>> m = minimise_rational(flint.fmpq_poly([0, -1, 0, 1]), flint.fmpq_poly([1]), -1, 1)
     >>> m.argmin_approx(8), m.exact                       # c**3 - c: min at 1/sqrt(3)
@@ -502,19 +589,24 @@ def minimise_rational(
     lo_q, hi_q = as_fmpq(lo), as_fmpq(hi)
     if den.degree() > 0 and any(True for _ in real_roots(den, lo_q, hi_q)):
         raise ValueError("the denominator vanishes on the interval")
+    if num.degree() + den.degree() > _EXHAUSTIVE_DEGREE and lo_q < hi_q:
+        found = _localised_minimum(num, den, lo_q, hi_q, bits)
+        if found is not None:
+            return found
     candidates: list[flint.fmpq | RealRoot] = [lo_q, hi_q]
     deriv = num.derivative() * den - num * den.derivative()
     if not deriv.is_zero() and deriv.degree() > 0:
         candidates.extend(r if not r.is_exact else r.lo for r in real_roots(deriv, lo_q, hi_q))
+    return _best_candidate(num, den, candidates, bits)
 
+
+def _best_candidate(num: flint.fmpq_poly, den: flint.fmpq_poly, candidates: list, bits: int) -> Minimum:
     def value(cand: flint.fmpq | RealRoot, prec: int) -> flint.arb:
-        if isinstance(cand, RealRoot):
-            point = cand.ball(prec)
-        else:
-            point = flint.arb(cand)
+        point = cand.ball(prec) if isinstance(cand, RealRoot) else flint.arb(cand)
         return _arb_eval(num, point) / _arb_eval(den, point)
 
-    prec = 64
+    height = max(num.numer().height_bits(), den.numer().height_bits())
+    prec = 64 + height
     old_prec = flint.ctx.prec
     try:
         while True:
@@ -525,7 +617,7 @@ def minimise_rational(
             decided = all(i == best or not (values[i] < best_value) for i in range(len(values)))
             # ties (overlapping balls) are harmless for the minimum's value but we refine
             # until the chosen ball is tight enough to be reported
-            if decided and best_value.rad() < flint.arb(2) ** (-bits // 2) or prec >= 4 * bits:
+            if decided and best_value.rad() < flint.arb(2) ** (-bits // 2) or prec >= 4 * (bits + height):
                 break
             prec *= 2
     finally:
@@ -535,3 +627,47 @@ def minimise_rational(
         return Minimum(chosen, best_value, None)
     exact_value = to_rational(num(chosen) / den(chosen))
     return Minimum(to_rational(chosen), best_value, exact_value)
+
+
+def _localised_minimum(
+    num: flint.fmpq_poly, den: flint.fmpq_poly, lo: flint.fmpq, hi: flint.fmpq, bits: int, keep: int = 4
+) -> Minimum | None:
+    """Grid localisation + exact isolation in brackets + a global non-negativity certificate."""
+    degree = max(num.degree(), den.degree())
+    count = max(64, 4 * degree)
+    height = max(num.numer().height_bits(), den.numer().height_bits())
+    old_prec = flint.ctx.prec
+    try:
+        flint.ctx.prec = 64 + height  # monomial form loses about height bits to cancellation
+        mid, half = (lo + hi) / 2, (hi - lo) / 2
+        # Chebyshev points of [lo, hi], as exact rationals (ends included), sorted ascending
+        points = sorted({lo, hi} | {
+            mid + half * _arb_to_fmpq(flint.arb(math.cos(math.pi * (k + 0.5) / count))) for k in range(count)
+        })
+        balls = [flint.arb(p) for p in points]
+        nums = flint.arb_poly(num).evaluate(balls, algorithm="iter")
+        dens = flint.arb_poly(den).evaluate(balls, algorithm="iter")
+        values = [float((a / b).mid()) for a, b in zip(nums, dens)]
+    finally:
+        flint.ctx.prec = old_prec
+    last = len(points) - 1
+    local = [i for i in range(len(points)) if (i == 0 or values[i] <= values[i - 1]) and (i == last or values[i] <= values[i + 1])]
+    local.sort(key=lambda i: values[i])
+    deriv = num.derivative() * den - num * den.derivative()
+    candidates: list[flint.fmpq | RealRoot] = [lo, hi]
+    # brackets rounded outward to dyadics fine enough for the grid (small denominators keep the
+    # mapped polynomials of the exact isolation small)
+    grain = flint.fmpq(1, 2 ** (2 * max(degree, 2).bit_length() + 8))
+    for i in local[:keep]:
+        a = max(lo, _floor_to(points[max(i - 1, 0)], grain))
+        b = min(hi, _ceil_to(points[min(i + 1, last)], grain))
+        if not deriv.is_zero() and deriv.degree() > 0:
+            candidates.extend(r if not r.is_exact else r.lo for r in real_roots(deriv, a, b))
+    found = _best_candidate(num, den, candidates, bits)
+    # certificate: num - m*den >= 0 on [lo, hi] for m just below the candidate minimum
+    margin = abs(_arb_to_fmpq(found.value.mid())) * flint.fmpq(1, 2**60) + flint.fmpq(1, 2 ** (bits // 2))
+    m_low = _arb_to_fmpq(found.value.lower()) - margin
+    sign = 1 if den(lo) > 0 else -1
+    if nonnegative_on(sign * (num - m_low * den), lo, hi).holds:
+        return found
+    return None
