@@ -1080,3 +1080,21 @@ def test_remaining_spellings():
     rejects(text, table, text.index(r"\ell"), "unknown name \\ell")
     assert parse_expression(text, table.with_symbols({r"\ell": ell})) == wall(sp.exp(ell * sp.I * w * T))
     assert parse_expression(r"\lim_{x \to 0} \frac{\sin x}{x}", table).as_sympy().doit() == 1
+
+
+PIECES = [r"\frac", "{", "}", "(", ")", "[", "]", r"\{", r"\}", "|", r"\|", "^", "_", "'", "+", "-", "=",
+          r"\geq", ",", ".", "&", r"\\", r"\quad", " ", "K", "T", "b", "z", "j", "e", "i", "m", "2", "0.5",
+          r"\omega", r"\cos", r"\Re", "det", r"\min_i", r"\max_{i,j \neq i}", r"\sum_{k=1}^{m}",
+          r"\lim_{T \to 0}", r"\int_0^1", "d", r"\sqrt", r"\left(", r"\right)", r"\begin{bmatrix}",
+          r"\end{bmatrix}", r"\begin{aligned}", r"\end{aligned}", r"\dots", r"\text{Re}", r"\tag{3}", "(4)",
+          "H", "G", r"\mathcal{M}", "K_{01}", "b_{i}", "K_{ij}", r"\times", "/", r"\boxed", r"\implies"]
+
+
+@settings(max_examples=150, deadline=None)
+@given(st.lists(st.sampled_from(PIECES), min_size=1, max_size=12))
+def test_garbage_only_ever_raises_latex_parse_errors(parts):
+    text = "".join(parts)
+    try:
+        parse_printed(text, HVE_G)
+    except LatexParseError as err:
+        assert 0 <= err.position <= len(text)
