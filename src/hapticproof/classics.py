@@ -115,9 +115,9 @@ COLGATE_SCHENKEL_1997 = Source(
     "Passivity of a class of sampled-data systems: application to haptic interfaces",
     "Journal of Robotic Systems 14(1):37-47",
     1997,
-    r"b > \frac{T}{2}\frac{1}{1-\cos\omega T}\operatorname{Re}\{(1-e^{-j\omega T})H(e^{j\omega T})\}, "
-    r"\quad 0 \le \omega \le \frac{\pi}{T}",
-    note="virtual-wall form b > KT/2 + |B|; statements recorded from the standard citation (HVE [3], teleoperator [7])",
+    r"b > \frac{T}{2}\frac{1}{1-\cos\omega T}\operatorname{Re}\{(1-e^{-j\omega T})H(e^{j\omega T})\}",
+    note="for 0 < omega < pi/T; virtual-wall form b > KT/2 + |B|; statements recorded from the standard citation "
+    "(HVE [3], teleoperator [7])",
 )
 #: Gil et al.'s Routh-Hurwitz small-damping stability condition.
 GIL_2004 = Source(

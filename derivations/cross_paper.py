@@ -1,0 +1,259 @@
+r"""Cross-paper consistency: every "is identical to" / "coincides with" statement across the
+registered papers and the classics, and every claimed reduction (``m = 1``, ``z_a = 0``,
+``alpha = 1``), checked by computation. Each entry parses the printed strings from the
+registries (nothing is re-typed) and reports ``confirmed`` or ``inconsistent`` with both ids.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import sympy as sp
+
+from hapticproof.audit import AuditContext, Paper
+from hapticproof.certify import as_bound, compare_bounds, is_identically_zero
+from hapticproof.errors import UnknownEquationError
+from hapticproof.evidence import Evidence, Finding, Method, Verdict
+from hapticproof.parse import expand_indexed, parse_printed
+from hapticproof.registry import get_paper
+from hapticproof.scene import SYMBOLS
+
+K, B, b, T, t_d, z_a = (SYMBOLS[name] for name in ("K", "B", "b", "T", "t_d", "z_a"))
+
+PAPER = Paper(
+    "cross-paper",
+    title="Cross-paper consistency of the sampled-data haptic conditions",
+    source="hve, teleoperator, classics (registered printed strings)",
+    authors="hapticproof",
+    aliases=("cross", "consistency"),
+)
+
+
+def _printed(paper: str, eq: str) -> tuple[Any, Any]:
+    """The parsed printed statement of ``paper``'s equation ``eq`` and the paper."""
+    registered = get_paper(paper)
+    return parse_printed(registered.get(eq).printed, registered.symbols), registered
+
+
+def _relation(paper: str, eq: str) -> sp.Basic:
+    statement, _ = _printed(paper, eq)
+    (rel,) = statement.relations()
+    return rel.as_sympy()
+
+
+def _teleoperator_intro(which: str) -> sp.Basic:
+    from hapticproof.derivations import teleoperator as tele
+
+    text = tele.INTRO_COLGATE if which == "colgate" else tele.INTRO_ROUTH
+    (rel,) = parse_printed(text, tele.TABLE).relations()
+    return rel.as_sympy()
+
+
+def _as_ge(rel: sp.Basic) -> sp.Basic:
+    """A strict printed condition as the non-strict reference for :func:`compare_bounds`."""
+    if isinstance(rel, (sp.StrictLessThan, sp.LessThan)):
+        rel = rel.reversed
+    return sp.Ge(rel.lhs, rel.rhs)
+
+
+def _compare(a: sp.Basic, b_rel: sp.Basic, ids: list[str], what: str, var: sp.Symbol = b, note: str = "") -> Finding:
+    """``confirmed`` when the two conditions are equivalent, else ``inconsistent`` with a witness."""
+    cmp = compare_bounds(a, _as_ge(b_rel), var, what=what)
+    facts = {"ids": ids, "first": a, "second": b_rel, "comparison": cmp.verdict.value}
+    if cmp.verdict == Verdict.CONFIRMED:
+        return Finding(Verdict.CONFIRMED, f"{ids[0]} and {ids[1]} are the same condition{note}",
+                       Evidence(Method.CANONICAL_FORM, facts=facts))
+    first, second = as_bound(a, var).bound, as_bound(_as_ge(b_rel), var).bound
+    how = (f"as bounds on {var}: {sp.sstr(first)} vs {sp.sstr(second)} (difference {sp.sstr(sp.simplify(first - second))}; "
+           "witness where one holds and the other fails)")
+    return Finding(Verdict.INCONSISTENT, f"{ids[0]} and {ids[1]} differ, {how}{note}",
+                   Evidence(cmp.evidence.method, witness=cmp.evidence.witness, facts=facts))
+
+
+def _missing(ids: list[str], err: Exception) -> Finding:
+    return Finding(Verdict.UNDECIDED, f"{ids[0]} is not registered yet ({err}); the comparison with {ids[1]} was not run",
+                   Evidence(Method.PARSE, facts={"ids": ids}))
+
+
+# ---------------------------------------------------------------------------------------------
+# teleoperator paper vs HVE paper and the classics
+# ---------------------------------------------------------------------------------------------
+
+
+@PAPER.equation("tele35-colgate", kind="claim", after="1",
+                printed="teleoperator (35) 'has coincided with the passivity condition ... Colgate and Schenkel' "
+                        "(HVE (3), classics colgate-wall)",
+                derivation="(35) and HVE (3) as printed, compared as bounds on b")
+def tele35(ctx: AuditContext) -> Finding:
+    finding = _compare(_relation("teleoperator", "35"), _relation("hve", "3"), ["teleoperator:35", "hve:3"],
+                       "teleoperator (35) against HVE (3)")
+    if finding.verdict == Verdict.INCONSISTENT:
+        return Finding(finding.verdict, finding.detail + "; (35) = KT + 2B is Colgate's condition for doubled gains",
+                       finding.evidence)
+    return finding
+
+
+@PAPER.equation("tele-routh-hve4", kind="claim", after="2",
+                printed="teleoperator introduction 'b > KT/2 - B' (Routh-Hurwitz, Gil et al.) vs HVE (4) 'b+B > KT/2'",
+                derivation="both quotes as bounds on b")
+def tele_routh(ctx: AuditContext) -> Finding:
+    return _compare(_teleoperator_intro("routh"), _relation("hve", "4"), ["teleoperator:intro-routh", "hve:4"],
+                    "the two quotes of Gil et al. 2004")
+
+
+@PAPER.equation("tele-colgate-hve3", kind="claim", after="3",
+                printed="teleoperator introduction 'b > KT/2 + B' (Colgate and Schenkel) vs HVE (3) 'b > KT/2 + B'",
+                derivation="both quotes as bounds on b")
+def tele_colgate(ctx: AuditContext) -> Finding:
+    return _compare(_teleoperator_intro("colgate"), _relation("hve", "3"), ["teleoperator:intro-colgate", "hve:3"],
+                    "the two quotes of Colgate and Schenkel")
+
+
+@PAPER.equation("tele32-alpha1-29", kind="claim", after="4",
+                printed="teleoperator (32) at alpha = 1 reduces to (29)",
+                derivation="both displays, line by line, at alpha = 1")
+def tele32(ctx: AuditContext) -> Finding:
+    s32, tele = _printed("teleoperator", "32")
+    s29, _ = _printed("teleoperator", "29")
+    alpha = tele.symbols.lookup(r"\alpha")
+    same = [is_identically_zero(sp.expand(r32.rhs.subs(alpha, 1) - r29.rhs)) and r32.lhs == r29.lhs
+            for r32, r29 in zip(s32.relations(), s29.relations())]
+    ids = ["teleoperator:32", "teleoperator:29"]
+    if all(same) and len(same) == 2:
+        return Finding(Verdict.CONFIRMED, "(32) at alpha = 1 is (29), line by line ((T/2)(alpha + 1) = T)",
+                       Evidence(Method.CANONICAL_FORM, facts={"ids": ids}))
+    return Finding(Verdict.INCONSISTENT, "(32) at alpha = 1 is not (29)", Evidence(Method.CANONICAL_FORM, facts={"ids": ids, "lines": same}))
+
+
+# ---------------------------------------------------------------------------------------------
+# HVE quotes vs the classics (published statements)
+# ---------------------------------------------------------------------------------------------
+
+
+@PAPER.equation("hve3-classics", kind="claim", after="5",
+                printed="HVE (3) quotes Colgate and Schenkel's virtual-wall condition b > KT/2 + |B|",
+                derivation="HVE (3) vs classics colgate-wall (B >= 0)")
+def hve3_classics(ctx: AuditContext) -> Finding:
+    published = _relation("classics", "colgate-wall").subs(sp.Symbol("B", real=True), B)
+    return _compare(_relation("hve", "3"), published, ["hve:3", "classics:colgate-wall"], "HVE (3)",
+                    note=" for the paper's B >= 0 (|B| = B)")
+
+
+@PAPER.equation("hve4-classics", kind="claim", after="6",
+                printed="HVE (4) quotes Gil et al. 2004's condition b > KT/2 - B",
+                derivation="HVE (4) vs classics gil-2004")
+def hve4_classics(ctx: AuditContext) -> Finding:
+    return _compare(_relation("hve", "4"), _relation("classics", "gil-2004"), ["hve:4", "classics:gil-2004"], "HVE (4)")
+
+
+@PAPER.equation("hve5-classics", kind="claim", after="7",
+                printed="HVE (5) quotes Gil et al. 2009's condition K < (b + B)/(T/2 + t_d)",
+                derivation="HVE (5) vs classics gil-2009 (derived leading order of the exact delayed boundary)")
+def hve5_classics(ctx: AuditContext) -> Finding:
+    return _compare(_as_ge(_relation("hve", "5")), _relation("classics", "gil-2009"), ["hve:5", "classics:gil-2009"],
+                    "HVE (5)", note="; (5) prints T for T/2")
+
+
+def _vs_quote5(eq: str, reduce: dict, label: str) -> Finding:
+    mine = _relation("hve", eq).subs(reduce)
+    finding = _compare(mine, _relation("hve", "5"), [f"hve:{eq}", "hve:5"], label)
+    derived = _compare(mine, _relation("classics", "gil-2009"), [f"hve:{eq}", "classics:gil-2009"], label)
+    if finding.verdict == Verdict.INCONSISTENT:
+        return Finding(Verdict.INCONSISTENT, finding.detail + f"; it equals the published/derived condition ({derived.verdict.value} "
+                       "against classics:gil-2009), so the quote (5) is what is off",
+                       Evidence(finding.evidence.method, witness=finding.evidence.witness,
+                                facts={**finding.evidence.facts, "versus_gil_2009": derived.verdict.value}))
+    return finding
+
+
+@PAPER.equation("hve25-5", kind="claim", after="8",
+                printed="HVE (25) 'is identical to the condition reported in [7]', quoted as (5)",
+                derivation="HVE (25) vs HVE (5), and vs classics gil-2009")
+def hve25(ctx: AuditContext) -> Finding:
+    return _vs_quote5("25", {}, "HVE (25)")
+
+
+@PAPER.equation("hve27-5", kind="claim", after="9",
+                printed="HVE (27) 'extends the condition in [7] by allowing the operator to be active': (27) at z_a = 0 vs (5)",
+                derivation="HVE (27) at z_a = 0 vs HVE (5), and vs classics gil-2009")
+def hve27(ctx: AuditContext) -> Finding:
+    return _vs_quote5("27", {z_a: 0}, "HVE (27) at z_a = 0")
+
+
+@PAPER.equation("hve36-5", kind="claim", after="10",
+                printed="HVE (36) for the virtual wall and small B 'reduces to (27), where if z_a = 0 the condition will be "
+                        "identical to that reported in [7]'",
+                derivation="the reduction (36) -> (27) is audited in hve 36-reduces; here (27) at z_a = 0 vs (5)")
+def hve36(ctx: AuditContext) -> Finding:
+    finding = _vs_quote5("27", {z_a: 0}, "HVE (36) via (27) at z_a = 0")
+    return Finding(finding.verdict, finding.detail.replace("hve:27", "hve:36 (via 27)"), finding.evidence)
+
+
+@PAPER.equation("hve26-za0-20", kind="claim", after="11",
+                printed="HVE (26) is (20) 'after replacing b by b - z_a': (26) at z_a = 0 vs (20)",
+                derivation="HVE (26) at z_a = 0 vs HVE (20)")
+def hve26(ctx: AuditContext) -> Finding:
+    return _compare(_relation("hve", "26").subs(z_a, 0), _relation("hve", "20"), ["hve:26", "hve:20"], "HVE (26) at z_a = 0")
+
+
+@PAPER.equation("hve27-za0-25", kind="claim", after="12",
+                printed="HVE (27) is (25) 'after replacing b by b - z_a': (27) at z_a = 0 vs (25)",
+                derivation="HVE (27) at z_a = 0 vs HVE (25)")
+def hve27_25(ctx: AuditContext) -> Finding:
+    return _compare(_relation("hve", "27").subs(z_a, 0), _relation("hve", "25"), ["hve:27", "hve:25"], "HVE (27) at z_a = 0")
+
+
+# ---------------------------------------------------------------------------------------------
+# HVE multi-user conditions at m = 1
+# ---------------------------------------------------------------------------------------------
+
+
+def _one_user(eq: str) -> sp.Basic:
+    """The printed multi-user condition for one user: empty extrema over pairs contribute 0 (no
+    couplings), self-couplings K_11, B_11 (printed by an unrestricted max_{i,j}) are 0, and the
+    concrete symbols of user 1 are renamed to the single-user ones."""
+    statement, hve = _printed("hve", eq)
+    (rel,) = statement.relations()
+    count = hve.symbols.lookup("m")
+    lhs = expand_indexed(rel.lhs, 1, hve.symbols, count=count, empty=0)
+    rhs = expand_indexed(rel.rhs, 1, hve.symbols, count=count, empty=0)
+    names = {"b_1": b, "K_01": K, "B_01": B, "z_a1": z_a, "K_11": 0, "B_11": 0, "t_d": t_d, "T": T}
+    mapping = {sym: names[sym.name] for sym in (lhs.free_symbols | rhs.free_symbols) if sym.name in names}
+    return rel.as_sympy().func(lhs.subs(mapping), rhs.subs(mapping), evaluate=False)
+
+
+def _reduction(eq: str, target: str) -> Finding:
+    ids = [f"hve:{eq}", f"hve:{target}"]
+    try:
+        reduced = _one_user(eq)
+    except UnknownEquationError as err:
+        return _missing(ids, err)
+    finding = _compare(reduced, _relation("hve", target), ids, f"HVE ({eq}) at m = 1",
+                       note=" (empty pair extrema = 0, no self-coupling)")
+    if finding.verdict == Verdict.INCONSISTENT and eq == "62":
+        at_zero = _compare(reduced, _relation("hve", target).subs(z_a, 0), [ids[0], f"hve:{target} at z_a = 0"], "")
+        return Finding(Verdict.INCONSISTENT, finding.detail + "; (62) is for passive operators and reduces to (27) only at "
+                       f"z_a = 0, i.e. to (25) ({at_zero.verdict.value}); (63) is the one that reduces to (27)",
+                       finding.evidence)
+    return finding
+
+
+@PAPER.equation("hve54-m1-20", kind="claim", after="13",
+                printed="HVE (54): 'when only one user is involved, the condition will reduce to Colgate's condition' (20)",
+                derivation="(54) expanded for m = 1 vs (20)")
+def hve54(ctx: AuditContext) -> Finding:
+    return _reduction("54", "20")
+
+
+@PAPER.equation("hve55-m1-26", kind="claim", after="14",
+                printed="HVE (55): 'for only one operator, (55) will reduce to (26)'",
+                derivation="(55) expanded for m = 1 vs (26)")
+def hve55(ctx: AuditContext) -> Finding:
+    return _reduction("55", "26")
+
+
+@PAPER.equation("hve62-m1-27", kind="claim", after="15",
+                printed="HVE (62): 'for a single-user system, condition (62) will reduce to (27)'",
+                derivation="(62) expanded for m = 1 vs (27)")
+def hve62(ctx: AuditContext) -> Finding:
+    return _reduction("62", "27")
