@@ -104,6 +104,19 @@ PAPER = Paper(
     aliases=("002", "jazayeri-tavakoli", "teleoperation"),
 )
 
+PAPER.conditions.extend([
+    ("teleoperator (32), scaled controllers, any C(z)",
+     r"b_m > \frac{T}{2}\frac{\alpha+1}{1-\cos\omega T}\operatorname{Re}\{(1-e^{-j\omega T})C_m(e^{j\omega T})\},\ "
+     r"b_s > \frac{T}{2}\frac{\alpha+1}{1-\cos\omega T}\operatorname{Re}\{(1-e^{-j\omega T})C_s(e^{j\omega T})\}",
+     "Jazayeri & Tavakoli, eq. (32) (confirmed)"),
+    ("teleoperator (29), equal controllers", r"\min(b_m, b_s) > \frac{T}{1-\cos\omega T}\operatorname{Re}\{(1-e^{-j\omega T})C(e^{j\omega T})\}",
+     "Jazayeri & Tavakoli, eq. (29) (confirmed)"),
+    ("teleoperator (35), PD (33)", r"\min(b_m, b_s) > KT + 2B", "Jazayeri & Tavakoli, eq. (35) (confirmed)"),
+    ("teleoperator, error coordinate (less conservative)",
+     r"\frac{b_m b_s}{b_m + \alpha^2 b_s} \ge \frac{T}{2}\frac{1}{1-\cos\omega T}\operatorname{Re}\{(1-e^{-j\omega T})C(e^{j\omega T})\}",
+     "derived (hapticproof.teleoperator)"),
+])
+
 ASSUME = "m_i, b_i, T > 0; K > 0, B >= 0 (PD); alpha > 0; robots at rest at t = 0"
 #: The paper's robots (Fig. 3, Section V): Phantom Premium 1.5A.
 PHANTOM = {"m": sp.Rational(15, 1000), "b": sp.Rational(1822, 100000)}
