@@ -39,7 +39,6 @@ class _Record:
 
 
 _CACHE: weakref.WeakKeyDictionary[Any, dict[tuple, _Record]] = weakref.WeakKeyDictionary()
-_STAGES: dict[str, Callable[..., Any]] = {}
 
 
 def stage(name: str) -> Callable[[F], F]:
@@ -65,7 +64,6 @@ def stage(name: str) -> Callable[[F], F]:
             return record.value
 
         wrapper.stage_name = name  # type: ignore[attr-defined]
-        _STAGES[name] = wrapper
         return wrapper  # type: ignore[return-value]
 
     return decorate
@@ -92,7 +90,10 @@ def clear(scene: Any) -> None:
     _CACHE.pop(scene, None)
 
 
-def force(scene: Any, names: list[str]) -> None:
-    """Compute the named argument-free stages (the 'full pipeline' of a benchmark)."""
-    for name in names:
-        _STAGES[name](scene)
+def force(scene: Any, stages: list[Callable[[Any], Any]]) -> None:
+    """Compute the given argument-free stage functions (the 'full pipeline' of a benchmark).
+
+    Stage *functions* rather than names: different scene types may use the same stage name.
+    """
+    for func in stages:
+        func(scene)

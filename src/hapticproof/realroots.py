@@ -151,7 +151,7 @@ class RealRoot:
         lo, hi = self.lo, self.hi
         if lo == hi or hi - lo <= width:
             return self
-        coarse = max(width, (hi - lo) / 2**24)
+        coarse = max(width, (hi - lo) / 2**8)
         lo, hi = self._bisect(lo, hi, coarse)
         if lo != hi and hi - lo > width:
             newton = self._newton(lo, hi, width)
@@ -601,25 +601,28 @@ def minimise_rational(
 
 
 def _best_candidate(num: flint.fmpq_poly, den: flint.fmpq_poly, candidates: list, bits: int) -> Minimum:
-    def value(cand: flint.fmpq | RealRoot, prec: int) -> flint.arb:
-        point = cand.ball(prec) if isinstance(cand, RealRoot) else flint.arb(cand)
+    """The candidate with the smallest value, by adaptive refinement: every candidate starts
+    with a coarse ball; those whose value ball lies above the best one are dropped, and only
+    the survivors are refined further (precision doubles each round)."""
+
+    def value(cand: flint.fmpq | RealRoot, width_bits: int) -> flint.arb:
+        point = cand.ball(width_bits) if isinstance(cand, RealRoot) else flint.arb(cand)
         return _arb_eval(num, point) / _arb_eval(den, point)
 
     height = max(num.numer().height_bits(), den.numer().height_bits())
-    prec = 64 + height
+    active = list(range(len(candidates)))
+    width_bits = 16
     old_prec = flint.ctx.prec
     try:
         while True:
-            flint.ctx.prec = prec + 32
-            values = [value(cand, prec) for cand in candidates]
-            best = min(range(len(values)), key=lambda i: values[i].mid())
+            flint.ctx.prec = 64 + height + width_bits
+            values = {i: value(candidates[i], width_bits) for i in active}
+            best = min(active, key=lambda i: values[i].mid())
             best_value = values[best]
-            decided = all(i == best or not (values[i] < best_value) for i in range(len(values)))
-            # ties (overlapping balls) are harmless for the minimum's value but we refine
-            # until the chosen ball is tight enough to be reported
-            if decided and best_value.rad() < flint.arb(2) ** (-bits // 2) or prec >= 4 * (bits + height):
+            active = [i for i in active if i == best or not (values[i] > best_value)]
+            if (len(active) == 1 and best_value.rad() < flint.arb(2) ** (-bits // 2)) or width_bits >= 4 * (bits + height):
                 break
-            prec *= 2
+            width_bits *= 2
     finally:
         flint.ctx.prec = old_prec
     chosen = candidates[best]

@@ -1,0 +1,42 @@
+"""``hapticproof bench``: run time against error, numerical stress and lazy-pipeline studies."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from hapticproof.errors import InputFormatError
+
+__all__ = ["register"]
+
+TASKS = ("margin", "boundary", "stress", "audit", "lazy")
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    parser = sub.add_parser(
+        "bench",
+        help="benchmark run time against error (JSON + PNG)",
+        description="Side-by-side studies: passivity margin (float grids, mpmath grids, exact), "
+        "stability boundary (simulation, spectral, exact), cold audit time, lazy vs full pipeline. "
+        "Writes <task>.json and PNG plots into the output directory.",
+    )
+    parser.add_argument("--tasks", nargs="+", default=list(TASKS), metavar="TASK",
+                        help=f"studies to run (default: all of {', '.join(TASKS)})")
+    parser.add_argument("--quick", action="store_true", help="small sizes (minutes -> seconds)")
+    parser.add_argument("--repeat", type=int, default=3, help="repeats per measurement (median)")
+    parser.add_argument("--output", "-o", default="benchmarks/results", metavar="DIR")
+    parser.set_defaults(handler=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    unknown = [t for t in args.tasks if t not in TASKS]
+    if unknown:
+        raise InputFormatError(f"unknown task(s) {unknown}; choose from {', '.join(TASKS)}")
+    if args.repeat < 1:
+        raise InputFormatError("--repeat must be at least 1")
+    from hapticproof.bench import run as run_studies
+
+    run_studies(args.tasks, args.output, quick=args.quick, repeat=args.repeat,
+                log=lambda line: print(line, file=sys.stderr))
+    print(f"wrote {args.output}/<task>.json, margin.png, boundary.png", file=sys.stderr)
+    return 0
