@@ -904,3 +904,6 @@ def reduces_to_27(ctx: AuditContext) -> Finding:
     finding = _delayed_condition_check(inner, active=True)
     return Finding(finding.verdict, "(36) is Re G^-1 >= 0 at every frequency (see 36-agree), so its worst case is that of (27): "
                    + finding.detail, finding.evidence, derived=finding.derived, corrected=finding.corrected)
+
+from hapticproof.derivations import _hve_multiuser  # noqa: E402,F401  (Section 3.2, 4)
+from hapticproof.derivations import _hve_intro  # noqa: E402,F401
