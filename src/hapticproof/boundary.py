@@ -74,6 +74,7 @@ __all__ = [
     "certified_stable",
     "certified_spectral_radius",
     "arb_interval",
+    "arb_midpoint",
 ]
 
 #: Normalised damping ``bT/m``, virtual damping ``BT/m``, stiffness ``KT^2/m`` (Gil et al. 2004)
@@ -116,13 +117,24 @@ def _exact_value(value: flint.arb) -> sp.Rational:
 
 
 def arb_interval(ball: flint.arb) -> tuple[sp.Rational, sp.Rational]:
-    """Exact rational end points ``(lo, hi)`` of an arb ball.
+    """Exact rational end points ``(lo, hi)`` of an arb ball (midpoint and radius are exact
+    binary numbers, so no rounding at the current precision is involved).
 
     >>> lo, hi = arb_interval(flint.arb(2) / 3)
     >>> lo < sp.Rational(2, 3) < hi
     True
     """
-    return _exact_value(ball.lower()), _exact_value(ball.upper())
+    mid, rad = _exact_value(ball.mid()), _exact_value(ball.rad())
+    return mid - rad, mid + rad
+
+
+def arb_midpoint(ball: flint.arb) -> sp.Rational:
+    """The exact midpoint of an arb ball as a rational.
+
+    >>> arb_midpoint(flint.arb("0.5"))
+    1/2
+    """
+    return _exact_value(ball.mid())
 
 
 # ---------------------------------------------------------------------------------------------
@@ -353,7 +365,7 @@ class CriticalStiffness:
     @property
     def value(self) -> float:
         """``K*`` as a float (midpoint of the certified ball)."""
-        return float(self.K.mid())
+        return float(arb_midpoint(self.K))
 
     def to_json(self) -> dict[str, Any]:
         return {
