@@ -25,7 +25,7 @@ from hapticproof import boundary as bnd
 from hapticproof import classics, teleoperator as tele
 from hapticproof.audit import AuditContext, Paper, malformed
 from hapticproof.certify import compare_bounds, compare_expressions, is_identically_zero
-from hapticproof.evidence import Decision, Evidence, Finding, Method, Verdict, exact
+from hapticproof.evidence import Evidence, Finding, Method, Verdict
 from hapticproof.parse import SymbolTable
 from hapticproof.symbols import c as C_SYM
 from hapticproof.symbols import z as Z_SYM
@@ -893,7 +893,7 @@ def _generic_bound(name: str, weight: sp.Expr) -> sp.Expr:
     return weight * leak
 
 
-def _controller_instances(alpha_value: sp.Expr) -> list[tuple[str, sp.Expr]]:
+def _controller_instances() -> list[tuple[str, sp.Expr]]:
     a = sp.Rational(1, 2)
     return [("PD (33)", tele.pd_controller()), ("PD with filtered derivative (a = 1/2)", tele.filtered_pd_controller(a=a))]
 
@@ -913,7 +913,7 @@ def _bound_check(ctx: AuditContext, alpha_value: sp.Expr | None) -> Finding:
         return Finding(Verdict.WRONG, "the printed bound differs from the derived leak bound for a general controller",
                        Evidence(Method.CANONICAL_FORM, facts={"lines_match": generic_ok}))
     instances = {}
-    for label, controller in _controller_instances(al):
+    for label, controller in _controller_instances():
         scene = tele.TeleoperatorScene(m_m, m_s, b_m, b_s, T, controller, al if alpha_value is None else alpha_value)
         derived = tele.bounds(scene)
         for (lhs, rhs), name, bound in zip(lines, ("C_m", "C_s"), (derived.master, derived.slave)):

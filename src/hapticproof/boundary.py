@@ -218,7 +218,6 @@ def characteristic_polynomial(n: int = 0, alpha: Any = ALPHA, delta: Any = DELTA
 def _zoh_position_plant(m: sp.Expr, b: sp.Expr, T: sp.Expr, s: sp.Symbol, z: sp.Symbol) -> sp.Expr:
     """``(1 - z^-1) Z{1/(s^2 (m s + b))}`` from partial fractions and the table
     ``1/s^2 -> Tz/(z-1)^2``, ``1/s -> z/(z-1)``, ``1/(s+a) -> z/(z - e^{-aT})``."""
-    table = {}
     out = sp.Integer(0)
     for term in sp.Add.make_args(sp.apart(1 / (s**2 * (m * s + b)), s)):
         num, den = sp.fraction(sp.factor(term))
@@ -232,7 +231,6 @@ def _zoh_position_plant(m: sp.Expr, b: sp.Expr, T: sp.Expr, s: sp.Symbol, z: sp.
             out += num / den_poly.LC() * z / (z - sp.exp(pole * T))
         else:  # pragma: no cover - the plant has only these terms
             raise ValueError(f"unexpected partial fraction {term}")
-        table[term] = out
     return sp.cancel((1 - 1 / z) * out)
 
 
@@ -307,10 +305,14 @@ class ClosedFormBoundary:
             return out
 
 
+@lru_cache(maxsize=64)
+def _lambdified(expr: sp.Expr, symbols: tuple[sp.Symbol, ...]) -> Any:
+    return sp.lambdify(list(symbols), expr, modules=[{"Min": min, "Max": max}])
+
+
 def _arb_eval(expr: sp.Expr, values: dict) -> flint.arb:
     """Evaluate a rational expression in the given symbols with arb arithmetic."""
-    f = sp.lambdify(list(values), expr, modules=[{"Min": min, "Max": max}])
-    return f(*values.values())
+    return _lambdified(expr, tuple(values))(*values.values())
 
 
 @lru_cache(maxsize=1)
