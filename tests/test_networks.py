@@ -310,3 +310,44 @@ def test_energy_matches_independent_quadrature():
     sol = solve_ivp(rhs, (0, 5.0), np.zeros(ss.a.shape[0] + 1), rtol=1e-11, atol=1e-13, t_eval=trace.times)
     assert np.allclose(sol.y[-1], trace.energy, atol=1e-8)
     assert trace.minimum >= -1e-12   # passive network, passive load: E_s >= 0
+
+
+# ---------------------------------------------------------------------------------------------
+# CLI: hapticproof derive network
+# ---------------------------------------------------------------------------------------------
+
+
+def test_cli_text_and_json(tmp_path, capsys):
+    import json
+
+    from hapticproof.cli import main
+
+    text = tmp_path / "z5.txt"
+    text.write_text("# eq. (5)\n9/(s+3), -1/(s+1)\n-1/(s+1), 1/(s+3)\n")
+    assert main(["derive", "network", "--matrix", str(text)]) == 0
+    out = capsys.readouterr().out
+    assert "absolutely stable (Llewellyn)" in out
+    js = tmp_path / "z.json"
+    js.write_text(json.dumps({"matrix": [["1", "3"], ["3", "1"]]}))
+    assert main(["derive", "network", "--matrix", str(js), "--format", "json", "--no-search"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["absolute_stability"]["decision"] == "disproved"
+    assert data["positive_real"]["decision"] == "disproved"
+
+
+def test_cli_parameters_and_errors(tmp_path, capsys):
+    from hapticproof.cli import main
+
+    f = tmp_path / "zk.txt"
+    f.write_text("2, k\n1/(s+1), 2\n")
+    assert main(["derive", "network", "--matrix", str(f)]) == 0
+    assert "free parameters" in capsys.readouterr().out
+    assert main(["derive", "network", "--matrix", str(f), "--param", "k=1", "--format", "latex"]) == 0
+    assert r"\begin{document}" in capsys.readouterr().out
+    bad = tmp_path / "bad.txt"
+    bad.write_text("1, __import__('os')\n")
+    assert main(["derive", "network", "--matrix", str(bad)]) == 2
+    ragged = tmp_path / "ragged.txt"
+    ragged.write_text("1, 2\n3\n")
+    assert main(["derive", "network", "--matrix", str(ragged)]) == 2
+    assert main(["derive", "network", "--matrix", str(f), "--param", "k=1", "--ports", "3,3"]) == 2

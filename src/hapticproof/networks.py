@@ -124,15 +124,15 @@ def port_blocks(n: int, ports: Sequence[int] | None) -> tuple[tuple[int, ...], .
 
 
 def _psd_constant(M: sp.Matrix) -> tuple[bool, dict[str, Any]]:
-    """All principal minors of a constant real symmetric rational matrix (exact)."""
-    n = M.rows
-    bad: dict[str, Any] = {}
-    for k in range(1, n + 1):
-        for subset in itertools.combinations(range(n), k):
-            value = M.extract(list(subset), list(subset)).det(method="bareiss")
-            if value < 0:
-                bad[str(list(subset))] = value
-    return not bad, bad
+    """Exact PSD test of a constant rational symmetric matrix (characteristic coefficients,
+    :func:`hapticproof.psd.is_psd`); the failing principal minor as evidence."""
+    from hapticproof.psd import is_psd
+
+    test = is_psd(M)
+    if test.holds:
+        return True, {}
+    rows, value = test.minor if test.minor else ((), None)
+    return False, {str(list(rows)): value, "failing_coefficient": f"E_{test.failing}"}
 
 
 def _mod_quadratic(p: flint.fmpq_poly, a: flint.fmpq) -> tuple[flint.fmpq, flint.fmpq]:
