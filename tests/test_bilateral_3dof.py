@@ -116,7 +116,7 @@ def test_fig3_energies_and_input_impedances():
 
 
 def test_counterexamples_of_theorem9_are_passive_and_unstable():
-    for name in ("cycle", "leading"):
+    for name in ("cycle", "leading", "unit"):
         roots, degree, passive = paper._certified(name)
         assert passive and roots and all(r.real > 0 for r in roots)
     # the cycle network really satisfies A and B (no symmetrization condition survives)
