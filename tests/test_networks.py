@@ -351,3 +351,18 @@ def test_cli_parameters_and_errors(tmp_path, capsys):
     ragged.write_text("1, 2\n3\n")
     assert main(["derive", "network", "--matrix", str(ragged)]) == 2
     assert main(["derive", "network", "--matrix", str(f), "--param", "k=1", "--ports", "3,3"]) == 2
+
+
+def test_theorem9_conditions_corrected_vs_printed():
+    from hapticproof.networks import theorem9_conditions
+
+    leading = sp.diag(sp.Matrix([[0, 0, 0], [0, 1, 2], [0, 2, 1]]), sp.eye(3))
+    th = theorem9_conditions(leading, (3, 3))
+    assert [getattr(th, k).decision for k in ("A", "B", "C", "D")] == [Decision.PROVED] * 4
+    assert th.E_printed.decision == Decision.PROVED and th.E.decision == Decision.DISPROVED
+    cycle = sp.eye(6) * 2
+    cycle[0, 3], cycle[3, 0] = 2, sp.Rational(1, 2)
+    for a, b in ((3, 1), (1, 4), (4, 0)):
+        cycle[a, b] = cycle[b, a] = 1
+    th = theorem9_conditions(cycle, (3, 3))
+    assert th.B.decision == Decision.PROVED and th.A.decision == Decision.DISPROVED

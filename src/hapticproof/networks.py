@@ -84,6 +84,8 @@ __all__ = [
     "Symmetrization",
     "symmetrize",
     "StabilityVerdict",
+    "Theorem9",
+    "theorem9_conditions",
     "absolute_stability",
     "InstabilityCertificate",
     "find_destabilizing_terminations",
@@ -891,6 +893,56 @@ def _youla_positive_real(sym: Symmetrization) -> PositiveRealResult:
     herm = decide_psd(_signed_hermitian_minors(rhat, signs) if any(v < 0 for v in signs) else hermitian_minors(rhat))
     decision, reason = _combine([("poles", poles), ("residues", residues), ("Hermitian part", herm)])
     return PositiveRealResult(decision, reason, poles, residues, herm)
+
+
+@dataclass(frozen=True)
+class Theorem9:
+    """Conditions A-E of Theorem 9 (3-DOF bilateral paper), decided exactly, in the corrected
+    reading (D: residue matrices of Z' Hermitian PSD; E: all principal minors of Re Z' >= 0) and,
+    for E, also as printed (leading principal minors only): ``E_printed`` may hold where E fails.
+    A and B are decided through the symmetrization (A covers Youla's longer cycle conditions)."""
+
+    A: Outcome
+    B: Outcome
+    C: Outcome
+    D: Outcome
+    E: Outcome
+    E_printed: Outcome
+
+    def to_json(self) -> dict[str, Any]:
+        return {k: getattr(self, k).to_json() for k in ("A", "B", "C", "D", "E", "E_printed")}
+
+
+def theorem9_conditions(Z: Any, ports: Sequence[int] | None = None) -> Theorem9:
+    """Decide Theorem 9's conditions for a numeric impedance matrix.
+
+    >>> from hapticproof.symbols import s
+    >>> th = theorem9_conditions(sp.diag(sp.Matrix([[0, 0, 0], [0, 1, 2], [0, 2, 1]]), sp.eye(3)), (3, 3))
+    >>> th.E_printed.decision.value, th.E.decision.value       # leading minors 0 >= 0, yet not PSD
+    ('proved', 'disproved')
+    """
+    Zr = as_rational_matrix(Z)
+    blocks = port_blocks(Zr.shape[0], ports)
+    b_fail = [(i, j) for blk in blocks for i, j in itertools.combinations(blk, 2) if Zr[i, j] != Zr[j, i]]
+    B = (Outcome(Decision.DISPROVED, Evidence(Method.CANONICAL_FORM, witness={"pair": list(b_fail[0])}),
+                 f"z[{b_fail[0][0]},{b_fail[0][1]}] != z[{b_fail[0][1]},{b_fail[0][0]}]") if b_fail else
+         Outcome(Decision.PROVED, Evidence(Method.CANONICAL_FORM), "the diagonal port blocks are symmetric"))
+    sym = symmetrize(Zr, ports)
+    A = Outcome(sym.symmetrizable, sym.evidence, sym.reason)
+    poles, _ = _pole_outcome(Zr)
+    C = poles if pole_report(Zr).rhp else Outcome(Decision.PROVED, poles.evidence, "no entry of Z has a pole in Re s > 0")
+    undecided = Outcome(Decision.UNDECIDED, Evidence(Method.CANONICAL_FORM), "no rational Z' (symmetrization failed)")
+    if sym.symmetrizable != Decision.PROVED:
+        return Theorem9(A, B, C, undecided, undecided, undecided)
+    pr = _youla_positive_real(sym)
+    signs = sym.signs
+    minors = _signed_hermitian_minors(sym.rhat, signs) if any(v < 0 for v in signs) else hermitian_minors(sym.rhat)
+    leading = [decide_nonnegative(minors.leading(k), f"leading minor {k}") for k in range(1, minors.n + 1)]
+    leading += [decide_nonnegative(minors.minors[(i,)], f"Re z'_{i + 1}{i + 1}") for i in range(minors.n)]
+    failed = next((o for o in leading if o.decision == Decision.DISPROVED), None)
+    E_printed = failed or Outcome(Decision.PROVED, Evidence(Method.ROOT_ISOLATION),
+                                  "all leading principal minors (and diagonal entries) of Re Z' are >= 0 for every w")
+    return Theorem9(A, B, C, pr.residues, pr.hermitian, E_printed)
 
 
 # ---------------------------------------------------------------------------------------------
