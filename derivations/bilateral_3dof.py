@@ -41,7 +41,7 @@ from typing import Any
 import numpy as np
 import sympy as sp
 
-from hapticproof.audit import AuditContext, Paper, malformed
+from hapticproof.audit import AuditContext, Paper
 from hapticproof.certify import compare_expressions, is_identically_zero
 from hapticproof.energy import Sinusoid, input_energy, port_admittance
 from hapticproof.evidence import Decision, Evidence, Finding, Method, Verdict

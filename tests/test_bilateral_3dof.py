@@ -13,7 +13,6 @@ from hapticproof.evidence import Decision
 from hapticproof.networks import positive_real
 from hapticproof.rationalmatrix import RationalMatrix
 from hapticproof.registry import get_paper
-from hapticproof.symbols import s
 
 # A change here is a change of a mathematical finding: re-derive by hand before editing.
 EXPECTED = {

@@ -32,7 +32,7 @@ import sympy as sp
 
 from hapticproof.errors import InputFormatError
 from hapticproof.networks import as_rational_matrix
-from hapticproof.rationalmatrix import RationalFunction, RationalMatrix
+from hapticproof.rationalmatrix import RationalMatrix
 from hapticproof.simulate import van_loan_gram
 
 __all__ = ["StateSpace", "realize", "port_admittance", "Sinusoid", "EnergyTrace", "input_energy"]

@@ -59,15 +59,13 @@ from hapticproof.rationalmatrix import (
     RationalMatrix,
     decide_nonnegative,
     decide_psd,
-    even_to_x,
     hermitian_minors,
     minimise_halfline,
     minors_from_polynomial_matrix,
     pole_report,
-    poly_det,
     rhp_roots,
 )
-from hapticproof.realroots import as_fmpq, real_roots, to_rational
+from hapticproof.realroots import as_fmpq, to_rational
 from hapticproof.symbols import s as S_SYM
 from hapticproof.unitcircle import imaginary_axis_rational
 

@@ -41,7 +41,6 @@ from hapticproof.errors import InputFormatError
 from hapticproof.evidence import Decision, Evidence, Method, Outcome
 from hapticproof.realroots import as_fmpq, real_roots, to_rational
 from hapticproof.symbols import s as S_SYM
-from hapticproof.symbols import x as X_SYM
 
 __all__ = [
     "RationalFunction",
