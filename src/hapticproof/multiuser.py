@@ -90,6 +90,7 @@ __all__ = [
     "MultiUserScene",
     "Mode",
     "MatrixWorstCase",
+    "PSD",
     "complete_graph",
     "user_symbols",
     "inverse_transfer_matrix",
@@ -607,10 +608,25 @@ def kernel_bounds(approximation: str = "forward", delay: int = 0) -> KernelBound
     out = []
     for num, den in (reK, reB):
         mn = minimise_rational(num, den, -1, 1)
-        value = mn.exact if mn.exact is not None else mn.value
+        value = mn.exact if mn.exact is not None else _recognise_minimum(num, den, mn.value)
         argmin = mn.argmin if not hasattr(mn.argmin, "as_sympy") else mn.argmin.as_sympy()
         out.append((-value, argmin))
     return KernelBounds(approximation, delay, out[0][0], out[1][0], out[0][1], out[1][1])
+
+
+def _recognise_minimum(num: flint.fmpq_poly, den: flint.fmpq_poly, ball: Any) -> Any:
+    """An exact rational minimum when the certified ball holds one: ``q`` is the minimum of
+    ``num/den`` (``den > 0``) on ``[-1, 1]`` iff ``num - q den >= 0`` there with a zero."""
+    from fractions import Fraction
+
+    from hapticproof.realroots import nonnegative_on, real_roots
+
+    guess = Fraction(float(ball.mid())).limit_denominator(10**6)
+    q = flint.fmpq(guess.numerator, guess.denominator)
+    diff = num - q * den
+    if nonnegative_on(diff, -1, 1).holds and (diff.is_zero() or real_roots(diff, -1, 1)):
+        return sp.Rational(guess.numerator, guess.denominator)
+    return ball
 
 
 @dataclass(frozen=True, slots=True)
@@ -686,7 +702,7 @@ def sufficient_condition(scene: MultiUserScene) -> sp.Basic:
     ground = _extremum(sp.Max, [kK * scene.T * k0 + kB * b0 for k0, b0 in zip(scene.K0, scene.B0)])
     pair = _extremum(sp.Max, [kK * scene.T * k + kB * bb for k, bb in zip(scene.K, scene.B)]) if scene.edges else 0
     rhs = ground + scene.users * pair
-    return sp.Ge(lhs, rhs if rhs.has(sp.Max) else sp.expand(rhs))
+    return sp.Ge(lhs, rhs if rhs.has(sp.Max) else sp.expand(rhs), evaluate=False)
 
 
 def _extremum(func, values: Sequence[Any]) -> Any:
@@ -797,8 +813,7 @@ def worst_case(scene: MultiUserScene) -> MatrixWorstCase:
     if not scene.has_delay:
         aff = affine_worst_case(H)
         if aff is not None:
-            conditions = [cnd for k, mn in aff.minors.items()
-                          if not nonnegative_certificate(H.ring, mn.num) for cnd in [sp.Ge(mn.expr(), 0)]]
+            conditions = _minor_conditions(aff.minors, H.ring, aff.matrix.matrix())
             outcome = Outcome(Decision.SYMBOLIC,
                               Evidence(Method.STRUCTURAL, facts={"endpoint": aff.endpoint, "certificate": aff.slope_certificate}),
                               f"M(c) = M0 + c M1 with M1 certified semidefinite: the worst case is c = {aff.endpoint} "
@@ -810,7 +825,7 @@ def worst_case(scene: MultiUserScene) -> MatrixWorstCase:
         ring = PolyRing.over(W.free_symbols)
         HW = HermitianPart(ring, tuple(tuple(ring.from_expr(v) for v in W.row(i)) for i in range(W.rows)), None, ring.one)
         minors = psd_minors(HW)
-        conditions = [sp.Ge(mn.expr(), 0) for mn in minors.values() if not nonnegative_certificate(ring, mn.num)]
+        conditions = _minor_conditions(minors, ring, W)
         kb = kernel_bounds(scene.approximation, scene.delays[0])
         outcome = Outcome(Decision.SYMBOLIC,
                           Evidence(Method.STRUCTURAL, facts={"kappa_K": kb.kappa_K, "argmin": kb.argmin_K}),
@@ -820,6 +835,22 @@ def worst_case(scene: MultiUserScene) -> MatrixWorstCase:
     outcome = Outcome(Decision.UNDECIDED, Evidence(Method.STRUCTURAL, facts={"reason": "no structure applies"}),
                       "symbolic parameters with delays and damping (or unequal delays): substitute numbers for an exact decision")
     return MatrixWorstCase(outcome, None, "none")
+
+
+#: ``PSD(M)``: the condition "the constant matrix M is positive semidefinite" (printed for m > 3,
+#: where listing every principal minor would be unreadable).
+PSD = sp.Function("PSD")
+
+
+def _minor_conditions(minors: Mapping, ring: PolyRing, matrix: Any) -> list[sp.Basic]:
+    """``minor >= 0`` for every principal minor not certified non-negative (m <= 3), else
+    the single condition ``PSD(matrix)``."""
+    open_minors = [mn for mn in minors.values() if not nonnegative_certificate(ring, mn.num)]
+    if not open_minors:
+        return []
+    if max(len(k) for k in minors) > 3:
+        return [PSD(sp.ImmutableMatrix(matrix))]
+    return [sp.Ge(mn.expr(), 0, evaluate=False) for mn in open_minors]
 
 
 def _mode_condition(wall: SingleUserScene) -> sp.Basic:

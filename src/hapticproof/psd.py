@@ -421,7 +421,7 @@ def _psd_outcome(matrix: sp.Matrix, what: str) -> Outcome:
         return Outcome(Decision.PROVED, Evidence(Method.STRUCTURAL, facts=facts),
                        f"{what} is PSD: every principal minor is a polynomial with non-negative coefficients "
                        "in non-negative parameters")
-    conditions = [sp.Ge(mn.expr(), 0) for mn in minors.values() if not nonnegative_certificate(ring, mn.num)]
+    conditions = [sp.Ge(mn.expr(), 0, evaluate=False) for mn in minors.values() if not nonnegative_certificate(ring, mn.num)]
     return Outcome(Decision.SYMBOLIC, Evidence(Method.CANONICAL_FORM, facts={**facts, "conditions": conditions}),
                    f"{what} is PSD iff its principal minors are >= 0")
 
@@ -925,7 +925,7 @@ class AffineWorstCase:
     minors: dict[tuple[int, ...], Minor]
 
     def conditions(self) -> list[sp.Basic]:
-        return [sp.Ge(mn.expr(), 0) for mn in self.minors.values()]
+        return [sp.Ge(mn.expr(), 0, evaluate=False) for mn in self.minors.values()]
 
 
 def affine_worst_case(H: HermitianPart) -> AffineWorstCase | None:
