@@ -241,3 +241,23 @@ def test_symbolic_structures_and_errors():
     star = MultiUserScene.uniform(4, edges=[(0, 1), (0, 2), (0, 3)])
     assert sorted(md.eigenvalue for md in uniform_modes(star)) == [0, 1, 4]
     assert list(itertools.chain(star.edges)) == [(0, 1), (0, 2), (0, 3)]
+
+
+def test_cli_derive_multi_user(capsys):
+    import json
+
+    from hapticproof.cli import main
+
+    assert main(["derive", "multi-user", "--users", "2", "--uniform", "--format", "json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["worst_case_method"] == "uniform-modes" and data["verdict"] == "symbolic"
+    args = ["derive", "multi-user", "--users", "2", "--delay", "0,1", "--param", "b=2", "--param", "K_0=1",
+            "--param", "K=0.1", "--param", "B_0=0", "--param", "B=0", "--param", "T=1", "--format", "json"]
+    assert main(args) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["verdict"] == "proved" and data["hermitian_is_real"] is False
+    assert main(["derive", "multi-user", "--users", "3", "--delay", "2", "--uniform", "--param", "B_0=0",
+                 "--param", "B=0", "--latex"]) == 0
+    assert r"\frac{15 K T}{2}" in capsys.readouterr().out
+    assert main(["derive", "multi-user", "--users", "2", "--param", "nope=1"]) == 2
+    assert main(["derive", "multi-user", "--users", "3", "--graph", "1-4"]) == 2
