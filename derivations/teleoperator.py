@@ -878,7 +878,7 @@ def less_claim(ctx: AuditContext) -> Finding:
         f"{values[0]} and {values[1]} times the alias weight)",
         Evidence(Method.COUNTEREXAMPLE, witness={"Cbar^-": -1, "V_m": 1, "V_s": 1},
                  facts={"difference_integrand": -CMINUS * weight * square, "integrands_at_witness": values}),
-        corrected="(27) is greater than or equal to (28)",
+        corrected=r"\text{(27) is greater than or equal to (28)}",
     )
 
 
@@ -1022,7 +1022,7 @@ def bilinear_claim(ctx: AuditContext) -> Finding:
         f"s -> (z - 1)/(Tz) ({backward.verdict.value} against sympy's backward_diff), the controller all results (34)-(35) use",
         finding.evidence,
         derived=tele.discretize_pd("bilinear"),
-        corrected=r"C_s(z) = C_m(z) = K + B\frac{z-1}{Tz} \ \text{(backward difference } s \approx \frac{z-1}{Tz}\text{)}",
+        corrected=r"C_s(z) = C_m(z) = K + B\frac{z-1}{Tz} \ \text{(backward difference } s \to \frac{z-1}{Tz}\text{)}",
     )
 
 
@@ -1155,7 +1155,7 @@ def routh_finding(printed: sp.Basic, what: str) -> Finding:
         Evidence(Method.COUNTEREXAMPLE, witness=examples["moderate_B"]["point"],
                  facts={"certified": examples, "first_order_ratio": expansion, "exact_region": region}),
         derived=region,
-        corrected=r"b + B > \frac{KT}{2} \ \text{only for } B \lesssim b/6 \text{ (exactly: } 2(\alpha+\delta) \le \beta^*(\alpha,\delta))",
+        corrected=r"b + B > \frac{KT}{2} \ \text{only for } B \le \frac{b}{6} \text{ to first order; exactly: } 2(\alpha+\delta) \le \beta^*(\alpha,\delta)",
     )
 
 
