@@ -12,9 +12,8 @@ import sympy as sp
 
 from hapticproof.audit import AuditContext, Paper
 from hapticproof.certify import as_bound, compare_bounds, is_identically_zero
-from hapticproof.errors import UnknownEquationError
 from hapticproof.evidence import Evidence, Finding, Method, Verdict
-from hapticproof.parse import expand_indexed, parse_printed
+from hapticproof.parse import parse_printed
 from hapticproof.registry import get_paper
 from hapticproof.scene import SYMBOLS
 
@@ -68,11 +67,6 @@ def _compare(a: sp.Basic, b_rel: sp.Basic, ids: list[str], what: str, var: sp.Sy
            "witness where one holds and the other fails)")
     return Finding(Verdict.INCONSISTENT, f"{ids[0]} and {ids[1]} differ, {how}{note}",
                    Evidence(cmp.evidence.method, witness=cmp.evidence.witness, facts=facts))
-
-
-def _missing(ids: list[str], err: Exception) -> Finding:
-    return Finding(Verdict.UNDECIDED, f"{ids[0]} is not registered yet ({err}); the comparison with {ids[1]} was not run",
-                   Evidence(Method.PARSE, facts={"ids": ids}))
 
 
 # ---------------------------------------------------------------------------------------------
@@ -203,57 +197,3 @@ def hve27_25(ctx: AuditContext) -> Finding:
     return _compare(_relation("hve", "27").subs(z_a, 0), _relation("hve", "25"), ["hve:27", "hve:25"], "HVE (27) at z_a = 0")
 
 
-# ---------------------------------------------------------------------------------------------
-# HVE multi-user conditions at m = 1
-# ---------------------------------------------------------------------------------------------
-
-
-def _one_user(eq: str) -> sp.Basic:
-    """The printed multi-user condition for one user: empty extrema over pairs contribute 0 (no
-    couplings), self-couplings K_11, B_11 (printed by an unrestricted max_{i,j}) are 0, and the
-    concrete symbols of user 1 are renamed to the single-user ones."""
-    statement, hve = _printed("hve", eq)
-    (rel,) = statement.relations()
-    count = hve.symbols.lookup("m")
-    lhs = expand_indexed(rel.lhs, 1, hve.symbols, count=count, empty=0)
-    rhs = expand_indexed(rel.rhs, 1, hve.symbols, count=count, empty=0)
-    names = {"b_1": b, "K_01": K, "B_01": B, "z_a1": z_a, "K_11": 0, "B_11": 0, "t_d": t_d, "T": T}
-    mapping = {sym: names[sym.name] for sym in (lhs.free_symbols | rhs.free_symbols) if sym.name in names}
-    return rel.as_sympy().func(lhs.subs(mapping), rhs.subs(mapping), evaluate=False)
-
-
-def _reduction(eq: str, target: str) -> Finding:
-    ids = [f"hve:{eq}", f"hve:{target}"]
-    try:
-        reduced = _one_user(eq)
-    except UnknownEquationError as err:
-        return _missing(ids, err)
-    finding = _compare(reduced, _relation("hve", target), ids, f"HVE ({eq}) at m = 1",
-                       note=" (empty pair extrema = 0, no self-coupling)")
-    if finding.verdict == Verdict.INCONSISTENT and eq == "62":
-        at_zero = _compare(reduced, _relation("hve", target).subs(z_a, 0), [ids[0], f"hve:{target} at z_a = 0"], "")
-        return Finding(Verdict.INCONSISTENT, finding.detail + "; (62) is for passive operators and reduces to (27) only at "
-                       f"z_a = 0, i.e. to (25) ({at_zero.verdict.value}); (63) is the one that reduces to (27)",
-                       finding.evidence)
-    return finding
-
-
-@PAPER.equation("hve54-m1-20", kind="claim", after="13",
-                printed="HVE (54): 'when only one user is involved, the condition will reduce to Colgate's condition' (20)",
-                derivation="(54) expanded for m = 1 vs (20)")
-def hve54(ctx: AuditContext) -> Finding:
-    return _reduction("54", "20")
-
-
-@PAPER.equation("hve55-m1-26", kind="claim", after="14",
-                printed="HVE (55): 'for only one operator, (55) will reduce to (26)'",
-                derivation="(55) expanded for m = 1 vs (26)")
-def hve55(ctx: AuditContext) -> Finding:
-    return _reduction("55", "26")
-
-
-@PAPER.equation("hve62-m1-27", kind="claim", after="15",
-                printed="HVE (62): 'for a single-user system, condition (62) will reduce to (27)'",
-                derivation="(62) expanded for m = 1 vs (27)")
-def hve62(ctx: AuditContext) -> Finding:
-    return _reduction("62", "27")

@@ -89,6 +89,21 @@ PAPER = Paper(
     authors="N. Miandashti and M. Tavakoli",
     symbols=TABLE,
     aliases=("000", "miandashti-tavakoli", "haptic-virtual-environment"),
+    conditions=[
+        ("HVE (3)/(20), Colgate", r"b > \frac{KT}{2} + B", "eq. (20), confirmed"),
+        ("HVE (4), Gil 2004 as quoted", r"b + B > \frac{KT}{2}", "eq. (4), small B only"),
+        ("HVE (5) corrected, Gil 2009", r"K < \frac{B+b}{\frac{T}{2}+t_d}", "eq. (5), T -> T/2"),
+        ("HVE (2), Minsky with operator", r"B+b+b_h > \frac{(K+k_h)T}{2}", "eq. (2); leading order b + b_h + B > KT/2"),
+        ("HVE (25)", r"b + B > \frac{KT}{2} + Kt_d", "eq. (25), exact for B = 0"),
+        ("HVE (25), any B >= 0", r"b > \frac{KT}{2} + Kt_d + B", "derived, sufficient for all n"),
+        ("HVE (26)", r"b - z_a > \frac{KT}{2} + B", "eq. (26), confirmed"),
+        ("HVE (27)", r"b - z_a + B > Kt_d + \frac{KT}{2}", "eq. (27), exact for B = 0"),
+        ("HVE (54), m users", r"\min_i b_i > \max_i \{\tfrac{K_{0i}T}{2} + B_{0i}\} + m \max_{i \neq j} \{\tfrac{K_{ij}T}{2} + B_{ij}\}",
+         "eq. (54), sufficient; exact when uniform"),
+        ("HVE (63) corrected, m users, delay",
+         r"\min_i \{b_i - z_{ai}\} > \max_i \{K_{0i}(t_d + \tfrac{T}{2}) + B_{0i}\} + m \max_{i \neq j} \{K_{ij}(t_d + \tfrac{T}{2}) + B_{ij}\}",
+         "eq. (63) with the factor m; B small"),
+    ],
 )
 
 ASSUME = "b, K, T > 0; B >= 0; z_a >= 0; n = t_d/T a non-negative integer"

@@ -146,11 +146,3 @@ def test_cross_paper_and_hve_intro():
     assert [r.verdict.value for r in cross.results] == ["inconsistent", "confirmed", "confirmed", "inconsistent", "inconsistent"]
     hve = audit_paper(get_paper("hve"), ["2", "4", "5", "25-identical-7", "36-identical-7"])
     assert [r.verdict.value for r in hve.results] == ["needs-assumption", "needs-assumption", "typo", "inconsistent", "inconsistent"]
-
-
-def test_multiuser_reductions():
-    paper = get_paper("hve")
-    if not {"54", "55", "62"} <= set(paper.equations):
-        pytest.skip("HVE multi-user equations not registered yet")
-    cross = audit_paper(get_paper("cross-paper"), ["hve54-m1-20", "hve55-m1-26", "hve62-m1-27"])
-    assert [r.verdict.value for r in cross.results] == ["confirmed", "confirmed", "inconsistent"]

@@ -105,7 +105,8 @@ def verbatim_block(text: str) -> str:
 
 
 def _balanced(text: str) -> bool:
-    """Braces and parentheses nest properly (escaped braces and ``\\left``/``\\right`` ignored)."""
+    """Braces, parentheses and environments nest properly (escaped braces and
+    ``\\left``/``\\right`` delimiters ignored)."""
     stripped = re.sub(r"\\(left|right|big|Big)[()\[\]|.]|\\[{}]", "", text)
     for opening, closing in ("{}", "()"):
         depth = 0
@@ -116,11 +117,20 @@ def _balanced(text: str) -> bool:
                 return False
         if depth:
             return False
-    return True
+    stack: list[str] = []
+    for kind, name in re.findall(r"\\(begin|end)\{([A-Za-z*]+)\}", text):
+        if kind == "begin":
+            stack.append(name)
+        elif not stack or stack.pop() != name:
+            return False
+    return not stack
 
 
 def display(latex: str) -> str:
-    """A display-math block; multi-line content goes into ``gathered``."""
+    """A display-math block. Content with its own environments (aligned, bmatrix) is kept as it
+    is; bare multi-line content goes into ``gathered`` (alignment marks dropped)."""
+    if "\\begin{" in latex:
+        return "\\begin{equation*}" + latex + "\\end{equation*}"
     if "\\\\" in latex or "&" in latex:
         body = latex.replace("&", "")
         return "\\begin{equation*}\\begin{gathered}" + body + "\\end{gathered}\\end{equation*}"
@@ -162,7 +172,8 @@ _KNOWN = set(
     operatorname mathbf mathcal det dots cdots ldots vdots ddots begin end bmatrix pmatrix
     matrix aligned gathered boxed ell hline mathbb partial mu sigma tau lambda
     implies Rightarrow rightarrow xrightarrow infty vert Vert lvert rvert prime succeq preceq iff
-    operatorname Res displaystyle tfrac dot ddot bar hat tilde mathcal Longrightarrow Leftrightarrow""".split()
+    operatorname Res displaystyle tfrac dot lbrace rbrace ddot bar hat tilde mathcal Longrightarrow Leftrightarrow
+    Big big Bigg bigg int iint sqrt overline underline mid""".split()
 )
 
 
