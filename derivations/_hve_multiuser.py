@@ -337,8 +337,8 @@ def eq37d(ctx: AuditContext) -> Finding:
             "right for undelayed users (n_i = 0, the case treated next), but it is announced as the result of "
             "U = z^{-n_i} H X_h and drops the delay factor z^{-n_i}",
             Evidence(Method.COUNTEREXAMPLE, witness={"m": 3, "i": 1, "n_1": 1}, facts=facts),
-            corrected=(r"U_{i}(z) = z^{-n_i}\Big[(K_{0i} + \sum_{k \neq i} K_{ik} + \frac{(B_{0i} + \sum_{k \neq i} B_{ik})(z-1)}{Tz})X_{hi}(z)"
-                       r" - \sum_{j \neq i} (K_{ij} + \frac{B_{ij}(z-1)}{Tz})X_{hj}(z)\Big]"),
+            corrected=(r"U_{i}(z) = z^{-n_i}\left[(K_{0i} + \sum_{k \neq i} K_{ik} + \frac{(B_{0i} + \sum_{k \neq i} B_{ik})(z-1)}{Tz})X_{hi}(z)"
+                       r" - \sum_{j \neq i} (K_{ij} + \frac{B_{ij}(z-1)}{Tz})X_{hj}(z)\right]"),
         )
     if facts["n_i=0"] == "equal":
         return Finding(Verdict.CONFIRMED, "U_i equals the derived environment force", Evidence(Method.CANONICAL_FORM, facts=facts))
@@ -834,8 +834,8 @@ def eq47(ctx: AuditContext) -> Finding:
         "R_0 = T Kmat, but the printed matrix drops the factor T in two entries and the (2,3) entry: " + "; ".join(problems),
         Evidence(Method.CANONICAL_FORM, facts={"parse_error": parse_error, "problems": problems}),
         derived=derived,
-        corrected=(r"R_0 = \begin{bmatrix} (K_{01} + K_{12} + K_{13})T & -K_{12}T & -K_{13}T \\ -K_{12}T & (K_{02} + K_{12} + K_{23})T"
-                   r" & -K_{23}T \\ -K_{13}T & -K_{23}T & (K_{03} + K_{13} + K_{23})T \end{bmatrix}"),
+        corrected=(r"R_0 = T\,K_{mat}:\ (R_0)_{13} = -K_{13}T,\ (R_0)_{23} = (R_0)_{32} = -K_{23}T,\ "
+                   r"(R_0)_{33} = (K_{03} + K_{13} + K_{23})T"),
     )
 
 
@@ -921,7 +921,7 @@ P51 = (r"(2b_{1} - (K_{01} + K_{12} + K_{13})T + 2(B_{01} + B_{12} + B_{13})\cos
        r"\cos(\omega T))(K_{23}T + 2B_{23})^{2} - (2b_{2} - (K_{02} + K_{12} + K_{23})T + 2(B_{02} + B_{12} + B_{23})\cos(\omega T))"
        r"(K_{13}T + 2B_{13})^{2} - (2b_{3} - (K_{03} + K_{13} + K_{23})T - 2(B_{03} + B_{13} + B_{23})\cos(\omega T))(K_{12}T + 2B_{12})^{2} > 0")
 
-C51 = (r"\prod_{i=1}^{3} d_i + 2w_{12}w_{13}w_{23} - d_1 w_{23}^2 - d_2 w_{13}^2 - d_3 w_{12}^2 > 0,\quad "
+C51 = (r"d_1 d_2 d_3 + 2w_{12}w_{13}w_{23} - d_1 w_{23}^2 - d_2 w_{13}^2 - d_3 w_{12}^2 > 0,\quad "
        r"d_i = 2b_i - K_iT + 2B_i\cos(\omega T),\ w_{ij} = K_{ij}T - 2B_{ij}\cos(\omega T)")
 
 
@@ -982,7 +982,7 @@ def minors51(ctx: AuditContext) -> Finding:
         "the witness (c = -1) both printed conditions hold while M has two negative eigenvalues",
         Evidence(Method.COUNTEREXAMPLE, witness={**_witness_json(scene), "c": -1},
                  facts={"leading_minors_at_c=-1": lead, "psd_test": is_psd(M).coefficients, **_disproved(scene)}),
-        corrected=r"\text{all principal minors (or } E_1, E_2, E_3\text{) of } M(c) \ge 0 \text{ for } c \in [-1, 1]",
+        corrected=r"\text{all principal minors (or } E_1, E_2, E_3\text{) of } M(c) \ge 0 \text{ for } -1 \le c \le 1",
     )
 
 
@@ -1497,7 +1497,7 @@ def worst59(ctx: AuditContext) -> Finding:
         Evidence(Method.COUNTEREXAMPLE, witness={str(k): v for k, v in values.items()},
                  facts={"kappa_n_brackets": thresholds, "kappa_K": {k: v.kappa_K for k, v in kb.items()},
                         "exact_decision": wc.outcome.to_json()}),
-        corrected=r"B_{0} + \lambda B \le \kappa_n (K_0 + \lambda K) T,\ \lambda \in \{0, m\},\quad \kappa_n = \min_c \frac{n - D_n(c)}{1 - T_{n+1}(c)}",
+        corrected=r"B_{0} + \lambda B \le k_n (K_0 + \lambda K) T,\ \lambda = 0, m,\quad k_n = \min_c \frac{n - D_n(c)}{1 - T_{n+1}(c)}",
     )
 
 
@@ -1620,7 +1620,7 @@ def eq61(ctx: AuditContext) -> Finding:
                         "kappa_n": {k: (v.lo, v.hi) for k, v in kappa.items()},
                         "inside_instance": {"holds": inside_holds, "pr": inside_pr}, **_disproved(outside)}),
         derived=uniform_condition(2, delay=1, damped=False).xreplace({z_a: 0}),
-        corrected=r"b + B_0 + 2B_{12} > \frac{K_0 T}{2} + K_{12} T + K_0 t_d + 2K_{12} t_d,\quad B_0 + \lambda B_{12} \le \kappa_n (K_0 + \lambda K_{12})T,\ \lambda = 0, 2,\ B_{12} \le K_{12}(t_d + \tfrac{T}{2})",
+        corrected=r"b + B_0 + 2B_{12} > \frac{K_0 T}{2} + K_{12} T + K_0 t_d + 2K_{12} t_d,\quad B_0 + \lambda B_{12} \le k_n (K_0 + \lambda K_{12})T,\ \lambda = 0, 2,\ B_{12} \le K_{12}(t_d + \tfrac{T}{2})",
     )
 
 
@@ -1678,7 +1678,7 @@ def reduce62(ctx: AuditContext) -> Finding:
                        "for one user (62) is b + B > KT/2 + Kt_d, i.e. (25); (27) has the shortage of passivity z_a, which "
                        "(62) (passive operators) does not -- (63) is the one that reduces to (27)",
                        Evidence(Method.CANONICAL_FORM, facts={"m=1": one, "(27)-(62)": sp.expand((p27.lhs - p27.rhs) - (one.lhs - one.rhs))}),
-                       derived=one, corrected="Again, for a single-user system, condition (62) will reduce to (25).")
+                       derived=one, corrected=r"\text{Again, for a single-user system, condition (62) will reduce to (25).}")
     return Finding(Verdict.WRONG, "(62) for m = 1 is neither (25) nor (27)", Evidence(Method.CANONICAL_FORM, facts={"m=1": one}))
 
 
@@ -1747,7 +1747,7 @@ def small_b(ctx: AuditContext) -> Finding:
         "certified for n = 1..5 (n(2n+1)/(6(n+1)) where exact); for n = 0 the region is B = 0, so the delayed conditions "
         "(61)-(63) do not reduce to the undelayed (46), (54), (55) when B > 0 (for B = 0, (61) at t_d = 0 is (46))",
         Evidence(Method.ROOT_ISOLATION, facts={"kappa_n": kappas, "n(2n+1)/(6(n+1))": closed}),
-        corrected=r"B_0 + \lambda B \le \kappa_n (K_0 + \lambda K)T \text{ for every Laplacian eigenvalue } \lambda",
+        corrected=r"B_0 + \lambda B \le k_n (K_0 + \lambda K)T \text{ for every Laplacian eigenvalue } \lambda \text{ (} k_n \text{ of hapticproof.delayed)}",
     )
 
 
