@@ -25,12 +25,11 @@ from typing import Any
 
 import sympy as sp
 
-from hapticproof.audit import AuditContext, malformed
-from hapticproof.certify import compare_expressions, find_difference, is_identically_zero
+from hapticproof.audit import AuditContext
+from hapticproof.certify import compare_expressions, is_identically_zero
 from hapticproof.derivations.hve import PAPER, omega
 from hapticproof.errors import LatexParseError
 from hapticproof.evidence import Decision, Evidence, Finding, Method, Verdict
-from hapticproof.latex import to_latex
 from hapticproof.multiuser import (
     UNIFORM_SYMBOLS,
     MultiUserScene,
@@ -51,7 +50,7 @@ from hapticproof.multiuser import (
     worst_case,
 )
 from hapticproof.parse import IndexedExtremum, IndexedFamily, IndexedMin, expand_indexed, index_symbol, parse_printed
-from hapticproof.psd import HermitianPart, PolyRing, is_psd, shortcut_failure
+from hapticproof.psd import HermitianPart, PolyRing, is_psd
 from hapticproof.psd import principal_minors as psd_minors
 from hapticproof.scene import SYMBOLS
 from hapticproof.symbols import c as C
@@ -607,6 +606,12 @@ def minors44(ctx: AuditContext) -> Finding:
     # the strict leading minors of a 2x2 matrix certify definiteness; the converse direction
     # loses only the boundary (M_11 = 0 or det = 0), which the strict '>' of the paper excludes
     scene, decision = hve_leading_minor_counterexample()
+    M = _M(_scene(2))
+    # Sylvester for 2x2, on the derived M: M_11 M_22 = det M + M_12^2, so M_11 > 0 and det > 0 give M_22 > 0
+    identity = is_identically_zero(M[0, 0] * M[1, 1] - M.det() - M[0, 1] * M[1, 0])
+    hermitian_real = is_identically_zero(M[0, 1] - M[1, 0])
+    if not (identity and hermitian_real):
+        return Finding(Verdict.UNDECIDED, "the 2x2 Hermitian part is not real symmetric", Evidence(Method.CANONICAL_FORM))
     return Finding(
         Verdict.CONFIRMED,
         "for m = 2 the two strict leading-minor conditions (43)-(44) are equivalent to M(c) > 0 (Sylvester), a sufficient "
@@ -654,15 +659,14 @@ P45 = r"(2b - K_0T - 2B_0)^2 + 2(2b - K_0T - 2B_0)(-K_{12}T - 2B_{12}) > 0"
                 derivation="det M(-1) for uniform b, K_0, B_0: a(a - 2w), a = 2b - K_0T - 2B_0, w = K_12 T + 2B_12")
 def eq45(ctx: AuditContext) -> Finding:
     rel = ctx.relation()
-    subs = _uniform_subs(2)
-    subs.update({sp.Symbol("K_12", positive=True): K, sp.Symbol("B_12", nonnegative=True): B})
     printed = sp.expand((rel.lhs - rel.rhs).xreplace({sp.Symbol("K_12", positive=True): K,
                                                        sp.Symbol("B_12", nonnegative=True): B}))
     Mu = _M(MultiUserScene.uniform(2)).subs(C, -1)
     det = sp.expand(Mu.det())
-    same = is_identically_zero(printed - det)
     a = 2 * b - K_0 * T - 2 * B_0
     w = K * T + 2 * B
+    if not (is_identically_zero(printed - det) and is_identically_zero(printed - a * (a - 2 * w))):
+        return compare_expressions(printed, det, on_mismatch=Verdict.WRONG, what="(45) as det M(-1)")
     factored = sp.factor(printed)
     # witness: small b (a < 0): (45) holds, the first minor (43) fails
     values = {b: sp.Rational(1, 10), K_0: 1, B_0: 0, K: 1, B: 0, T: 1}
@@ -672,7 +676,7 @@ def eq45(ctx: AuditContext) -> Finding:
         Verdict.NEEDS_ASSUMPTION,
         "(45) is exactly det M(-1) for uniform parameters, a(a - 2w) with a = 2b - K_0T - 2B_0, w = K_12T + 2B_12; alone it "
         "also holds for a < 0, where (43) fails and G^-1 is not PR: it needs a > 0 (the first minor at c = -1), and "
-        "on a > 0 it is equivalent to a > 2w, i.e. (46)" if same else "(45) is not det M(-1)",
+        "on a > 0 it is equivalent to a > 2w, i.e. (46)",
         Evidence(Method.COUNTEREXAMPLE, witness={str(k): v for k, v in values.items()},
                  facts={"factored": factored, "det_M(-1)": det, "region": sp.Gt(a, 0), **_disproved(scene)}),
         derived=sp.Gt(det, 0),
@@ -1347,12 +1351,15 @@ def eq57(ctx: AuditContext) -> Finding:
                 derivation="the method (Definition 2 on G^-1) handles unequal delays exactly")
 def limitation57(ctx: AuditContext) -> Finding:
     rng = random.Random(11)
-    decided = {"proved": 0, "disproved": 0}
+    decided = {"proved": 0, "disproved": 0, "undecided": 0}
     for _ in range(6):
         d = [rng.randint(0, 3) for _ in range(3)]
         scene = MultiUserScene.from_values(b=[sp.Rational(rng.randint(20, 60), 10) for _ in range(3)], T=1,
                                            K0=[1, 1, 1], K=sp.Rational(rng.randint(1, 5), 10), delays=d)
         decided[worst_case(scene).decision.value] += 1
+    if decided.get("undecided"):
+        return Finding(Verdict.UNDECIDED, "some scenes with unequal delays were not decided",
+                       Evidence(Method.INSTANCES, instances=6, facts={"decisions": decided}))
     return Finding(
         Verdict.WRONG,
         "the circle-criterion method is not limited to equal delays: with unequal delays M(c) is complex Hermitian and its "
@@ -1740,13 +1747,29 @@ def small_b(ctx: AuditContext) -> Finding:
 
     kappas = {k: (small_damping_threshold(k).lo, small_damping_threshold(k).hi) for k in range(1, 6)}
     closed = {k: sp.Rational(k * (2 * k + 1), 6 * (k + 1)) for k in range(1, 6)}
+    # the restriction is real: above the threshold the worst frequency leaves c = 1 (n = 1, one mode)
+    above = MultiUserScene.uniform(1, b=10, K0=1, B0=kappas[1][1] + sp.Rational(1, 10), T=1, delay=1)
+    below = MultiUserScene.uniform(1, b=10, K0=1, B0=kappas[1][0], T=1, delay=1)
+    from hapticproof.positivereal import hermitian as wall_hermitian
+    from hapticproof.realroots import minimise_rational
+
+    def argmin(scene):
+        form = wall_hermitian(uniform_modes(scene)[0].scene).numeric()
+        mn = minimise_rational(form.num, form.den, -1, 1)
+        return mn.argmin if not hasattr(mn.argmin, "as_sympy") else mn.argmin.as_sympy()
+
+    moved = (argmin(below) == 1) and (argmin(above) != 1)
+    if not moved:
+        return Finding(Verdict.UNDECIDED, "the worst frequency did not move with damping as expected",
+                       Evidence(Method.ROOT_ISOLATION, facts={"kappa_n": kappas}))
     return Finding(
         Verdict.NEEDS_ASSUMPTION,
         "'small enough' has an exact meaning: for uniform couplings each mode lambda (Laplacian eigenvalue, 0 and m for the "
         "complete graph) keeps its worst case at c -> 1 iff B_0 + lambda B <= kappa_n (K_0 + lambda K) T; kappa_n is "
         "certified for n = 1..5 (n(2n+1)/(6(n+1)) where exact); for n = 0 the region is B = 0, so the delayed conditions "
         "(61)-(63) do not reduce to the undelayed (46), (54), (55) when B > 0 (for B = 0, (61) at t_d = 0 is (46))",
-        Evidence(Method.ROOT_ISOLATION, facts={"kappa_n": kappas, "n(2n+1)/(6(n+1))": closed}),
+        Evidence(Method.ROOT_ISOLATION, facts={"kappa_n": kappas, "n(2n+1)/(6(n+1))": closed,
+                                              "worst_c_n1_B0_at_kappa": argmin(below), "worst_c_n1_B0_above": argmin(above)}),
         corrected=r"B_0 + \lambda B \le k_n (K_0 + \lambda K)T \text{ for every Laplacian eigenvalue } \lambda \text{ (} k_n \text{ of hapticproof.delayed)}",
     )
 

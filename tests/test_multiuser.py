@@ -342,7 +342,6 @@ def test_section_32_verdicts(section_32):
 
 def _scene_from_witness(w):
     users = sorted({int(k[2:]) for k in w if k.startswith("b_")})
-    m = len(users)
     get = lambda key: sp.Rational(w.get(key, 0))  # noqa: E731
     return MultiUserScene.from_values(
         b=[get(f"b_{i}") for i in users], T=get("T"), K0=[get(f"K_0{i}") for i in users],

@@ -81,7 +81,6 @@ from hapticproof.psd import (
 from hapticproof.psd import principal_minors as psd_minors
 from hapticproof.realroots import minimise_rational
 from hapticproof.scene import APPROXIMATIONS, SYMBOLS, SingleUserScene, as_parameter
-from hapticproof.symbols import c as C_SYM
 from hapticproof.symbols import z as Z_SYM
 from hapticproof.unitcircle import hermitian_part_rational, imaginary_part_rational
 

@@ -29,7 +29,7 @@ indefinite matrices (:func:`shortcut_failure`).
 
 Symbolic minors live in python-flint's ``fmpq_mpoly`` rings (:class:`PolyRing`): the
 parameters and ``c`` are ring generators, so a ``5 x 5`` determinant with 35 free parameters
-is a few milliseconds of C rather than a SymPy ``simplify``.
+takes a fraction of a second in C rather than minutes of SymPy ``simplify``.
 
 >>> import sympy as sp
 >>> from hapticproof.symbols import z
