@@ -1635,8 +1635,11 @@ P62 = (r"\min_{i} \{b_i + B_{0i}\} + \min_{i,j \neq i} B_{ij} > \max_{i} \{K_{0i
        r"\max_{i,j \neq i} \{K_{ij}t_d + \frac{K_{ij}T}{2}\}")
 P63 = (r"\min_{i} \{b_{i} - z_{ai} + B_{0i}\} + \min_{i,j \neq i} B_{ij} > \max_{i} \{K_{0i}t_{d} + \frac{K_{0i}T}{2}\} + "
        r"\max_{i,j \neq i} \{K_{ij}t_{d} + \frac{K_{ij}T}{2}\}")
-C62 = (r"\min_{i} \{b_i - z_{ai}\} > \max_{i} \{K_{0i}(t_d + \frac{T}{2}) + B_{0i}\} + m \max_{i,j \neq i} "
+C62 = (r"\min_{i} \{b_i\} > \max_{i} \{K_{0i}(t_d + \frac{T}{2}) + B_{0i}\} + m \max_{i,j \neq i} "
        r"\{K_{ij}(t_d + \frac{T}{2}) + B_{ij}\}")
+
+
+C63 = C62.replace(r"\{b_i\}", r"\{b_i - z_{ai}\}")
 
 
 def _delayed_not_sufficient(ctx: AuditContext, label: str, active: bool) -> Finding:
@@ -1650,6 +1653,9 @@ def _delayed_not_sufficient(ctx: AuditContext, label: str, active: bool) -> Find
         u = _Indexed(rel, m).uniform(**{}).xreplace({B_0: 0, B: 0, z_a: 0})
         exact = uniform_condition(m, delay=3, damped=False).xreplace({z_a: 0})
         general[m] = sp.factor(sp.expand((exact.rhs - exact.lhs) - (u.rhs - u.lhs)).subs(t_d, 3 * T))
+        if sp.expand(general[m] - (m - 1) * sp.Rational(7, 2) * K * T) != 0:
+            return Finding(Verdict.UNDECIDED, f"{label}: unexpected gap to the exact uniform condition at m = {m}",
+                           Evidence(Method.CANONICAL_FORM, facts={"gaps": general}))
     return Finding(
         Verdict.WRONG,
         f"{label} misses the factor m on the coupling terms (compare (61) at m = 2 and the exact uniform condition "
@@ -1659,7 +1665,7 @@ def _delayed_not_sufficient(ctx: AuditContext, label: str, active: bool) -> Find
         Evidence(Method.COUNTEREXAMPLE, witness=_witness_json(scene),
                  facts={"exact_minus_printed_bound_uniform_B0_n3": general, **_disproved(scene)}),
         derived=sufficient_condition(MultiUserScene.symbolic(3, active=active, delays=1)),
-        corrected=C62,
+        corrected=C63 if active else C62,
     )
 
 
@@ -1759,6 +1765,12 @@ def small_b(ctx: AuditContext) -> Finding:
         return mn.argmin if not hasattr(mn.argmin, "as_sympy") else mn.argmin.as_sympy()
 
     moved = (argmin(below) == 1) and (argmin(above) != 1)
+    # for B = 0 the delayed (61) at t_d = 0 is the undelayed (46)
+    p61 = parse_printed(r"b + B_0 + 2B_{12} > \frac{K_0 T}{2} + K_{12} T + K_0 t_d + 2K_{12} t_d \tag{61}", PAPER.symbols)
+    p46 = parse_printed(r"b > \frac{K_0 T}{2} + K_{12} T + B_0 + 2B_{12} \tag{46}", PAPER.symbols)
+    zero = {B_0: 0, sp.Symbol("B_12", nonnegative=True): 0, t_d: 0}
+    r61, r46 = (q.relations()[0].as_sympy().xreplace(zero) for q in (p61, p46))
+    moved = moved and _same_condition(r61, r46)
     if not moved:
         return Finding(Verdict.UNDECIDED, "the worst frequency did not move with damping as expected",
                        Evidence(Method.ROOT_ISOLATION, facts={"kappa_n": kappas}))
