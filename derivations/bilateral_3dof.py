@@ -831,7 +831,7 @@ def condition_b(ctx: AuditContext) -> Finding:
     diff = sp.expand((Z + t).det() - (Zp + t).det())
     coeffs = [diff.coeff(t[0, 1]), diff.coeff(t[1, 0])]
     solutions = sp.solve(coeffs, [b], dict=True)
-    if solutions and all(sp.simplify(sol[b] - c) == 0 for sol in solutions):
+    if solutions and all(is_identically_zero(sol[b] - c) for sol in solutions):
         return Finding(Verdict.CONFIRMED,
                        "needed for block (multi-DOF) terminations: det(Z + T) - det(Z' + T) has the coefficients "
                        f"{[sp.sstr(x) for x in coeffs]} of t_12 and t_21, which vanish only for z_12 = z_21 (B); for diagonal "
@@ -924,7 +924,7 @@ def eq15b(ctx: AuditContext) -> Finding:
     point = {z[(1, 1)]: 1, z[(2, 2)]: 1, z[(1, 2)]: 1 + sp.I, z[(2, 1)]: 1 + sp.I}
     value_p, value_d = sp.simplify(printed_lhs.subs(point)), sp.simplify(derived.subs(point))
     exact = sp.simplify(1 - sp.re(sp.sqrt(sp.Integer(2) * sp.I)) ** 2)  # Re Z' minor with z'12 = sqrt(2j)
-    if value_p != value_d and sp.simplify(value_d - exact) == 0:
+    if value_p != value_d and is_identically_zero(value_d - exact):
         return Finding(Verdict.TYPO,
                        "the printed numerator |Re(z12 z21)| + |Re(z12 z21)| repeats one term: (20) gives |z12 z21| + Re(z12 z21); "
                        f"at z11 = z22 = 1, z12 = z21 = 1 + j the printed minor is {value_p}, the true one (1 - (Re sqrt(2j))^2) is {value_d}",
@@ -1065,7 +1065,7 @@ def eq20(ctx: AuditContext) -> Finding:
         w = sp.expand((a + sp.I * b) ** 2)
         point = {zij: w, zji: 1}
         left, right = sp.nsimplify(sp.simplify(lhs.subs(point))), sp.nsimplify(sp.simplify(rhs.subs(point)))
-        if sp.simplify(left - right) != 0 or sp.simplify(left - abs(a)) != 0:
+        if not is_identically_zero(left - right) or not is_identically_zero(left - abs(a)):
             return Finding(Verdict.WRONG, f"fails at w = {w}", Evidence(Method.COUNTEREXAMPLE, witness={"w": w}))
         count += 1
     return Finding(Verdict.CONFIRMED,

@@ -90,7 +90,7 @@ def colgate_frequency(ctx: AuditContext) -> Finding:
     kernel = classics.sampling_kernel(H_FUN(Z_SYM), T).subs(Z_SYM, sp.exp(sp.I * omega * T))
     derived = -sp.re(kernel) * classics.alias_weight(T).subs(C_SYM, sp.cos(omega * T))
     value = H_FUN(sp.exp(sp.I * omega * T))
-    generic = sp.simplify(sp.expand_complex(sp.expand((rel.rhs - derived).subs(value, u + sp.I * v)))) == 0
+    generic = is_identically_zero(sp.expand_complex(sp.expand((rel.rhs - derived).subs(value, u + sp.I * v))))
     # second route: the HVE paper's G_1^-1 (forward difference) has Re G^-1 = b - bound
     from hapticproof.positivereal import hermitian
     from hapticproof.scene import SingleUserScene

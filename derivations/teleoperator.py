@@ -908,7 +908,7 @@ def _bound_check(ctx: AuditContext, alpha_value: sp.Expr | None) -> Finding:
         derived = _generic_bound(name, al + 1)
         value = CONTROLLERS[name](sp.exp(sp.I * omega * T))
         diff = sp.expand_complex(sp.expand((rhs - derived).subs(value, u + sp.I * v)))
-        generic_ok.append(sp.simplify(diff) == 0)
+        generic_ok.append(is_identically_zero(diff))
     if not all(generic_ok):
         return Finding(Verdict.WRONG, "the printed bound differs from the derived leak bound for a general controller",
                        Evidence(Method.CANONICAL_FORM, facts={"lines_match": generic_ok}))
@@ -921,7 +921,7 @@ def _bound_check(ctx: AuditContext, alpha_value: sp.Expr | None) -> Finding:
             printed = rhs.replace(CONTROLLERS[name], sp.Lambda(sp.Symbol("zz"), ctrl.subs(Z_SYM, sp.Symbol("zz"))))
             # exact comparison at angles with rational cosines (the general-C identity is proved above)
             angles = (sp.pi / 3, sp.pi / 2, 2 * sp.pi / 3, 3 * sp.pi / 4)
-            agree = all(sp.simplify(sp.expand_complex(printed.subs(omega, th / T)) - bound.subs(C_SYM, sp.cos(th))) == 0
+            agree = all(is_identically_zero(sp.expand_complex(printed.subs(omega, th / T)) - bound.subs(C_SYM, sp.cos(th)))
                         for th in angles)
             if not agree:
                 return Finding(Verdict.WRONG, f"{label}: printed and derived bounds differ", Evidence(Method.CANONICAL_FORM))
@@ -1353,7 +1353,7 @@ def lemma1(ctx: AuditContext) -> Finding:
     # X = V/(jw) = 1 on [0, pi/2], 0 elsewhere: the alias sum equals 1 there, so (36) = int_0^{pi/2} Cbar
     full = sp.simplify(sp.integrate(kernel, (w, 0, sp.pi / 2)))
     real = sp.simplify(sp.integrate(sp.re(sp.expand_complex(kernel)), (w, 0, sp.pi / 2)))
-    if sp.simplify(full - real) == 0:
+    if is_identically_zero(full - real):
         return Finding(Verdict.UNDECIDED, "the counterexample did not separate the integrals", Evidence(Method.COUNTEREXAMPLE))
     return Finding(
         Verdict.NEEDS_ASSUMPTION,

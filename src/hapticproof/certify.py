@@ -34,6 +34,7 @@ from dataclasses import dataclass
 from typing import Any
 
 import sympy as sp
+from sympy.polys.fields import sfield
 
 from hapticproof.evidence import Decision, Evidence, Finding, Method, Outcome, Verdict
 from hapticproof.symbols import c as C_SYM
@@ -42,6 +43,8 @@ __all__ = [
     "Sampler",
     "Bound",
     "is_identically_zero",
+    "canonical_rational",
+    "canonical_fraction",
     "find_difference",
     "compare_expressions",
     "as_bound",
@@ -116,18 +119,114 @@ class Sampler:
 def is_identically_zero(expr: sp.Expr) -> bool:
     """Exact zero test of a rational (or trigonometric-polynomial) expression.
 
+    Canonical forms are tried from cheapest to dearest: rational functions over Q (``cancel``),
+    over Q with algebraic numbers such as sqrt(2) (``cancel`` with ``extension``), polynomials
+    in ``sin``/``cos`` of one angle (reduced modulo ``sin^2 + cos^2 - 1``), and only then
+    ``simplify``. A numeric probe at a random rational point rejects non-zero expressions first.
+
     >>> x = sp.Symbol('x')
     >>> is_identically_zero((x**2 - 1)/(x - 1) - x - 1), is_identically_zero(sp.sin(x)**2 + sp.cos(x)**2 - 1)
     (True, True)
+    >>> is_identically_zero(sp.sqrt(2)*x/(sp.sqrt(2) + 1) - x*(2 - sp.sqrt(2)))
+    True
     """
     expr = sp.sympify(expr)
+    if expr == 0:
+        return True
+    if _probe_nonzero(expr):
+        return False
+    if expr.is_rational_function():
+        return canonical_rational(expr) == 0  # a canonical form for rational functions over Q
     if sp.cancel(sp.together(expr)) == 0:
         return True
+    if not expr.has(sp.Function, sp.exp):
+        return sp.cancel(sp.together(expr), extension=True) == 0
+    reduced = _single_angle_form(expr)
+    if reduced is not None:
+        return reduced == 0
     if expr.has(sp.sin, sp.cos, sp.exp):
         return sp.simplify(sp.expand_trig(expr)) == 0
-    if expr.is_rational_function():
-        return False  # cancel is a canonical form for rational functions
     return sp.simplify(expr) == 0
+
+
+def canonical_rational(expr: sp.Expr) -> sp.Expr:
+    """Canonical (cancelled) form of a rational function over Q, as an expression.
+
+    An element of the rational function field over its own symbols: cheaper than ``cancel``,
+    whose term-factoring preprocessing dominates on large sums.
+
+    >>> x, y = sp.symbols('x y')
+    >>> canonical_rational((x**2 - y**2)/(x - y) - y)
+    x
+    """
+    expr = sp.sympify(expr)
+    if not expr.free_symbols:
+        return sp.nsimplify(expr) if expr.is_Float else sp.cancel(expr)
+    _, element = sfield(expr)
+    return element.as_expr()
+
+
+def canonical_fraction(expr: sp.Expr) -> tuple[sp.Expr, sp.Expr]:
+    """Cancelled numerator and denominator of a rational function over Q (see
+    :func:`canonical_rational`); falls back to ``cancel`` for other expressions.
+
+    >>> x = sp.Symbol('x')
+    >>> canonical_fraction(1/(x - 1) + 1)
+    (x, x - 1)
+    """
+    expr = sp.sympify(expr)
+    if expr.free_symbols and expr.is_rational_function():
+        _, element = sfield(expr)
+        return element.numer.as_expr(), element.denom.as_expr()
+    return sp.fraction(sp.cancel(sp.together(expr)))
+
+
+def _probe_nonzero(expr: sp.Expr) -> bool:
+    """True when the expression is certainly non-zero at a rational point (30-digit check)."""
+    symbols = sorted(expr.free_symbols, key=str)
+    point = {s: sp.Rational(7 + 3 * k, 11 + 2 * k) for k, s in enumerate(symbols)}
+    try:
+        value = sp.N(expr.xreplace(point), 30)
+    except (TypeError, ValueError, ZeroDivisionError):
+        return False
+    if not value.is_number or value.has(sp.zoo, sp.nan, sp.oo, -sp.oo):
+        return False
+    return abs(value) > sp.Float("1e-20")
+
+
+def _single_angle_form(expr: sp.Expr) -> sp.Expr | None:
+    """Rewrite a polynomial in sin/cos of integer multiples of one angle in the canonical ring
+    Q(params, c)[s]/(s^2 + c^2 - 1); ``None`` when the expression has other functions."""
+    trig = [f for f in expr.atoms(sp.Function) if isinstance(f, (sp.sin, sp.cos))]
+    if not trig or expr.atoms(sp.Function) - set(trig) or expr.has(sp.exp):
+        return None
+    args = {f.args[0] for f in trig}
+    base = None
+    for a in args:
+        coeff, rest = a.as_coeff_Mul()
+        if not coeff.is_Integer:
+            return None
+        if base is None:
+            base = rest
+        elif rest != base:
+            return None
+    cs, sn = sp.Dummy("c"), sp.Dummy("s")
+    expanded = sp.expand_trig(expr).subs({sp.cos(base): cs, sp.sin(base): sn})
+    if expanded.has(sp.sin, sp.cos):
+        return None
+    num, den = sp.fraction(sp.together(expanded))
+
+    def reduce(p: sp.Expr) -> sp.Expr:
+        poly = sp.Poly(sp.expand(p), sn)
+        out = sp.Integer(0)
+        for (power,), coeff in poly.terms():
+            out += coeff * (1 - cs**2) ** (power // 2) * sn ** (power % 2)
+        return sp.expand(out)
+
+    reduced_den = reduce(den)
+    if reduced_den == 0:
+        return None
+    return sp.cancel(reduce(num) / reduced_den)
 
 
 def _evaluate(expr: sp.Expr, values: Mapping[sp.Symbol, Any]) -> sp.Expr | None:
@@ -256,7 +355,9 @@ def as_bound(condition: sp.Basic, var: sp.Symbol) -> Bound:
     rest = sp.expand(expr - coeff * var)
     if not coeff.is_positive:
         raise ValueError(f"coefficient of {var} is not provably positive: {coeff}")
-    return Bound(var, sp.cancel(-rest / coeff), isinstance(condition, sp.StrictGreaterThan))
+    bound = -rest / coeff
+    return Bound(var, canonical_rational(bound) if bound.is_rational_function() else sp.cancel(bound),
+                 isinstance(condition, sp.StrictGreaterThan))
 
 
 def sign_on_box(expr: sp.Expr, box: Mapping[sp.Symbol, tuple[Any, Any]] | None = None) -> int | None:
@@ -306,7 +407,8 @@ def compare_bounds(
     return a ``disproved`` outcome for a not-sufficient witness.
     """
     p, e = as_bound(printed, var), as_bound(exact, var)
-    difference = sp.cancel(sp.together(p.bound - e.bound))
+    raw = p.bound - e.bound
+    difference = canonical_rational(raw) if raw.is_rational_function() else sp.cancel(sp.together(raw))
     suffix = f" ({note})" if note else ""
     strictness = "" if p.strict == e.strict else f"; compared up to the boundary ({'>' if p.strict else '>='} vs {'>' if e.strict else '>='})"
     symbols = sorted((p.bound.free_symbols | e.bound.free_symbols) - {var}, key=str)

@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import functools
 import time
-import weakref
+from collections import OrderedDict
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any, TypeVar
@@ -38,7 +38,35 @@ class _Record:
     seconds: float
 
 
-_CACHE: weakref.WeakKeyDictionary[Any, dict[tuple, _Record]] = weakref.WeakKeyDictionary()
+class _SceneCache:
+    """Per-scene stage records, least recently used scenes evicted beyond ``capacity``.
+
+    Strong references on purpose: equal scenes built independently (e.g. by different audit
+    checks) then share their stages even when the first instance is gone.
+    """
+
+    def __init__(self, capacity: int = 512):
+        self.capacity = capacity
+        self._data: OrderedDict[Any, dict[tuple, _Record]] = OrderedDict()
+
+    def get(self, scene: Any, default: Any = None) -> Any:
+        store = self._data.get(scene)
+        if store is None:
+            return default
+        self._data.move_to_end(scene)
+        return store
+
+    def __setitem__(self, scene: Any, store: dict[tuple, _Record]) -> None:
+        self._data[scene] = store
+        self._data.move_to_end(scene)
+        while len(self._data) > self.capacity:
+            self._data.popitem(last=False)
+
+    def pop(self, scene: Any, default: Any = None) -> Any:
+        return self._data.pop(scene, default)
+
+
+_CACHE = _SceneCache()
 
 
 def stage(name: str) -> Callable[[F], F]:

@@ -68,7 +68,9 @@ def integrator(approximation: str, T: sp.Expr, z: sp.Symbol = Z_SYM) -> sp.Expr:
 @stage("environment_path")
 def environment_path(scene: SingleUserScene) -> sp.Expr:
     """``H(z) X_h/V_h``: the velocity-to-force path through the environment, before delay."""
-    return sp.cancel(scene.H * integrator(scene.approximation, scene.T))
+    from hapticproof.certify import canonical_rational
+
+    return canonical_rational(scene.H * integrator(scene.approximation, scene.T))
 
 
 @stage("inverse_transfer")

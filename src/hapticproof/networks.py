@@ -68,6 +68,7 @@ from hapticproof.rationalmatrix import (
 from hapticproof.realroots import as_fmpq, to_rational
 from hapticproof.symbols import s as S_SYM
 from hapticproof.unitcircle import imaginary_axis_rational
+from hapticproof.certify import canonical_fraction
 
 __all__ = [
     "as_rational_matrix",
@@ -504,7 +505,7 @@ class SymmetrizationCondition:
 
 
 def _num_den(expr: sp.Expr) -> tuple[sp.Expr, sp.Expr]:
-    num, den = sp.fraction(sp.cancel(sp.together(expr)))
+    num, den = canonical_fraction(expr)
     return sp.expand(num), sp.expand(den)
 
 

@@ -41,6 +41,7 @@ from hapticproof.errors import InputFormatError
 from hapticproof.evidence import Decision, Evidence, Method, Outcome
 from hapticproof.realroots import as_fmpq, real_roots, to_rational
 from hapticproof.symbols import s as S_SYM
+from hapticproof.certify import canonical_fraction
 
 __all__ = [
     "RationalFunction",
@@ -132,7 +133,7 @@ class RationalFunction:
         extra = expr.free_symbols - {s}
         if extra:
             raise InputFormatError(f"entry {expr} has symbols other than {s}: {sorted(map(str, extra))}")
-        num, den = sp.fraction(sp.together(expr))
+        num, den = canonical_fraction(expr)
         return cls.make(_fmpq_poly(sp.Poly(num, s)), _fmpq_poly(sp.Poly(den, s)))
 
     def is_zero(self) -> bool:

@@ -68,8 +68,9 @@ def numerator_denominator(F: Any, z: sp.Symbol = Z_SYM) -> tuple[sp.Poly, sp.Pol
     >>> P.as_expr(), Q.as_expr()
     (3*z - 2, z - 1)
     """
-    expr = sp.together(sp.sympify(F))
-    num, den = sp.fraction(expr)
+    from hapticproof.certify import canonical_fraction
+
+    num, den = canonical_fraction(sp.sympify(F))
     P = sp.Poly(sp.expand(num), z)
     Q = sp.Poly(sp.expand(den), z)
     P, Q = P.unify(Q)
@@ -314,7 +315,9 @@ def hermitian_part(F: Any, z: sp.Symbol = Z_SYM, var: sp.Symbol = C_SYM) -> sp.E
     >>> hermitian_part(K*T*z/(z - 1))                    # residue KT at z = 1, Re = KT/2
     K*T/2
     """
-    return sp.cancel(hermitian_part_rational(F, z, var).expr())
+    from hapticproof.certify import canonical_rational
+
+    return canonical_rational(hermitian_part_rational(F, z, var).expr())
 
 
 def delayed_hermitian_part(F: Any, delay: int, z: sp.Symbol = Z_SYM, var: sp.Symbol = C_SYM) -> CRational:
