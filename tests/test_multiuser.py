@@ -309,7 +309,7 @@ EXPECTED_SECTION_32 = {
     "56-small-B": "needs-assumption",
     "57": "wrong",
     "57-limitation": "wrong",
-    "58": "typo",
+    "58": "wrong",
     "59": "malformed",
     "59-worst": "needs-assumption",
     "59-S": "wrong",
