@@ -75,7 +75,7 @@ def test_closed_form_agrees_with_crossing_analysis():
     for alpha, delta in ((R(1, 100), 0), (R(1, 100), R(1, 100)), (R(1, 2), R(3, 4)), (10, 2)):
         norm = bnd.Normalised(alpha, delta)
         closed, _, mode_a = bnd._closed_form_stiffness(norm, 160)
-        with bnd._precision(160):
+        with bnd.flint_precision(160):
             crossing, _, mode_b, _ = bnd._crossing_stiffness(norm, 0, 160)
         assert closed.overlaps(crossing) and mode_a == mode_b
 

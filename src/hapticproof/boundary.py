@@ -43,8 +43,7 @@ continuous operator ``m_h s + b_h + k_h/s``): the exact ZOH transition matrix is
 
 from __future__ import annotations
 
-import contextlib
-from collections.abc import Iterator, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from functools import lru_cache
 from typing import Any
@@ -54,6 +53,7 @@ import sympy as sp
 
 from hapticproof.errors import SceneError
 from hapticproof.evidence import Decision, Evidence, Method, Outcome, exact
+from hapticproof.realroots import flint_precision
 from hapticproof.symbols import z as Z_SYM
 
 __all__ = [
@@ -83,16 +83,6 @@ ALPHA = sp.Symbol("alpha", positive=True)
 DELTA = sp.Symbol("delta", nonnegative=True)
 BETA = sp.Symbol("beta", positive=True)
 P = sp.Symbol("p", positive=True)
-
-
-@contextlib.contextmanager
-def _precision(bits: int) -> Iterator[None]:
-    old = flint.ctx.prec
-    flint.ctx.prec = bits
-    try:
-        yield
-    finally:
-        flint.ctx.prec = old
 
 
 def _rational(value: Any, name: str) -> sp.Rational:
@@ -296,7 +286,7 @@ class ClosedFormBoundary:
 
     def values(self, alpha: Any, delta: Any, bits: int = 128) -> dict[str, flint.arb]:
         """Certified arb enclosures of the four expressions at rational ``alpha``, ``delta``."""
-        with _precision(bits):
+        with flint_precision(bits):
             a, d = _arb(alpha), _arb(delta)
             p = (-a).exp()
             out = {}
@@ -379,7 +369,7 @@ class CriticalStiffness:
 
 def _closed_form_stiffness(norm: Normalised, bits: int) -> tuple[flint.arb, flint.arb, str]:
     vals = closed_form_boundary().values(norm.alpha, norm.delta, bits)
-    with _precision(bits):
+    with flint_precision(bits):
         zero = flint.arb(0)
         if not vals["damping"] > 0:
             if vals["damping"] <= 0:
@@ -554,7 +544,7 @@ def critical_stiffness(m: Any, b: Any, T: Any, B: Any = 0, n: int = 0, bits: int
     for attempt in range(4):
         precision = bits * 2**attempt
         try:
-            with _precision(precision):
+            with flint_precision(precision):
                 if n == 0:
                     beta, lower, mode = _closed_form_stiffness(norm, precision)
                     method, crossings = "closed-form", ()
@@ -629,7 +619,7 @@ def certified_spectral_radius(m: Any, b: Any, T: Any, K: Any, B: Any = 0, n: int
     if m_ <= 0 or T_ <= 0:
         raise SceneError("m and T must be positive")
     for attempt in range(4):
-        with _precision(bits * 2**attempt):
+        with flint_precision(bits * 2**attempt):
             mat = _closed_loop_arb(m_, b_, T_, K_, B_, int(n), operator)
             try:
                 eig = flint.acb_mat(mat).eig()

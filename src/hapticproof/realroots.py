@@ -16,7 +16,9 @@ NonnegativeResult(holds=False, witness=0)
 
 from __future__ import annotations
 
+import contextlib
 import math
+from collections.abc import Iterator
 from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any
@@ -26,6 +28,7 @@ import mpmath
 import sympy as sp
 
 __all__ = [
+    "flint_precision",
     "RealRoot",
     "NonnegativeResult",
     "Minimum",
@@ -96,6 +99,22 @@ def _primitive_int(p: flint.fmpq_poly) -> flint.fmpz_poly:
     return p.numer()
 
 
+@contextlib.contextmanager
+def flint_precision(bits: int) -> Iterator[None]:
+    """Run a block with python-flint's ball arithmetic at ``bits`` of working precision.
+
+    >>> with flint_precision(200):
+    ...     flint.ctx.prec
+    200
+    """
+    old = flint.ctx.prec
+    flint.ctx.prec = bits
+    try:
+        yield
+    finally:
+        flint.ctx.prec = old
+
+
 def sign_at(p: flint.fmpq_poly | flint.fmpz_poly, point: Number) -> int:
     """Exact sign of ``p(point)``.
 
@@ -109,12 +128,8 @@ def sign_at(p: flint.fmpq_poly | flint.fmpz_poly, point: Number) -> int:
     point = as_fmpq(point)
     if p.degree() > 8:
         integer = p.numer() if isinstance(p, flint.fmpq_poly) else p
-        old = flint.ctx.prec
-        try:
-            flint.ctx.prec = integer.height_bits() + int(point.q).bit_length() + int(point.p).bit_length() + 64
+        with flint_precision(integer.height_bits() + int(point.q).bit_length() + int(point.p).bit_length() + 64):
             value = flint.arb_poly(integer)(flint.arb(point))
-        finally:
-            flint.ctx.prec = old
         if value > 0:
             return 1
         if value < 0:
