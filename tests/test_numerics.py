@@ -43,3 +43,29 @@ def test_prepared_matrix_margin_equals_direct():
     eig = min(np.linalg.eigvalsh((lambda M: (M + M.conj().T) / 2)(np.array(evaluate(np.exp(1j * t)), dtype=complex))).min()
               for t in np.linspace(1e-3, math.pi, 3000))
     assert float(prepared.lo) <= eig + 1e-12
+
+
+@settings(max_examples=20, deadline=None)
+@given(st.lists(st.fractions(-1, 1, max_denominator=12), min_size=6, max_size=6), st.integers(0, 2))
+def test_endpoint_shortcut_agrees_with_bisection_and_sweep(values, delay):
+    """The endpoint shortcut (worst case at c = +-1) and the bisection give overlapping
+    certified intervals, and both bracket a dense numpy eigenvalue sweep."""
+    import hapticproof.numerics as numerics
+
+    a, b, c, d, e, f = (sp.Rational(v) for v in values)
+    G = sp.Matrix([[2 + a + b / z ** (delay + 1) + sp.Rational(1, 3) / (z - 1), c / z ** delay],
+                   [d / z, 2 + e + f / z ** (delay + 2)]])
+    shortcut = exact_margin(G, bits=40)
+    original = numerics._endpoint_margin
+    numerics._endpoint_margin = lambda *args: None
+    try:
+        bisection = exact_margin(G, bits=40)
+    finally:
+        numerics._endpoint_margin = original
+    assert shortcut.lo <= bisection.hi and bisection.lo <= shortcut.hi
+    evaluate = sp.lambdify(z, G, "numpy")
+    thetas = np.concatenate([np.linspace(1e-4, math.pi, 4000), [math.pi]])
+    sweep = min(np.linalg.eigvalsh((lambda M: (M + M.conj().T) / 2)(np.array(evaluate(np.exp(1j * t)), dtype=complex))).min()
+                for t in thetas)
+    assert float(shortcut.lo) <= sweep + 1e-9
+    assert sweep - float(shortcut.hi) < 1e-3 * max(1.0, abs(sweep))

@@ -33,7 +33,7 @@ import numpy as np
 import sympy as sp
 
 from hapticproof.evidence import Decision, Evidence, Method, Outcome
-from hapticproof.realroots import _arb_to_fmpq, as_fmpq, minimise_rational
+from hapticproof.realroots import _arb_to_fmpq, as_fmpq, minimise_rational, nonnegative_on, real_roots
 from hapticproof.symbols import z as Z_SYM
 from hapticproof.unitcircle import hermitian_part_rational
 
@@ -174,16 +174,20 @@ def _shifted_coefficients(nums: list, den: flint.fmpq_poly, mu: flint.fmpq) -> l
 
 
 def _matrix_margin(nums: list, den: flint.fmpq_poly, estimate: float, bits: int) -> ExactMargin:
-    """Bisection on ``lam`` with exact decisions of ``M/2 - lam I >= 0 on [-1, 1]``: every
-    characteristic coefficient of the shifted matrix non-negative (root isolation). The
-    coefficients of ``M`` are computed once; each step is ``m`` univariate tests."""
-    from hapticproof.realroots import nonnegative_on
+    """Exact margin of ``M/2`` over ``c in [-1, 1]`` from the characteristic coefficients.
 
+    First the endpoint shortcut (:func:`_endpoint_margin`); otherwise bisection on ``lam``
+    with exact decisions of ``M/2 - lam I >= 0 on [-1, 1]``: every characteristic coefficient
+    of the shifted matrix non-negative (root isolation). The coefficients of ``M`` are
+    computed once; each step is ``m`` univariate tests."""
     nums = [flint.fmpq_poly(p) if not isinstance(p, flint.fmpq_poly) else p for p in nums]
 
     def holds(lam: flint.fmpq) -> bool:
         return all(p.is_zero() or nonnegative_on(p, -1, 1).holds for p in _shifted_coefficients(nums, den, 2 * lam)[1:])
 
+    found = _endpoint_margin(nums, den, bits, holds)
+    if found is not None:
+        return found
     step = as_fmpq(sp.Rational(max(abs(estimate), 1.0) * 1e-3))
     lo = as_fmpq(sp.Rational(estimate)) - step
     hi = as_fmpq(sp.Rational(estimate)) + step
@@ -201,6 +205,32 @@ def _matrix_margin(nums: list, den: flint.fmpq_poly, estimate: float, bits: int)
         else:
             hi = mid
     return ExactMargin(sp.Rational(int(lo.p), int(lo.q)), sp.Rational(int(hi.p), int(hi.q)), "bisection-root-isolation")
+
+
+def _endpoint_margin(nums: list, den: flint.fmpq_poly, bits: int, holds) -> ExactMargin | None:
+    """The margin when the worst case sits at ``c = -1`` or ``c = 1`` (often the Nyquist
+    frequency): the smallest eigenvalue of ``M/2`` there is isolated exactly as a root of its
+    characteristic polynomial, and one exact test ``M/2 - lo I >= 0 on [-1, 1]`` with ``lo`` just
+    below it proves it global. ``None`` when that test fails (an interior minimum)."""
+    m = len(nums) - 1
+    smallest = None
+    for end in (flint.fmpq(-1), flint.fmpq(1)):
+        d = den(end)
+        if d == 0:
+            continue
+        # det(t I - M/2) = sum_k (-1)^k E_k(M/2) t^(m-k),  E_k(M/2) = nums_k(end) / (2 d)^k
+        coeffs = [(-1) ** k * nums[k](end) / (2 * d) ** k for k in range(m + 1)]
+        roots = real_roots(flint.fmpq_poly(coeffs[::-1]), None, None)
+        if roots and (smallest is None or roots[0].hi < smallest.lo):
+            smallest = roots[0]
+    if smallest is None:
+        return None
+    scale = max(abs(smallest.lo), abs(smallest.hi), flint.fmpq(1, 2**20))
+    root = smallest.refine(scale / 2**bits)
+    if not holds(root.lo):
+        return None
+    return ExactMargin(sp.Rational(int(root.lo.p), int(root.lo.q)), sp.Rational(int(root.hi.p), int(root.hi.q)),
+                       "endpoint-eigenvalue-root-isolation")
 
 
 def exact_margin_prepared(G: Any, z: sp.Symbol = Z_SYM):
