@@ -44,7 +44,6 @@ SRC = classics.SOURCES
 
 
 def _conditions() -> list[tuple[str, str, str]]:
-    region, _ = classics.gil_sufficiency_region()
     cf = bnd.closed_form_boundary()
     names = {bnd.ALPHA: r"\alpha", bnd.DELTA: r"\delta", bnd.BETA: r"\beta", bnd.P: r"e^{-\alpha}"}
     return [
@@ -73,7 +72,7 @@ PAPER = Paper(
     symbols=TABLE,
     aliases=("classic", "literature"),
 )
-PAPER.conditions.extend(_conditions())
+PAPER.deferred_conditions.append(_conditions)
 
 
 # ---------------------------------------------------------------------------------------------

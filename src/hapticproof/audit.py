@@ -29,6 +29,7 @@ the JSON of DESIGN.md and a compilable LaTeX file.
 
 from __future__ import annotations
 
+import functools
 import json
 import re
 import textwrap
@@ -88,6 +89,11 @@ class Equation:
         return (int(match.group(1)), match.group(2), 1 if (self.after or self.kind == "claim") else 0)
 
 
+@functools.lru_cache(maxsize=None)
+def _deferred_rows(build: Callable[[], Any]) -> tuple:
+    return tuple(build())
+
+
 @dataclass
 class Paper:
     """A registered paper: its printed-name table and its equations, in printed order."""
@@ -101,6 +107,12 @@ class Paper:
     equations: dict[str, Equation] = field(default_factory=dict)
     #: rows (label, condition LaTeX, source) for the export's one-notation table
     conditions: list[tuple[str, str, str]] = field(default_factory=list)
+    #: functions returning more such rows: costly derived rows are built only when exported
+    deferred_conditions: list[Callable[[], Any]] = field(default_factory=list)
+
+    def condition_rows(self) -> list[tuple[str, str, str]]:
+        """All export rows: ``conditions`` then the deferred rows (each built once per process)."""
+        return [*self.conditions, *(row for build in self.deferred_conditions for row in _deferred_rows(build))]
 
     def equation(
         self,

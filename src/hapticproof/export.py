@@ -25,7 +25,7 @@ def conditions_table(papers: Iterable[Paper]) -> str:
     """One table of the papers' ``conditions`` rows (label, condition, source)."""
     rows = []
     for paper in papers:
-        for label, condition, source in paper.conditions:
+        for label, condition, source in paper.condition_rows():
             rows.append(
                 tex.escape_text(label) + " & $\\displaystyle " + condition + "$ & " + tex.escape_text(source) + r" \\"
             )

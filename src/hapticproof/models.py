@@ -43,8 +43,12 @@ def _integrator_template(approximation: str) -> sp.Expr:
     transformed = RECURRENCES[approximation].subs(
         {_xk1: Z_SYM * X, _xk: X, _vk1: Z_SYM * V, _vk: V}, simultaneous=True
     )
-    (solution,) = sp.solve(transformed, X)
-    return sp.factor(solution / V)
+    # the transformed recurrence is linear in X: a X + r = 0 (no sp.solve, which simplifies)
+    residual = sp.expand(transformed.lhs - transformed.rhs)
+    a, r = residual.coeff(X), residual.subs(X, 0)
+    if a == 0 or sp.expand(a * X + r - residual) != 0:
+        raise SceneError(f"the {approximation} recurrence is not linear in X")
+    return sp.factor(-r / (a * V))
 
 
 def integrator(approximation: str, T: sp.Expr, z: sp.Symbol = Z_SYM) -> sp.Expr:
