@@ -177,8 +177,11 @@ def boundary_study(quick: bool = False, repeat: int = 3) -> list[dict[str, Any]]
                              "relative_error": err})
         for bits in (53, 100) if quick else (53, 80, 120):
             cs, seconds = _median_time(lambda: critical_stiffness(**exact_args, bits=bits), repeat)
-            rows.append({"case": name, "method": "exact-characteristic", "tolerance": 2.0**-bits, "seconds": seconds,
-                         "relative_error": abs(cs.value - ref) / ref})
+            # the certified tolerance is the ball's relative radius (cancellation in the closed form
+            # costs digits, so it is wider than 2^-bits at low working precision)
+            certified = float(cs.K.rad()) / abs(float(cs.K.mid()))
+            rows.append({"case": name, "method": "exact-characteristic", "tolerance": max(certified, 2.0**-bits),
+                         "working_bits": bits, "seconds": seconds, "relative_error": abs(cs.value - ref) / ref})
     return rows
 
 
@@ -279,7 +282,11 @@ def lazy_study(repeat: int = 3) -> list[dict[str, Any]]:
 def stress_cases(size: str = "small") -> list[dict[str, Any]]:
     """Extreme single-user scenes: T 1e-7..1, K 1e-3..1e9, b and B over 12 decades, delays up to
     1000 (``size='large'``), each with b just above, exactly at and just below the exact
-    boundary ``b* = KT/2 + B`` (no delay) or ``KT/2 + KTn`` (delay, B = 0)."""
+    boundary ``b* = KT/2 + B`` (no delay) or ``KT/2 + KTn`` (delay, B = 0).
+
+    With ``B = 0`` a delayed scene depends on ``(T, K)`` only through the scale ``KT`` (``b`` is
+    proportional to it), so ``n = 1000`` (about 10 s per exact decision) is run on three
+    ``(T, K)`` pairs spanning that scale, ``KT`` = 1e-10, 1e-3 and 1e9."""
     from fractions import Fraction
 
     Ts = ["1e-7", "1e-3", "1"]
@@ -290,6 +297,8 @@ def stress_cases(size: str = "small") -> list[dict[str, Any]]:
     for T in Ts:
         for K in Ks:
             for n in delays:
+                if n == 1000 and Ts.index(T) != Ks.index(K):
+                    continue
                 for B in (Bs if n == 0 else ["0"]):
                     Tq, Kq, Bq = Fraction(T), Fraction(K), Fraction(B)
                     boundary = Kq * Tq / 2 + (Bq if n == 0 else Kq * Tq * n)
@@ -319,12 +328,14 @@ def stress_study(size: str = "small") -> dict[str, Any]:
     for case in cases:
         scene = SingleUserScene.virtual_wall(K=case["K"], B=case["B"], b=case["b"], T=case["T"], delay=case["n"])
         G = inverse_transfer(scene)
-        exact = decide_hermitian(hermitian(scene))
-        margin = exact_margin(G, bits=60) if case["n"] <= 200 else None
         fast = float_decision(G, points=2048)
+        switched = "switched to exact" in fast.reason
+        escalated += switched
+        # an escalated float_decision *is* the exact decision: recompute only the others
+        exact = fast if switched else decide_hermitian(hermitian(scene))
         if fast.decision != exact.decision:
             wrong["float_decision"] += 1
-        escalated += "switched to exact" in fast.reason
+        margin = exact_margin(G, bits=60) if case["n"] <= 200 else None
         # the margin is relative to the size of the terms (b + KT(n + 1/2) + B)
         scale = float(sp.Rational(case["b"]) + sp.Rational(case["K"]) * sp.Rational(case["T"]) * (case["n"] + 1)
                       + sp.Rational(case["B"]))
