@@ -44,6 +44,8 @@ def test_derive_proved_with_profile(capsys):
         (["derive", "single-user", "--delay", "1.5"], "non-negative integer"),
         (["audit", "no-such-paper"], "unknown paper"),
         (["audit", "hve", "--equation", "999"], "no equation"),
+        (["audit", "hve", "--section", "9"], "no equation of hve in section(s) 9"),
+        (["audit", "hve", "-s", "3.1", "-e", "20"], "not both"),
         (["derive", "single-user", "--environment", "K +* z"], "cannot read"),
     ],
 )
@@ -61,3 +63,12 @@ def test_audit_one_equation_formats(capsys, tmp_path):
     target = tmp_path / "audit.tex"
     code, _, _ = run(capsys, "audit", "hve", "-e", "23", "-e", "25", "--format", "tex", "--output", str(target))
     assert code == 0 and target.read_text().startswith("\\documentclass")
+
+
+def test_audit_sections_select_subsections_only(capsys):
+    from hapticproof.registry import get_paper
+
+    code, out, _ = run(capsys, "audit", "classics", "--section", "2004", "--format", "json")
+    ids = [e["id"] for e in json.loads(out)["equations"]]
+    expected = [eq.id for eq in get_paper("classics").ordered() if eq.section == "2004"]
+    assert code == 0 and ids == expected and 0 < len(ids) < len(get_paper("classics").ordered())

@@ -27,6 +27,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     parser.add_argument("--all", action="store_true", help="audit every registered paper")
     parser.add_argument("--equation", "-e", action="append", default=[], metavar="ID",
                         help="audit only this equation (repeatable; needs one PAPER)")
+    parser.add_argument("--section", "-s", action="append", default=[], metavar="S",
+                        help="audit only equations of section S and its subsections (repeatable; "
+                        "e.g. -s 1 -s 2 -s 3.1 for the HVE paper's single-user part)")
     parser.add_argument("--format", "-f", choices=FORMATS, default="table")
     parser.add_argument("--output", "-o", metavar="FILE", help="write to FILE instead of stdout")
     parser.set_defaults(handler=run)
@@ -39,7 +42,9 @@ def run(args: argparse.Namespace) -> int:
         selected = [get_paper(name) for name in args.papers]
     if args.equation and len(selected) != 1:
         raise_usage("--equation needs exactly one PAPER")
-    reports = [audit_paper(p, args.equation or None) for p in selected]
+    if args.equation and args.section:
+        raise_usage("use --equation or --section, not both")
+    reports = [audit_paper(p, args.equation or _in_sections(p, args.section) or None) for p in selected]
     if args.format == "json":
         if len(reports) == 1 and args.papers and not args.all:
             text = json.dumps(reports[0].to_json(), indent=2)
@@ -61,6 +66,18 @@ def run(args: argparse.Namespace) -> int:
     else:
         print(text)
     return 0
+
+
+def _in_sections(paper, sections: list[str]) -> list[str]:
+    """Ids of the equations in the given sections (``3.1`` takes ``3.1``, ``3.1.2``, not ``3.10``)."""
+    if not sections:
+        return []
+    ids = [eq.id for eq in paper.ordered()
+           if any(eq.section == s or eq.section.startswith(s + ".") for s in sections)]
+    if not ids:
+        known = sorted({eq.section for eq in paper.ordered() if eq.section})
+        raise_usage(f"no equation of {paper.id} in section(s) {', '.join(sections)}; sections: {', '.join(known)}")
+    return ids
 
 
 def raise_usage(message: str) -> None:
