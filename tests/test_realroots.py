@@ -127,3 +127,24 @@ def test_minimum_matches_dense_sampling(num_coeffs, den_roots):
 def test_minimum_rejects_pole_inside():
     with pytest.raises(ValueError):
         minimise_rational(flint.fmpq_poly([1]), flint.fmpq_poly([0, 1]), -1, 1)
+
+
+@settings(max_examples=60, deadline=None)
+@given(coefficients, st.integers(0, 3), st.sampled_from([-1, 1]))
+def test_endpoint_shortcut_agrees_with_full_isolation(coeffs, power, end):
+    """p(c) = (1 + end*c) q(c)^2 (1 + ...) + small: minima at the endpoint c = -end half of the time;
+    the shortcut's minimum equals the exhaustive one (shortcut disabled) exactly when both are rational."""
+    import hapticproof.realroots as rr
+
+    q = to_poly(coeffs)
+    num = flint.fmpq_poly([1, end]) * q * q * flint.fmpq_poly([2, 0, 1]) ** power + flint.fmpq_poly([coeffs[0], 1])
+    den = flint.fmpq_poly([3, 1])
+    fast = minimise_rational(num, den, -1, 1)
+    original, rr._endpoint_minimum = rr._endpoint_minimum, lambda *args: None
+    try:
+        slow = minimise_rational(num, den, -1, 1)
+    finally:
+        rr._endpoint_minimum = original
+    assert fast.value.overlaps(slow.value)
+    if fast.exact is not None and slow.exact is not None:
+        assert fast.exact == slow.exact

@@ -183,7 +183,7 @@ def _matrix_margin(nums: list, den: flint.fmpq_poly, estimate: float, bits: int)
     nums = [flint.fmpq_poly(p) if not isinstance(p, flint.fmpq_poly) else p for p in nums]
 
     def holds(lam: flint.fmpq) -> bool:
-        return all(p.is_zero() or nonnegative_on(p, -1, 1).holds for p in _shifted_coefficients(nums, den, 2 * lam)[1:])
+        return all(p.is_zero() or nonnegative_on(p, -1, 1, touching=False).holds for p in _shifted_coefficients(nums, den, 2 * lam)[1:])
 
     found = _endpoint_margin(nums, den, bits, holds)
     if found is not None:

@@ -507,11 +507,13 @@ class NonnegativeResult:
         return f"NonnegativeResult(holds={self.holds}, witness={self.witness})"
 
 
-def nonnegative_on(p: Any, lo: Number | None, hi: Number | None, var: sp.Symbol | None = None) -> NonnegativeResult:
+def nonnegative_on(p: Any, lo: Number | None, hi: Number | None, var: sp.Symbol | None = None,
+                   touching: bool = True) -> NonnegativeResult:
     """Decide exactly whether ``p >= 0`` on ``[lo, hi]`` (``None`` = unbounded side).
 
     When it fails, the witness is a rational point where ``p < 0``. When it holds, the roots
-    in the interval (where ``p`` touches zero) are returned.
+    in the interval (where ``p`` touches zero) are returned, unless ``touching=False`` (a
+    certificate that only needs the decision skips that second isolation).
 
     >>> nonnegative_on(flint.fmpq_poly([1, -2, 1]), -1, 1)       # (c - 1)**2
     NonnegativeResult(holds=True, witness=None)
@@ -532,7 +534,7 @@ def nonnegative_on(p: Any, lo: Number | None, hi: Number | None, var: sp.Symbol 
     for point in _gap_points(roots, lo_q, hi_q):
         if p(point) < 0:
             return NonnegativeResult(False, to_rational(point))
-    return NonnegativeResult(True, None, tuple(real_roots(p, lo_q, hi_q)))
+    return NonnegativeResult(True, None, tuple(real_roots(p, lo_q, hi_q)) if touching else ())
 
 
 @dataclass(frozen=True, slots=True)
@@ -604,6 +606,10 @@ def minimise_rational(
     lo_q, hi_q = as_fmpq(lo), as_fmpq(hi)
     if den.degree() > 0 and any(True for _ in real_roots(den, lo_q, hi_q)):
         raise ValueError("the denominator vanishes on the interval")
+    if lo_q < hi_q and num.degree() + den.degree() > 4:   # low degrees: isolating everything is cheaper
+        found = _endpoint_minimum(num, den, lo_q, hi_q)
+        if found is not None:
+            return found
     if num.degree() + den.degree() > _EXHAUSTIVE_DEGREE and lo_q < hi_q:
         found = _localised_minimum(num, den, lo_q, hi_q, bits)
         if found is not None:
@@ -613,6 +619,29 @@ def minimise_rational(
     if not deriv.is_zero() and deriv.degree() > 0:
         candidates.extend(r if not r.is_exact else r.lo for r in real_roots(deriv, lo_q, hi_q))
     return _best_candidate(num, den, candidates, bits)
+
+
+def _endpoint_minimum(num: flint.fmpq_poly, den: flint.fmpq_poly, lo: flint.fmpq, hi: flint.fmpq) -> Minimum | None:
+    """The minimum when it sits at an endpoint (often: the worst case at ``c = -1`` or ``1``).
+
+    One exact non-negativity test of ``num - m den`` with ``m`` the smaller endpoint value proves
+    it; a ball-arithmetic sample that lies below ``m`` rules the shortcut out first, so an
+    interior minimum costs a cheap screen, not a failed proof. ``None`` when not proved."""
+    value, point = min(((num(p) / den(p), p) for p in (lo, hi)), key=lambda vp: vp[0])
+    degree = max(num.degree(), den.degree(), 1)
+    count = max(16, 2 * degree)
+    height = max(num.numer().height_bits(), den.numer().height_bits())
+    with flint_precision(64 + height):
+        balls = [flint.arb(lo + (hi - lo) * flint.fmpq(k, count)) for k in range(1, count)]
+        nums = flint.arb_poly(num).evaluate(balls, algorithm="iter")
+        dens = flint.arb_poly(den).evaluate(balls, algorithm="iter")
+        target = flint.arb(value)
+        if any(a / b < target for a, b in zip(nums, dens)):
+            return None
+    sign = 1 if den(lo) > 0 else -1
+    if not nonnegative_on(sign * (num - value * den), lo, hi, touching=False).holds:
+        return None
+    return Minimum(to_rational(point), flint.arb(value), to_rational(value))
 
 
 def _best_candidate(num: flint.fmpq_poly, den: flint.fmpq_poly, candidates: list, bits: int) -> Minimum:
@@ -686,6 +715,6 @@ def _localised_minimum(
     margin = abs(_arb_to_fmpq(found.value.mid())) * flint.fmpq(1, 2**60) + flint.fmpq(1, 2 ** (bits // 2))
     m_low = _arb_to_fmpq(found.value.lower()) - margin
     sign = 1 if den(lo) > 0 else -1
-    if nonnegative_on(sign * (num - m_low * den), lo, hi).holds:
+    if nonnegative_on(sign * (num - m_low * den), lo, hi, touching=False).holds:
         return found
     return None
