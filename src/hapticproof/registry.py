@@ -49,9 +49,26 @@ def get_paper(name: str) -> Paper:
     ...
     hapticproof.errors.UnknownPaperError: unknown paper 'no-such-paper' (registered: ...)
     """
-    registered = papers()
     key = name.strip().lower()
+    direct = _by_module_name(key)
+    if direct is not None:
+        return direct
+    registered = papers()
     for paper in registered.values():
         if key == paper.id or key in paper.aliases:
             return paper
     raise UnknownPaperError(f"unknown paper {name!r} (registered: {', '.join(registered) or 'none'})")
+
+
+def _by_module_name(key: str) -> Paper | None:
+    """The paper whose module is named after its id (``bilateral-3dof`` -> ``bilateral_3dof``),
+    imported alone: auditing one paper need not import (and set up) every other one."""
+    import hapticproof.derivations as package
+
+    module_name = key.replace("-", "_")
+    if not module_name.isidentifier() or module_name.startswith("_"):
+        return None
+    if not any(info.name == module_name for info in pkgutil.iter_modules(package.__path__)):
+        return None
+    paper = getattr(importlib.import_module(f"{package.__name__}.{module_name}"), "PAPER", None)
+    return paper if isinstance(paper, Paper) and paper.id == key else None
