@@ -34,6 +34,7 @@ from dataclasses import dataclass
 from typing import Any
 
 import sympy as sp
+from sympy.core.evalf import PrecisionExhausted
 from sympy.polys.fields import sfield
 
 from hapticproof.evidence import Decision, Evidence, Finding, Method, Outcome, Verdict
@@ -182,12 +183,14 @@ def canonical_fraction(expr: sp.Expr) -> tuple[sp.Expr, sp.Expr]:
 
 
 def _probe_nonzero(expr: sp.Expr) -> bool:
-    """True when the expression is certainly non-zero at a rational point (30-digit check)."""
+    """True when the expression is certainly non-zero at a rational point: evaluated with
+    ``strict=True``, so every digit is correct or evalf raises (an exact zero always raises, as
+    zero has no relative accuracy) and the probe then proves nothing."""
     symbols = sorted(expr.free_symbols, key=str)
     point = {s: sp.Rational(7 + 3 * k, 11 + 2 * k) for k, s in enumerate(symbols)}
     try:
-        value = sp.N(expr.xreplace(point), 30)
-    except (TypeError, ValueError, ZeroDivisionError):
+        value = sp.N(expr.xreplace(point), 30, strict=True)
+    except (TypeError, ValueError, ZeroDivisionError, PrecisionExhausted):
         return False
     if not value.is_number or value.has(sp.zoo, sp.nan, sp.oo, -sp.oo):
         return False
