@@ -21,26 +21,23 @@ __all__ = ["main", "build_parser"]
 COMMANDS = ("audit", "derive", "export", "boundary", "bench")
 
 
-def build_parser() -> argparse.ArgumentParser:
+def build_parser(command: str | None = None) -> argparse.ArgumentParser:
+    """The parser with every subcommand, or only ``command`` (its module alone is imported:
+    ``hapticproof audit`` need not load the simulation and plotting stack of ``boundary``)."""
     parser = argparse.ArgumentParser(
         prog="hapticproof",
         description="Regenerate, certify and audit stability and passivity conditions of "
         "sampled-data haptic and teleoperation systems.",
     )
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
-    for name in COMMANDS:
-        try:
-            module = importlib.import_module(f"hapticproof.cli.{name}")
-        except ModuleNotFoundError as err:
-            if err.name != f"hapticproof.cli.{name}":
-                raise
-            continue  # command not built yet
-        module.register(sub)
+    for name in (command,) if command in COMMANDS else COMMANDS:
+        importlib.import_module(f"hapticproof.cli.{name}").register(sub)
     return parser
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    parser = build_parser()
+    argv = list(sys.argv[1:] if argv is None else argv)
+    parser = build_parser(argv[0] if argv else None)
     args = parser.parse_args(argv)
     try:
         return int(args.handler(args) or 0)
