@@ -251,6 +251,7 @@ def _on_circle(expr: sp.Expr) -> sp.Expr:
     return sp.sympify(expr).subs(Z_SYM, sp.exp(sp.I * omega * T))
 
 
+@functools.lru_cache(maxsize=None)
 def _kernel(name: str) -> sp.Expr:
     """Derived eq. (14) kernel of the controller ``name`` on the unit circle."""
     return _on_circle(classics.sampling_kernel(CONTROLLERS[name](Z_SYM), T))
@@ -271,6 +272,7 @@ def _alias(name: str, shift: sp.Expr = omega_s) -> sp.Expr:
     return SPECTRA[name](w, SIG) / (sp.I * w)
 
 
+@functools.lru_cache(maxsize=None)
 def _sampled(name: str) -> sp.Expr:
     """Derived (15): ``X^*(j omega) = (1/T) sum_n X(j omega + j n omega_s)`` with ``X = V/s``."""
     return sp.Sum(_alias(name), (n_alias, -sp.oo, sp.oo)) / T
@@ -1126,6 +1128,7 @@ def intro_colgate(ctx: AuditContext) -> Finding:
                           what="the quoted passivity condition", note="B >= 0; for B < 0 it is KT/2 + |B|")
 
 
+@functools.lru_cache(maxsize=1)   # shared by HVE (4) and the intro claim; read-only
 def _gil_counterexamples() -> dict:
     """Certified instances where b > KT/2 - B holds but the sampled loop is unstable."""
     moderate = {"m": 1, "b": 1, "T": sp.Rational(1, 100), "B": 1, "K": 398}          # KT/2 = 1.99 < b + B = 2

@@ -359,6 +359,7 @@ def leading_order_boundary(n: Any = SYMBOLS["n"], operator: bool = False) -> Lea
     return LeadingOrder(n, operator, freq, crit, condition)
 
 
+@lru_cache(maxsize=8)
 def gil_linear_condition(n: Any = 0) -> sp.Basic:
     """The linear condition in physical symbols, from :func:`leading_order_boundary`:
     ``b + B > KT/2`` (Gil et al. 2004) for ``n = 0``, ``b + B > K(T/2 + t_d)`` (Gil et al. 2009)
@@ -371,6 +372,7 @@ def gil_linear_condition(n: Any = 0) -> sp.Basic:
     return sp.Gt(lo.condition.lhs, sp.expand(lo.condition.rhs), evaluate=False)
 
 
+@lru_cache(maxsize=1)
 def gil_sufficiency_region() -> tuple[sp.Basic, sp.Expr]:
     r"""Where the linear condition ``beta < 2(alpha + delta)`` is sufficient for stability
     (``n = 0``): the exact region ``2(alpha + delta) <= min(complex, flip)``, ``lower <= 0`` and

@@ -35,6 +35,7 @@ from __future__ import annotations
 import re
 from collections.abc import Mapping
 from dataclasses import dataclass, replace
+from functools import lru_cache
 from typing import Any
 
 import sympy as sp
@@ -102,6 +103,7 @@ def filtered_pd_controller(K: Any = TELE_SYMBOLS["K"], B: Any = TELE_SYMBOLS["B"
     return K + B * (1 - a) * (z - 1) / (T * (z - a))
 
 
+@lru_cache(maxsize=32)   # pure; the audit and the tests ask for the same few
 def discretize_pd(method: str, K: Any = TELE_SYMBOLS["K"], B: Any = TELE_SYMBOLS["B"],
                   T: Any = TELE_SYMBOLS["T"], z: sp.Symbol = Z_SYM) -> sp.Expr:
     """Discretise ``K + Bs`` with :mod:`sympy.physics.control` (``'backward'``, ``'forward'`` or
