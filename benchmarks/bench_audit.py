@@ -28,6 +28,7 @@ TARGETS = {"hve-single-user": ("hve", ["1", "2", "3.1"])}
 
 def cold_run(target: str | None, single_core: bool = True) -> tuple[float, dict]:
     env = dict(os.environ)
+    env.pop("PYTHONDONTWRITEBYTECODE", None)   # a fresh process with Python's bytecode cache, as users run it
     if single_core:
         env.update(OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1", MKL_NUM_THREADS="1")
     paper, sections = TARGETS.get(target, (target, []))

@@ -194,6 +194,9 @@ def audit_study(repeat: int = 3, single_core: bool = True) -> dict[str, Any]:
     """Cold-process wall time of ``hapticproof audit --all`` (medians) and the ten slowest
     equations (median per-equation seconds)."""
     env = dict(os.environ, OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1", MKL_NUM_THREADS="1")
+    # cold = a fresh process, as a user runs it: Python's bytecode cache is allowed (some
+    # sandboxes set PYTHONDONTWRITEBYTECODE, which recompiles every module on every run)
+    env.pop("PYTHONDONTWRITEBYTECODE", None)
     cmd = [sys.executable, "-m", "hapticproof", "audit", "--all", "--format", "json"]
     if single_core and sys.platform.startswith("linux") and _has("taskset"):
         cmd = ["taskset", "-c", "0"] + cmd
