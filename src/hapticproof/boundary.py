@@ -53,7 +53,7 @@ import sympy as sp
 
 from hapticproof.errors import SceneError
 from hapticproof.evidence import Decision, Evidence, Method, Outcome, exact
-from hapticproof.realroots import flint_precision
+from hapticproof.realroots import ball_spectral_radius, flint_precision
 from hapticproof.symbols import z as Z_SYM
 
 __all__ = [
@@ -620,15 +620,9 @@ def certified_spectral_radius(m: Any, b: Any, T: Any, K: Any, B: Any = 0, n: int
         raise SceneError("m and T must be positive")
     for attempt in range(4):
         with flint_precision(bits * 2**attempt):
-            mat = _closed_loop_arb(m_, b_, T_, K_, B_, int(n), operator)
-            try:
-                eig = flint.acb_mat(mat).eig()
-            except ValueError:
-                continue
-            radius = flint.arb(0)
-            for value in eig:
-                radius = radius.max(abs(value))
-            return radius
+            radius = ball_spectral_radius(flint.acb_mat(_closed_loop_arb(m_, b_, T_, K_, B_, int(n), operator)))
+            if radius is not None:
+                return radius
     raise ArithmeticError("eigenvalues not isolated; raise bits")
 
 

@@ -29,6 +29,7 @@ import sympy as sp
 
 __all__ = [
     "flint_precision",
+    "ball_spectral_radius",
     "RealRoot",
     "NonnegativeResult",
     "Minimum",
@@ -115,6 +116,25 @@ def flint_precision(bits: int) -> Iterator[None]:
         flint.ctx.prec = old
 
 
+def ball_spectral_radius(matrix: flint.acb_mat) -> flint.arb | None:
+    """An enclosure of ``max |eigenvalue|`` from isolating eigenvalue balls (``acb_mat.eig``)
+    at the current precision; ``None`` when the balls do not isolate the eigenvalues (clusters:
+    retry with more bits, or fall back to a floating-point method).
+
+    >>> radius = ball_spectral_radius(flint.acb_mat([[0, 2], [-2, 0]]))     # eigenvalues +-2j
+    >>> radius.overlaps(flint.arb(2)), radius.rad() < 1e-10
+    (True, True)
+    """
+    try:
+        eig = matrix.eig()
+    except ValueError:
+        return None
+    radius = flint.arb(0)
+    for value in eig:
+        radius = radius.max(abs(value))
+    return radius
+
+
 def sign_at(p: flint.fmpq_poly | flint.fmpz_poly, point: Number) -> int:
     """Exact sign of ``p(point)``.
 
@@ -192,9 +212,7 @@ class RealRoot:
         target_bits = max(1, int(inverse.p).bit_length() - int(inverse.q).bit_length() + 2)
         poly = flint.fmpq_poly(self.poly)
         deriv = poly.derivative()
-        old = flint.ctx.prec
-        try:
-            flint.ctx.prec = target_bits + 2 * self.poly.height_bits() + 64
+        with flint_precision(target_bits + 2 * self.poly.height_bits() + 64):
             P, D = flint.arb_poly(poly), flint.arb_poly(deriv)
             x = flint.arb((lo + hi) / 2)
             for _ in range(2 * int(math.log2(target_bits + 2)) + 6):
@@ -203,8 +221,6 @@ class RealRoot:
                     return None
                 x = flint.arb(x.mid()) - flint.arb(step.mid())
             centre = _dyadic(x, target_bits + 4)
-        finally:
-            flint.ctx.prec = old
         half = width / 2
         a, b = max(lo, centre - half), min(hi, centre + half)
         if a >= b:
@@ -621,6 +637,17 @@ def minimise_rational(
     return _best_candidate(num, den, candidates, bits)
 
 
+def _ball_quotients(num: flint.fmpq_poly, den: flint.fmpq_poly, points: list[flint.fmpq]) -> list[flint.arb]:
+    """Balls enclosing ``num/den`` at exact rational points (the monomial form loses about the
+    coefficients' height in bits to cancellation, so that much precision is added)."""
+    height = max(num.numer().height_bits(), den.numer().height_bits())
+    with flint_precision(64 + height):
+        balls = [flint.arb(p) for p in points]
+        nums = flint.arb_poly(num).evaluate(balls, algorithm="iter")
+        dens = flint.arb_poly(den).evaluate(balls, algorithm="iter")
+        return [a / b for a, b in zip(nums, dens)]
+
+
 def _endpoint_minimum(num: flint.fmpq_poly, den: flint.fmpq_poly, lo: flint.fmpq, hi: flint.fmpq) -> Minimum | None:
     """The minimum when it sits at an endpoint (often: the worst case at ``c = -1`` or ``1``).
 
@@ -628,16 +655,10 @@ def _endpoint_minimum(num: flint.fmpq_poly, den: flint.fmpq_poly, lo: flint.fmpq
     it; a ball-arithmetic sample that lies below ``m`` rules the shortcut out first, so an
     interior minimum costs a cheap screen, not a failed proof. ``None`` when not proved."""
     value, point = min(((num(p) / den(p), p) for p in (lo, hi)), key=lambda vp: vp[0])
-    degree = max(num.degree(), den.degree(), 1)
-    count = max(16, 2 * degree)
-    height = max(num.numer().height_bits(), den.numer().height_bits())
-    with flint_precision(64 + height):
-        balls = [flint.arb(lo + (hi - lo) * flint.fmpq(k, count)) for k in range(1, count)]
-        nums = flint.arb_poly(num).evaluate(balls, algorithm="iter")
-        dens = flint.arb_poly(den).evaluate(balls, algorithm="iter")
-        target = flint.arb(value)
-        if any(a / b < target for a, b in zip(nums, dens)):
-            return None
+    count = max(16, 2 * max(num.degree(), den.degree(), 1))
+    samples = [lo + (hi - lo) * flint.fmpq(k, count) for k in range(1, count)]
+    if any(q.is_finite() and _arb_to_fmpq(q.upper()) < value for q in _ball_quotients(num, den, samples)):
+        return None
     sign = 1 if den(lo) > 0 else -1
     if not nonnegative_on(sign * (num - value * den), lo, hi, touching=False).holds:
         return None
@@ -682,21 +703,12 @@ def _localised_minimum(
     """Grid localisation + exact isolation in brackets + a global non-negativity certificate."""
     degree = max(num.degree(), den.degree())
     count = max(64, 4 * degree)
-    height = max(num.numer().height_bits(), den.numer().height_bits())
-    old_prec = flint.ctx.prec
-    try:
-        flint.ctx.prec = 64 + height  # monomial form loses about height bits to cancellation
-        mid, half = (lo + hi) / 2, (hi - lo) / 2
-        # Chebyshev points of [lo, hi], as exact rationals (ends included), sorted ascending
-        points = sorted({lo, hi} | {
-            mid + half * _arb_to_fmpq(flint.arb(math.cos(math.pi * (k + 0.5) / count))) for k in range(count)
-        })
-        balls = [flint.arb(p) for p in points]
-        nums = flint.arb_poly(num).evaluate(balls, algorithm="iter")
-        dens = flint.arb_poly(den).evaluate(balls, algorithm="iter")
-        values = [float((a / b).mid()) for a, b in zip(nums, dens)]
-    finally:
-        flint.ctx.prec = old_prec
+    mid, half = (lo + hi) / 2, (hi - lo) / 2
+    # Chebyshev points of [lo, hi], as exact rationals (ends included), sorted ascending
+    points = sorted({lo, hi} | {
+        mid + half * _arb_to_fmpq(flint.arb(math.cos(math.pi * (k + 0.5) / count))) for k in range(count)
+    })
+    values = [float(q.mid()) for q in _ball_quotients(num, den, points)]
     last = len(points) - 1
     local = [i for i in range(len(points)) if (i == 0 or values[i] <= values[i - 1]) and (i == last or values[i] <= values[i + 1])]
     local.sort(key=lambda i: values[i])

@@ -62,7 +62,7 @@ import scipy.linalg
 import sympy as sp
 
 from hapticproof.errors import InputFormatError, SceneError
-from hapticproof.realroots import flint_precision
+from hapticproof.realroots import ball_spectral_radius, flint_precision
 
 __all__ = [
     "Impedance",
@@ -1212,17 +1212,10 @@ def _ball_spectral_radius(mat: mpmath.matrix, dps: int) -> mpmath.mpf | None:
     Some 40x faster than ``mpmath.eig`` at 30 digits and certified for the matrix as given
     (its entries are already rounded to ``dps`` digits); ``None`` when the balls do not isolate
     the eigenvalues (clusters), and the caller falls back to ``mpmath.eig``."""
-    bits = int(dps * 3.33) + 32
-    with flint_precision(bits):
-        ball = flint.acb_mat([[flint.acb(mat[i, j]) for j in range(mat.cols)] for i in range(mat.rows)])
-        try:
-            eig = ball.eig()
-        except ValueError:
-            return None
-        radius = flint.arb(0)
-        for value in eig:
-            radius = radius.max(abs(value))
-        return mpmath.mpf(radius.mid().str(dps + 5, radius=False))
+    with flint_precision(int(dps * 3.33) + 32):
+        radius = ball_spectral_radius(
+            flint.acb_mat([[flint.acb(mat[i, j]) for j in range(mat.cols)] for i in range(mat.rows)]))
+        return None if radius is None else mpmath.mpf(radius.mid().str(dps + 5, radius=False))
 
 
 def spectral_radii(scenes: Sequence[Scene]) -> np.ndarray:
