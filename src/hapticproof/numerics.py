@@ -142,21 +142,11 @@ class ExactMargin:
 
 def exact_margin(G: Any, bits: int = 64, z: sp.Symbol = Z_SYM) -> ExactMargin:
     """Certified margin: a scalar by the exact minimum of ``Re G`` over ``c`` (root isolation);
-    a matrix by bisection on a shift ``lam`` with exact decisions of
+    a matrix by the smallest eigenvalue at ``c = +-1`` when one exact test proves it global,
+    otherwise by bisection on a shift ``lam`` with exact decisions of
     ``(G + G^H)/2 - lam I >= 0 on the whole circle`` (characteristic coefficients, root
     isolation), to ``2**-bits`` relative."""
-    matrix = _as_matrix(G)
-    if matrix.shape == (1, 1):
-        form = hermitian_part_rational(matrix[0, 0], z).numeric()
-        m = minimise_rational(form.num, form.den, -1, 1, bits=2 * bits)
-        if m.exact is not None:
-            return ExactMargin(m.exact, m.exact, "root-isolation")
-        lo, hi = _arb_to_fmpq(m.value.lower()), _arb_to_fmpq(m.value.upper())
-        return ExactMargin(sp.Rational(int(lo.p), int(lo.q)), sp.Rational(int(hi.p), int(hi.q)), "root-isolation")
-    from hapticproof.psd import characteristic_coefficients, hermitian_part_matrix
-
-    return _matrix_margin(characteristic_coefficients(hermitian_part_matrix(matrix, z)),
-                          hermitian_part_matrix(matrix, z).den, float_margin(matrix, 2048)[0], bits)
+    return exact_margin_prepared(G, z, estimate_points=2048)(bits)
 
 
 def _shifted_coefficients(nums: list, den: flint.fmpq_poly, mu: flint.fmpq) -> list:
@@ -233,9 +223,10 @@ def _endpoint_margin(nums: list, den: flint.fmpq_poly, bits: int, holds) -> Exac
                        "endpoint-eigenvalue-root-isolation")
 
 
-def exact_margin_prepared(G: Any, z: sp.Symbol = Z_SYM):
+def exact_margin_prepared(G: Any, z: sp.Symbol = Z_SYM, estimate_points: int = 256):
     """Split :func:`exact_margin` into a one-time preparation (the exact c-forms, like a grid
-    method's compiled evaluator) and the margin computation; returns ``compute(bits)``."""
+    method's compiled evaluator) and the margin computation; returns ``compute(bits)``.
+    ``estimate_points``: the float grid that seeds a matrix bisection."""
     matrix = _as_matrix(G)
     if matrix.shape == (1, 1):
         form = hermitian_part_rational(matrix[0, 0], z).numeric()
@@ -252,7 +243,7 @@ def exact_margin_prepared(G: Any, z: sp.Symbol = Z_SYM):
 
     H = hermitian_part_matrix(matrix, z)
     nums = characteristic_coefficients(H)
-    estimate = float_margin(matrix, 256)[0]
+    estimate = float_margin(matrix, estimate_points)[0]
     return lambda bits=64: _matrix_margin(nums, H.den, estimate, bits)
 
 
