@@ -571,16 +571,9 @@ class BoundaryCurve:
 
     def to_csv(self, path: str | Path | None = None) -> str:
         """CSV with columns ``<over>, <vary>_exact, <vary>_printed`` (empty where none)."""
-        buf = io.StringIO()
-        writer = csv.writer(buf, lineterminator="\n")
         header = [self.over, f"{self.vary}_exact", f"{self.vary}_printed"]
-        writer.writerow(header)
-        for row in self.rows():
-            writer.writerow(["" if row[h] is None else repr(float(row[h])) for h in header])
-        text = buf.getvalue()
-        if path is not None:
-            _write(path, text)
-        return text
+        rows = (["" if row[h] is None else repr(float(row[h])) for h in header] for row in self.rows())
+        return _csv(header, rows, path)
 
     def to_json(self, path: str | Path | None = None) -> dict[str, Any]:
         data = {
@@ -600,6 +593,18 @@ class BoundaryCurve:
         if path is not None:
             _write(path, json.dumps(data, indent=1))
         return data
+
+
+def _csv(header: list[str], rows: Iterable[list[Any]], path: str | Path | None) -> str:
+    """CSV text (header, then rows), also written to ``path`` when given."""
+    buf = io.StringIO()
+    writer = csv.writer(buf, lineterminator="\n")
+    writer.writerow(header)
+    writer.writerows(rows)
+    text = buf.getvalue()
+    if path is not None:
+        _write(path, text)
+    return text
 
 
 def _write(path: str | Path, text: str) -> None:
@@ -709,17 +714,10 @@ class PlaneMap:
         return self.values >= -self.settings.get("tolerance", 0.0)
 
     def to_csv(self, path: str | Path | None = None) -> str:
-        buf = io.StringIO()
-        writer = csv.writer(buf, lineterminator="\n")
-        writer.writerow([self.x, self.y, self.quantity.replace(" ", "_"), "good"])
-        for i, yv in enumerate(self.y_values):
-            for j, xv in enumerate(self.x_values):
-                writer.writerow([repr(float(xv)), repr(float(yv)), repr(float(self.values[i, j])),
-                                 int(self.good[i, j])])
-        text = buf.getvalue()
-        if path is not None:
-            _write(path, text)
-        return text
+        header = [self.x, self.y, self.quantity.replace(" ", "_"), "good"]
+        rows = ([repr(float(xv)), repr(float(yv)), repr(float(self.values[i, j])), int(self.good[i, j])]
+                for i, yv in enumerate(self.y_values) for j, xv in enumerate(self.x_values))
+        return _csv(header, rows, path)
 
     def to_json(self, path: str | Path | None = None) -> dict[str, Any]:
         data = {
