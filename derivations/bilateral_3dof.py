@@ -1323,7 +1323,6 @@ def _38ab_check(ctx: AuditContext) -> Finding:
         return Finding(Verdict.CONFIRMED, "all symmetry equalities listed", Evidence(Method.CANONICAL_FORM))
     first = sorted(missing, key=lambda e: sorted(map(str, e)))[0]
     a, b = sorted(first, key=str)
-    pair = B_PAIRS["26" if which == "m" else "29"]
     # witness: the printed equalities hold, the missing one fails
     witness = {x: sp.Integer(1) for x in a.free_symbols | b.free_symbols}
     witness[b] = sp.Integer(2)
@@ -1715,7 +1714,7 @@ def masses(ctx: AuditContext) -> Finding:
     pd = all(Ms[:k, :k].det() > 0 for k in (1, 2, 3))
     if missing and b_fails and pd:
         return Finding(Verdict.TYPO,
-                       f"M_syy and M_szz are never given while M_syx = 1.6 and M_szx = 1.5 are: read literally M_s is not "
+                       "M_syy and M_szz are never given while M_syx = 1.6 and M_szx = 1.5 are: read literally M_s is not "
                        "symmetric (M_sxy = 0.5 != M_syx = 1.6), which violates condition B, and has no yy, zz entries; read as "
                        "M_syy = 1.6, M_szz = 1.5 it is symmetric positive definite",
                        Evidence(Method.STRUCTURAL, witness={"missing": missing}, facts={"B_fails_literally": b_fails, "M_s_pd": pd}),

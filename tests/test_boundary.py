@@ -4,7 +4,6 @@ free-device formula of hapticproof.sampled, and the certified eigenvalue enclosu
 
 from __future__ import annotations
 
-import flint
 import mpmath
 import pytest
 import sympy as sp

@@ -1,7 +1,6 @@
 """Scenes, integrators and G^-1(z), cross-checked with sympy.physics.control and by direct
 complex evaluation of G^-1(e^{jwT}) at random frequencies and parameters."""
 
-import cmath
 import dataclasses
 import math
 from fractions import Fraction

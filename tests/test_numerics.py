@@ -2,7 +2,6 @@
 
 import math
 
-import mpmath
 import numpy as np
 import sympy as sp
 from hypothesis import given, settings

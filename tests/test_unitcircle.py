@@ -5,7 +5,6 @@ import math
 
 import mpmath
 
-import flint
 import pytest
 import sympy as sp
 from hypothesis import given, settings

@@ -31,7 +31,7 @@ Choices the papers leave open (documented here, used below):
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 

@@ -528,7 +528,6 @@ def symmetrization_conditions(
     M = sp.Matrix(Z)
     n = M.rows
     blocks = port_blocks(n, ports)
-    block_of = {i: k for k, blk in enumerate(blocks) for i in blk}
     nd = {(i, j): _num_den(M[i, j]) for i in range(n) for j in range(n)}
     out: list[SymmetrizationCondition] = []
     symmetric_pairs = set()

@@ -2717,7 +2717,7 @@ class _Parser:
         while self.at("op", "_") or self.at("op", "^"):
             which = self.peek().value
             script = self.read_script()
-            value = self.parse_script(script, f"a limit of \\int")
+            value = self.parse_script(script, "a limit of \\int")
             lower, upper = (value, upper) if which == "_" else (lower, value)
         name = self.find_differential()
         if name is None:

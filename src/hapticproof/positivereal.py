@@ -29,7 +29,7 @@ import sympy as sp
 from hapticproof.evidence import Decision, Evidence, Method, Outcome
 from hapticproof.lazy import stage
 from hapticproof.models import environment_path, inverse_transfer
-from hapticproof.realroots import as_fmpq_poly, minimise_rational, nonnegative_on, real_roots
+from hapticproof.realroots import minimise_rational, nonnegative_on, real_roots
 from hapticproof.scene import SingleUserScene
 from hapticproof.symbols import c as C_SYM
 from hapticproof.symbols import z as Z_SYM

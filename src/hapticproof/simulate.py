@@ -35,7 +35,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Any, Literal
+from typing import Literal
 
 import numpy as np
 import scipy.linalg
@@ -47,7 +47,6 @@ from hapticproof.sampled import (
     Teleoperator,
     _as_float,
     _closed_loop_from,
-    _deflate,
     closed_loop_matrix,
     discretize,
     is_stable,
