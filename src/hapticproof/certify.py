@@ -160,10 +160,13 @@ def canonical_rational(expr: sp.Expr) -> sp.Expr:
     >>> x, y = sp.symbols('x y')
     >>> canonical_rational((x**2 - y**2)/(x - y) - y)
     x
+    >>> canonical_rational(sp.Float(0.75)), canonical_rational(sp.Float(0.686844161539459)).is_Rational
+    (3/4, True)
     """
     expr = sp.sympify(expr)
     if not expr.free_symbols:
-        return sp.nsimplify(expr) if expr.is_Float else sp.cancel(expr)
+        # a float is read exactly, by its binary value (nsimplify could return radicals)
+        return sp.Rational(expr) if expr.is_Float else sp.cancel(expr)
     _, element = sfield(expr)
     return element.as_expr()
 
