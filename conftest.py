@@ -13,3 +13,14 @@ os.environ.setdefault("MPLBACKEND", "Agg")
 # Private derivation modules register onto another paper when that paper's module imports them;
 # collecting them again as separate modules (import-mode=importlib) would register twice.
 collect_ignore_glob = ["derivations/_*.py"]
+
+# Property tests draw the same examples on every run (CI must not pass or fail by luck);
+# HYPOTHESIS_PROFILE=explore draws fresh random examples, as when hunting for new failures.
+try:
+    from hypothesis import settings as _hypothesis_settings
+except ImportError:  # the test extra is not installed: nothing to configure
+    pass
+else:
+    _hypothesis_settings.register_profile("deterministic", derandomize=True)
+    _hypothesis_settings.register_profile("explore", derandomize=False)
+    _hypothesis_settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "deterministic"))
