@@ -19,7 +19,8 @@ def test_derive_single_user_json_numeric(capsys):
     data = json.loads(out)
     assert code == 0
     assert {"hermitian_part", "worst_case", "verdict", "witness"} <= set(data)
-    assert data["verdict"] == "disproved" and data["witness"] == "-1"   # b < KT/2 = 0.001
+    assert data["verdict"] == "disproved" and data["witness"]["c"] == "-1"   # b < KT/2 = 0.001
+    assert [c["decision"] for c in data["conditions"]] == ["proved", "proved", "proved", "disproved"]
 
 
 def test_derive_single_user_symbolic(capsys):

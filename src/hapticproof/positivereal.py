@@ -27,21 +27,27 @@ import flint
 import sympy as sp
 
 from hapticproof.evidence import Decision, Evidence, Method, Outcome
+from hapticproof.kernel import decide_rational_sign, locate_roots, residue_outcome, transfer_json
 from hapticproof.lazy import stage
 from hapticproof.models import environment_path, inverse_transfer
-from hapticproof.realroots import minimise_rational, nonnegative_on, real_roots
+from hapticproof.realroots import as_fmpq, flint_precision, minimise_rational, real_roots
 from hapticproof.scene import SingleUserScene
 from hapticproof.symbols import c as C_SYM
 from hapticproof.symbols import z as Z_SYM
 from hapticproof.unitcircle import (
     CRational,
     ThetaForm,
+    circle_real_part,
     hermitian_part_rational,
     numerator_denominator,
     theta_form,
 )
 
 __all__ = [
+    "Condition",
+    "combine",
+    "conditions",
+    "transfer_polynomials",
     "Pole",
     "Residue",
     "WorstCase",
@@ -198,45 +204,29 @@ def hermitian_of(F: Any, z: sp.Symbol = Z_SYM) -> CRational:
     return hermitian_part_rational(F, z)
 
 
-def decide_hermitian(form: CRational) -> WorstCase:
+def decide_hermitian(form: CRational, transfer: tuple | None = None) -> WorstCase:
     """Exact decision of ``Re F >= 0 on [-1, 1]`` for a numeric c-form, with the minimiser.
 
     The sign of ``num/den`` equals that of ``num*den`` wherever the function is finite, so the
-    decision is one exact non-negativity test of ``num*den`` by root isolation; the witness is a
-    rational ``c`` re-checked by exact evaluation.
+    decision is one certified sign decision of the kernel (:func:`hapticproof.kernel.decide_rational_sign`);
+    a disproof's witness is a rational point ``z0`` of the circle, never a pole. ``transfer``
+    (the original ``F = P/Q`` as flint polynomials) lets the checker re-evaluate ``F`` itself.
 
     >>> from hapticproof.symbols import z
     >>> wc = decide_hermitian(hermitian_of(sp.Rational(1, 10) + 1/(z - 1) + sp.Rational(3, 10)/z))
-    >>> wc.decision.value, wc.outcome.witness
-    ('disproved', {'c': -1})
+    >>> wc.decision.value, wc.outcome.witness['c']
+    ('disproved', -1)
     """
     form = form.numeric()
-    product = form.num * form.den
-    result = nonnegative_on(product, -1, 1)
+    outcome = decide_rational_sign(form.num, form.den, -1, 1, "c", "Re G^-1",
+                                   transfer=None if transfer is None else transfer_json(*transfer),
+                                   transfer_den=None if transfer is None else transfer[1])
     minimum = minimiser = None
     if not real_roots_in(form.den):
         m = minimise_rational(form.num, form.den, -1, 1)
         minimiser, minimum = m.argmin, (m.exact if m.exact is not None else m.value)
-    if result.holds:
-        outcome = Outcome(
-            Decision.PROVED,
-            Evidence(Method.ROOT_ISOLATION, facts={"touches_zero": [str(r) for r in result.touches_zero], "degree": product.degree()}),
-            "Re G^-1 >= 0 for all c in [-1, 1] (exact root isolation)",
-            minimiser=minimiser,
-            minimum=minimum,
-        )
-        return WorstCase(outcome, sp.true, minimiser, minimum)
-    witness = result.witness
-    value = form(witness)
-    assert value < 0, "witness re-check failed"
-    outcome = Outcome(
-        Decision.DISPROVED,
-        Evidence(Method.ROOT_ISOLATION, witness={"c": witness}, facts={"value_at_witness": value}),
-        f"Re G^-1 = {value} < 0 at c = {witness}",
-        minimiser=minimiser,
-        minimum=minimum,
-    )
-    return WorstCase(outcome, sp.false, minimiser, minimum)
+    outcome = Outcome(outcome.decision, outcome.evidence, outcome.reason, minimiser=minimiser, minimum=minimum)
+    return WorstCase(outcome, sp.true if outcome.decision == Decision.PROVED else sp.false, minimiser, minimum)
 
 
 def real_roots_in(den: flint.fmpq_poly, lo: int = -1, hi: int = 1) -> bool:
@@ -312,6 +302,29 @@ def _undecided_symbolic(expr: sp.Expr, reason: str) -> WorstCase:
 # ---------------------------------------------------------------------------------------------
 
 
+@stage("transfer_polynomials")
+def transfer_polynomials(scene: SingleUserScene) -> tuple[flint.fmpq_poly, flint.fmpq_poly]:
+    """``G^{-1}(z) = P(z)/Q(z)`` of a numeric scene as coprime flint polynomials (``Q`` monic).
+
+    >>> P, Q = transfer_polynomials(SingleUserScene.virtual_wall(K=2, B=0, b=1, T=1))
+    >>> P, Q                                                  # 1 + 2/(z - 1)
+    (x + 1, x + (-1))
+    """
+    if not scene.is_numeric:
+        raise ValueError("transfer_polynomials needs numeric parameters")
+    Pe, Qe = numerator_denominator(environment_path(scene))
+    pe = flint.fmpq_poly([as_fmpq(Pe.domain.to_sympy(a)) for a in Pe.all_coeffs()[::-1]])
+    qe = flint.fmpq_poly([as_fmpq(Qe.domain.to_sympy(a)) for a in Qe.all_coeffs()[::-1]])
+    shift = flint.fmpq_poly([0] * int(scene.delay) + [1])
+    Q = shift * qe
+    P = as_fmpq(scene.b - scene.z_a) * Q + pe
+    g = P.gcd(Q) if not P.is_zero() else Q
+    if g.degree() > 0:
+        P, Q = P / g, Q / g
+    lead = Q.coeffs()[-1]
+    return P / lead, Q / lead
+
+
 @stage("poles")
 def poles(scene: SingleUserScene) -> list[Pole]:
     """Poles of ``G^{-1}(z)``. With a symbolic delay the delay adds only a pole at ``z = 0``."""
@@ -320,9 +333,32 @@ def poles(scene: SingleUserScene) -> list[Pole]:
         others = [p for p in listed if p.value != 0]
         # multiplicity n + (that of the path at 0): unknown as a number, recorded as -1
         return [Pole(sp.Integer(0), -1, "inside")] + others
+    if scene.is_numeric:
+        return _numeric_poles(transfer_polynomials(scene)[1])
     return poles_of(inverse_transfer(scene))
 
 
+def _numeric_poles(Q: flint.fmpq_poly) -> list[Pole]:
+    """Poles from the exact factorization: rational ones exact, others as certified
+    approximations located by :func:`hapticproof.kernel.locate_roots`."""
+    out: list[Pole] = []
+    if Q.degree() <= 0:
+        return out
+    for f, mult in Q.numer().factor()[1]:
+        cert = locate_roots(flint.fmpq_poly(f))
+        if f.degree() == 1:
+            a0, a1 = f.coeffs()
+            value = sp.Rational(int(-a0), int(a1))
+            location = "on" if cert.boundary else "outside" if cert.outside else "inside"
+            out.append(Pole(value, mult, location))
+            continue
+        with flint_precision(64):
+            for r, _ in f.complex_roots():
+                gap = r.real * r.real + r.imag * r.imag - 1
+                location = "inside" if gap < 0 else "outside" if gap > 0 else "on"
+                value = sp.Float(float(r.real.mid()), 12) + sp.I * sp.Float(float(r.imag.mid()), 12)
+                out.append(Pole(value, mult, location))
+    return sorted(out, key=lambda p: (sp.default_sort_key(p.value)))
 @stage("residues")
 def residues(scene: SingleUserScene) -> list[Residue]:
     """Residues of ``G^{-1}`` at its unit-circle poles (``z^{-n}`` is 1 at ``z = 1``)."""
@@ -344,9 +380,12 @@ def residues(scene: SingleUserScene) -> list[Residue]:
 @stage("hermitian")
 def hermitian(scene: SingleUserScene) -> CRational | ThetaForm:
     """``Re G^{-1}(e^{jwT})``: a rational function of ``c`` (integer delay) or a theta-form
-    (symbolic delay ``n``)."""
+    (symbolic delay ``n``). Numeric scenes take the flint route (no SymPy expressions)."""
     if scene.delay.is_Symbol:
         return theta_form(scene.b - scene.z_a, environment_path(scene), scene.delay)
+    if scene.is_numeric:
+        N, D = circle_real_part(*transfer_polynomials(scene))
+        return CRational(N, D, C_SYM)
     return hermitian_of(inverse_transfer(scene))
 
 
@@ -359,37 +398,168 @@ def worst_case(scene: SingleUserScene) -> WorstCase:
         outcome = Outcome(
             Decision.SYMBOLIC,
             Evidence(Method.INSTANCES, facts={"reason": "symbolic delay: use worst_case_instances"}),
-            "symbolic delay n: the worst case depends on n; see worst_case_instances",
+            "symbolic delay n: the worst case depends on n (fix the delay, or ask for the delay margin)",
         )
         return WorstCase(outcome, None)
     if scene.is_numeric:
-        return decide_hermitian(form)
+        return decide_hermitian(form, transfer_polynomials(scene))
     return symbolic_minimum(form.expr())
 
 
-@stage("positive_real")
-def positive_real(scene: SingleUserScene) -> Outcome:
-    """All three conditions of Definition 2 for ``G^{-1}``, combined."""
+@dataclass(frozen=True, slots=True)
+class Condition:
+    """One condition of a whole decision (a pole, residue or Hermitian-part condition) with its
+    outcome; :func:`combine` makes the verdict from a list of them."""
+
+    name: str
+    outcome: Outcome
+
+    @property
+    def decision(self) -> Decision:
+        return self.outcome.decision
+
+    def to_json(self) -> dict[str, Any]:
+        return {"name": self.name, **self.outcome.to_json()}
+
+
+def combine(conditions: list[Condition], subject: str = "G^-1", holds: str = "positive real") -> Outcome:
+    """The whole decision: disproved if any condition is, else undecided, else symbolic, else
+    proved; the evidence lists every condition (the first failing one's witness leads).
+
+    >>> ok = Outcome(Decision.PROVED, Evidence(Method.ROOT_ISOLATION), "fine")
+    >>> bad = Outcome(Decision.DISPROVED, Evidence(Method.ROOT_ISOLATION, witness={"pole": 2}), "pole at 2")
+    >>> out = combine([Condition("poles", bad), Condition("Hermitian part", ok)])
+    >>> out.decision.value, out.reason, out.witness
+    ('disproved', 'G^-1 is not positive real: poles: pole at 2', {'pole': 2})
+    """
+    facts = {"conditions": list(conditions)}
+    for decision, verb in ((Decision.DISPROVED, "is not"), (Decision.UNDECIDED, "undecided:"), (Decision.SYMBOLIC, "")):
+        failing = [c for c in conditions if c.decision == decision]
+        if not failing:
+            continue
+        first = failing[0]
+        if decision == Decision.DISPROVED:
+            reason = f"{subject} is not {holds}: {first.name}: {first.outcome.reason}"
+        elif decision == Decision.UNDECIDED:
+            reason = f"{subject}: {first.name} undecided: {first.outcome.reason}"
+        else:
+            reason = f"{subject} is {holds} iff " + "; ".join(f"{c.name}: {c.outcome.reason}" for c in failing)
+        return Outcome(decision, Evidence(first.outcome.evidence.method, witness=first.outcome.witness, facts=facts), reason,
+                       minimiser=first.outcome.minimiser, minimum=first.outcome.minimum)
+    herm = conditions[-1].outcome if conditions else None
+    return Outcome(Decision.PROVED, Evidence(Method.ROOT_ISOLATION, facts=facts),
+                   f"{subject} is {holds}: " + "; ".join(c.name for c in conditions) + " (each decided exactly)",
+                   minimiser=herm.minimiser if herm else None, minimum=herm.minimum if herm else None)
+
+
+POLES_IN_DISK = "poles in |z| <= 1"
+POLES_SIMPLE = "unit-circle poles simple"
+RESIDUES = "Res/z0 >= 0 at unit-circle poles"
+HERMITIAN = "Re G^-1 >= 0 for all w"
+
+
+@stage("conditions")
+def conditions(scene: SingleUserScene) -> list[Condition]:
+    """The three conditions of Definition 2 (HVE paper) for ``G^{-1}``, each decided: poles in the
+    closed disk, unit-circle poles simple with ``Res/z0 >= 0``, and ``Re G^{-1} >= 0``.
+
+    >>> sc = SingleUserScene.virtual_wall(K=2, B=0, b="0.0012", T="0.001")
+    >>> [(c.name, c.decision.value) for c in conditions(sc)]     # doctest: +NORMALIZE_WHITESPACE
+    [('poles in |z| <= 1', 'proved'), ('unit-circle poles simple', 'proved'),
+     ('Res/z0 >= 0 at unit-circle poles', 'proved'), ('Re G^-1 >= 0 for all w', 'proved')]
+    """
+    if scene.is_numeric:
+        return _numeric_conditions(scene)
+    return _symbolic_conditions(scene)
+
+
+def _numeric_conditions(scene: SingleUserScene) -> list[Condition]:
+    P, Q = transfer_polynomials(scene)
+    roots = locate_roots(Q, "disk")
+    facts = {"certificate": roots}
+    if roots.outside:
+        where = ", ".join(f"z ~ {complex(p):.6g}".replace("+0j", "").replace("(", "").replace(")", "") for p in roots.outside_points[:3])
+        pole_out = Outcome(Decision.DISPROVED, Evidence(Method.ROOT_ISOLATION, witness={"pole": where}, facts=facts),
+                           f"{roots.outside} pole(s) outside the unit circle ({where})")
+    else:
+        on = sum(r.multiplicity * (1 if r.value is not None else 2) for r in roots.boundary)
+        pole_out = Outcome(Decision.PROVED, Evidence(Method.ROOT_ISOLATION, facts=facts),
+                           f"no pole outside the unit circle ({on} on it, {roots.inside} inside)")
+    multiple = [r for r in roots.boundary if r.multiplicity > 1]
+    if multiple:
+        r = multiple[0]
+        simple = Outcome(Decision.DISPROVED, Evidence(Method.ROOT_ISOLATION, witness={"pole": r.label(), "multiplicity": r.multiplicity},
+                                                      facts=facts),
+                         f"the unit-circle pole {r.label()} has multiplicity {r.multiplicity}")
+    else:
+        simple = Outcome(Decision.PROVED, Evidence(Method.ROOT_ISOLATION, facts=facts),
+                         "every unit-circle pole is simple" if roots.boundary else "no poles on the unit circle")
+    outcomes = [residue_outcome(P, Q, r) for r in roots.boundary if r.multiplicity == 1]
+    bad = [o for o in outcomes if o.decision != Decision.PROVED]
+    if bad:
+        residue = bad[0]
+    elif outcomes:
+        residue = Outcome(Decision.PROVED, Evidence(Method.CANONICAL_FORM, facts={"residues": outcomes}),
+                          "; ".join(o.reason for o in outcomes))
+    elif multiple:
+        residue = Outcome(Decision.UNDECIDED, Evidence(Method.CANONICAL_FORM),
+                          "not examined: the unit-circle poles are not simple (no residue condition applies)")
+    else:
+        residue = Outcome(Decision.PROVED, Evidence(Method.CANONICAL_FORM), "no poles on the unit circle")
+    herm = worst_case(scene).outcome
+    return [Condition(POLES_IN_DISK, pole_out), Condition(POLES_SIMPLE, simple), Condition(RESIDUES, residue),
+            Condition(HERMITIAN, herm)]
+
+
+def _symbolic_conditions(scene: SingleUserScene) -> list[Condition]:
     pole_list = poles(scene)
     outside = [p for p in pole_list if p.location == "outside"]
     unknown = [p for p in pole_list if p.location == "unknown"]
     if outside:
-        return Outcome(Decision.DISPROVED, Evidence(Method.CANONICAL_FORM, witness={"pole": outside[0].value}),
-                       f"pole z = {outside[0].value} outside the unit circle")
-    res = residues(scene)
-    for r in res:
-        if r.outcome.decision == Decision.DISPROVED:
-            return r.outcome
+        pole_out = Outcome(Decision.DISPROVED, Evidence(Method.CANONICAL_FORM, witness={"pole": outside[0].value}),
+                           f"pole z = {outside[0].value} outside the unit circle")
+    elif unknown:
+        pole_out = Outcome(Decision.UNDECIDED, Evidence(Method.CANONICAL_FORM, facts={"poles": [str(p.value) for p in unknown]}),
+                           "the location of some pole depends on the parameters")
+    else:
+        pole_out = Outcome(Decision.PROVED, Evidence(Method.CANONICAL_FORM, facts={"poles": [str(p.value) for p in pole_list]}),
+                           "every pole lies in |z| <= 1 for all parameter values")
+    multiple = [p for p in pole_list if p.location == "on" and p.multiplicity > 1]
+    if multiple:
+        simple = Outcome(Decision.DISPROVED, Evidence(Method.CANONICAL_FORM, witness={"pole": multiple[0].value}),
+                         f"the unit-circle pole z = {multiple[0].value} has multiplicity {multiple[0].multiplicity}")
+    else:
+        simple = Outcome(Decision.PROVED, Evidence(Method.CANONICAL_FORM), "every unit-circle pole is simple")
+    res = [r for r in residues(scene) if r.residue is not sp.nan]     # simple unit-circle poles
+    order = {Decision.DISPROVED: 0, Decision.UNDECIDED: 1, Decision.SYMBOLIC: 2, Decision.PROVED: 3}
+    worst = min(res, key=lambda r: order[r.outcome.decision], default=None)
+    if worst is None and multiple:
+        residue = Outcome(Decision.UNDECIDED, Evidence(Method.CANONICAL_FORM),
+                          "not examined: the unit-circle poles are not simple (no residue condition applies)")
+    elif worst is None:
+        residue = Outcome(Decision.PROVED, Evidence(Method.CANONICAL_FORM), "no poles on the unit circle")
+    elif worst.outcome.decision == Decision.PROVED:
+        residue = Outcome(Decision.PROVED, Evidence(Method.CANONICAL_FORM, facts={"residues": [r.outcome for r in res]}),
+                          "; ".join(r.outcome.reason for r in res))
+    else:
+        residue = worst.outcome
     wc = worst_case(scene)
-    decisions = [r.outcome.decision for r in res] + [wc.decision]
-    if unknown or Decision.UNDECIDED in decisions:
-        return Outcome(Decision.UNDECIDED, Evidence(Method.CANONICAL_FORM), "some condition could not be decided")
-    if Decision.SYMBOLIC in decisions:
-        conds = [r.outcome.evidence.facts.get("condition") for r in res if r.outcome.decision == Decision.SYMBOLIC]
-        conds.append(wc.condition)
-        return Outcome(Decision.SYMBOLIC, Evidence(Method.ENDPOINT_ANALYSIS, facts={"conditions": [c for c in conds if c is not None]}),
-                       "positive real iff the residue and worst-case conditions hold")
-    if wc.decision == Decision.DISPROVED:
-        return wc.outcome
-    return Outcome(Decision.PROVED, wc.outcome.evidence, "G^-1 is positive real: poles, residues and Hermitian part checked exactly",
-                   minimiser=wc.minimiser, minimum=wc.minimum)
+    herm = wc.outcome
+    if herm.decision == Decision.SYMBOLIC and wc.condition is not None:
+        herm = Outcome(Decision.SYMBOLIC, herm.evidence, f"{sp.sstr(wc.condition)} ({herm.reason})",
+                       minimiser=herm.minimiser, minimum=herm.minimum)
+    return [Condition(POLES_IN_DISK, pole_out), Condition(POLES_SIMPLE, simple), Condition(RESIDUES, residue),
+            Condition(HERMITIAN, herm)]
+
+
+@stage("positive_real")
+def positive_real(scene: SingleUserScene) -> Outcome:
+    """All three conditions of Definition 2 for ``G^{-1}``, combined (:func:`conditions`).
+
+    >>> from hapticproof.symbols import z
+    >>> sc = SingleUserScene(b=1, T=1, H=1/(z - 2))             # a pole outside the circle
+    >>> out = positive_real(sc)
+    >>> out.decision.value, out.reason
+    ('disproved', 'G^-1 is not positive real: poles in |z| <= 1: 1 pole(s) outside the unit circle (z ~ 2)')
+    """
+    return combine(conditions(scene))

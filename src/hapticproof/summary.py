@@ -4,8 +4,10 @@
 >>> summary = summarize_single_user(SingleUserScene.virtual_wall(K=2, B=0, b="0.0012", T="0.001"))
 >>> summary.verdict, summary.witness
 ('proved', None)
+>>> [c.decision.value for c in summary.conditions]
+['proved', 'proved', 'proved', 'proved']
 >>> sorted(summary.to_json())[:4]
-['G_inverse', 'approximation', 'delay', 'hermitian_part']
+['G_inverse', 'approximation', 'conditions', 'delay']
 """
 
 from __future__ import annotations
@@ -20,7 +22,7 @@ from hapticproof import latex as tex
 from hapticproof.evidence import Decision, to_jsonable
 from hapticproof.lazy import profile
 from hapticproof.models import inverse_transfer
-from hapticproof.positivereal import hermitian, poles, residues, worst_case
+from hapticproof.positivereal import Condition, conditions, hermitian, poles, positive_real, residues, worst_case
 from hapticproof.scene import SingleUserScene
 from hapticproof.unitcircle import ThetaForm
 
@@ -47,6 +49,7 @@ class SceneSummary:
     minimiser: Any = None
     minimum: Any = None
     stages: dict = field(default_factory=dict)
+    conditions: tuple[Condition, ...] = ()
 
     def to_json(self) -> dict[str, Any]:
         out = {
@@ -58,6 +61,7 @@ class SceneSummary:
             "poles": [{"z": p.value, "multiplicity": p.multiplicity, "location": p.location} for p in self.poles],
             "residues": [{"z": r.pole, "residue": r.residue, "condition": r.outcome.decision.value} for r in self.residues],
             "worst_case": sp.sstr(self.worst_case) if self.worst_case is not None else None,
+            "conditions": [c.to_json() for c in self.conditions],
             "verdict": self.verdict,
             "witness": self.witness,
             "reason": self.reason,
@@ -75,13 +79,15 @@ class SceneSummary:
             f"Re G^-1 (c = cos wT) = {sp.sstr(self.hermitian_part)}",
             "poles:           " + ", ".join(f"z = {p.value} ({p.location}{'' if p.multiplicity == 1 else f', x{p.multiplicity}' if p.multiplicity > 0 else ', multiplicity n+...'})" for p in self.poles),
             "residues:        " + (", ".join(f"Res(z = {r.pole}) = {sp.sstr(r.residue)} [{r.outcome.reason}]" for r in self.residues) or "none on |z| = 1"),
-            f"worst case:      {sp.sstr(self.worst_case) if self.worst_case is not None else 'see reason'}",
-            f"verdict:         {self.verdict}  ({self.reason})",
+            f"worst case:      {sp.sstr(self.worst_case) if self.worst_case not in (None, sp.true, sp.false) else _minimum_text(self)}",
+            "conditions:",
         ]
-        if self.witness is not None:
-            lines.append(f"witness:         c = {self.witness}")
-        if self.minimiser is not None:
-            lines.append(f"minimiser:       c = {self.minimiser}, minimum = {self.minimum}")
+        width = max((len(c.name) for c in self.conditions), default=0)
+        for cond in self.conditions:
+            lines.append(f"  {cond.name.ljust(width)}  {cond.decision.value:<9}  {cond.outcome.reason}")
+        lines.append(f"verdict:         {self.verdict}  ({self.reason})")
+        if self.witness:
+            lines.append("witness:         " + ", ".join(f"{k} = {_show(v)}" for k, v in self.witness.items()))
         if self.stages:
             lines.append("stages (s):      " + ", ".join(f"{k} {v:.4f}" for k, v in self.stages.items()))
         return "\n".join(lines)
@@ -106,6 +112,30 @@ class SceneSummary:
         return self.to_text()
 
 
+def _readable(expr: sp.Expr) -> sp.Expr:
+    """A polynomial expanded, a rational function as one fraction (not a sum of fractions)."""
+    num, den = sp.fraction(sp.cancel(sp.together(expr)))
+    if not den.free_symbols:
+        return sp.expand(expr)
+    return sp.Mul(sp.expand(num), sp.Pow(sp.expand(den), -1), evaluate=False)
+
+
+def _show(value: Any) -> str:
+    if isinstance(value, (list, tuple)):
+        return " + j*".join(str(v) for v in value) if len(value) == 2 else str(list(value))
+    return str(value)
+
+
+def _minimum_text(summary: SceneSummary) -> str:
+    if summary.minimiser is None:
+        return "see the conditions"
+    where = summary.minimiser.approx(12) if hasattr(summary.minimiser, "approx") else summary.minimiser
+    value = summary.minimum
+    if hasattr(value, "mid"):
+        value = f"{float(value.mid()):.12g}"
+    return f"min Re G^-1 = {value} at c = {where}"
+
+
 def summarize_single_user(scene: SingleUserScene, with_profile: bool = False) -> SceneSummary:
     """Derive and collect everything ``hapticproof derive single-user`` reports."""
     form = hermitian(scene)
@@ -113,10 +143,10 @@ def summarize_single_user(scene: SingleUserScene, with_profile: bool = False) ->
         theta = sp.Symbol("theta")
         herm = form.expr(theta)
     else:
-        herm = sp.expand(form.expr()) if not form.is_numeric else form.expr()
+        herm = form.expr() if form.is_numeric else _readable(form.expr())
     wc = worst_case(scene)
-    decision = wc.decision
-    witness = wc.outcome.witness.get("c") if (wc.outcome.witness and decision == Decision.DISPROVED) else None
+    verdict = positive_real(scene)
+    witness = dict(verdict.witness) if (verdict.witness and verdict.decision == Decision.DISPROVED) else None
     return SceneSummary(
         system="single-user",
         approximation=scene.approximation,
@@ -126,10 +156,11 @@ def summarize_single_user(scene: SingleUserScene, with_profile: bool = False) ->
         poles=poles(scene),
         residues=residues(scene),
         worst_case=wc.condition,
-        verdict=decision.value,
+        verdict=verdict.decision.value,
         witness=witness,
-        reason=wc.outcome.reason,
+        reason=verdict.reason,
         minimiser=wc.minimiser,
         minimum=wc.minimum,
         stages=profile(scene) if with_profile else {},
+        conditions=tuple(conditions(scene)),
     )

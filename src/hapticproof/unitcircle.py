@@ -44,6 +44,7 @@ __all__ = [
     "hermitian_part",
     "hermitian_part_rational",
     "imaginary_part_rational",
+    "circle_real_part",
     "delayed_hermitian_part",
     "theta_form",
     "theta_to_cos",
@@ -288,6 +289,25 @@ def _simplest_flint(num: flint.fmpq_poly, den: flint.fmpq_poly, var: sp.Symbol) 
     if den.coeffs()[-1] < 0:
         num, den = -num, -den
     return CRational(num, den, var)
+
+
+def circle_real_part(P: flint.fmpq_poly, Q: flint.fmpq_poly) -> tuple[flint.fmpq_poly, flint.fmpq_poly]:
+    """``Re P/Q`` on the unit circle as ``N(c)/D(c)`` from flint polynomials in ``z`` (no SymPy):
+    the numeric fast path of :func:`hermitian_part_rational`. ``D`` is ``|Q(e^{jwT})|^2`` up to
+    a positive factor, divided by factors shared with ``N``.
+
+    >>> z = flint.fmpq_poly([0, 1])
+    >>> N, D = circle_real_part(z - 1, z + 1)             # (z-1)/(z+1) = j tan(wT/2): Re = 0
+    >>> N.is_zero()
+    True
+    """
+    p, q = P.coeffs(), Q.coeffs()
+    cross = _fast_cross(p, q) if p else {}
+    qq = _fast_cross(q, q)
+    zero = flint.fmpq(0)
+    cvar, one = flint.fmpq_poly([0, 1]), flint.fmpq_poly([1])
+    form = _simplest_flint(_symmetric_to_c(cross, zero, cvar, one, +1), _symmetric_to_c(qq, zero, cvar, one, +1), C_SYM)
+    return form.num, form.den
 
 
 def imaginary_part_rational(F: Any, z: sp.Symbol = Z_SYM, var: sp.Symbol = C_SYM) -> CRational:

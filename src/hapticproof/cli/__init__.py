@@ -18,7 +18,7 @@ from hapticproof.errors import HapticproofError
 __all__ = ["main", "build_parser"]
 
 #: Subcommand modules, in the order they appear in ``--help``.
-COMMANDS = ("audit", "derive", "export", "boundary", "bench")
+COMMANDS = ("audit", "derive", "check", "export", "boundary", "bench")
 
 
 def build_parser(command: str | None = None) -> argparse.ArgumentParser:

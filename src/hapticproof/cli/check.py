@@ -1,0 +1,49 @@
+"""``hapticproof check REPORT.json``: re-verify the certificates of a saved JSON report.
+
+The report is what ``hapticproof audit --format json`` or ``hapticproof derive ... --format json``
+wrote. Every certificate in it is re-checked by the independent checker
+(:mod:`hapticproof.checker`: Sturm sequences, exact evaluation of the original transfer
+function, Routh-Hurwitz); entries without a certificate are listed as not re-verifiable.
+Exit code 0 when every certificate holds, 1 when one fails, 2 for a file that cannot be read.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+from hapticproof.errors import InputFormatError
+
+__all__ = ["register"]
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    parser = sub.add_parser(
+        "check",
+        help="re-verify the certificates in a saved JSON report (audit or derive)",
+        description="Re-verify every certificate in a JSON report written by 'audit --format json' or "
+        "'derive ... --format json', with the independent checker (Sturm sequences, exact evaluation, "
+        "Routh-Hurwitz). Lists the entries that carry no certificate. Use - to read standard input.",
+    )
+    parser.add_argument("report", help="the JSON report (a file, or - for standard input)")
+    parser.add_argument("--quiet", action="store_true", help="print only the summary line")
+    parser.set_defaults(handler=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    from hapticproof.checker import check_report
+
+    try:
+        text = sys.stdin.read() if args.report == "-" else Path(args.report).read_text(encoding="utf-8")
+    except OSError as err:
+        raise InputFormatError(f"cannot read {args.report}: {err.strerror}") from None
+    try:
+        report = json.loads(text)
+    except json.JSONDecodeError as err:
+        raise InputFormatError(f"{args.report} is not JSON: {err.msg} at line {err.lineno}") from None
+    result = check_report(report)
+    lines = result.summary().splitlines()
+    print("\n".join(lines[-1:] if args.quiet else lines))
+    return 0 if result.ok else 1
