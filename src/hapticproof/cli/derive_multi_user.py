@@ -26,8 +26,10 @@ from hapticproof.errors import InputFormatError
 from hapticproof.evidence import to_jsonable
 from hapticproof.multiuser import (
     MultiUserScene,
+    conditions,
     hermitian,
     inverse_transfer_matrix,
+    positive_real,
     principal_minors,
     residues,
     sufficient_condition,
@@ -159,9 +161,10 @@ def derive(scene: MultiUserScene, minors: str = "auto") -> dict[str, Any]:
         "worst_case_method": wc.method,
         "worst_case_condition": wc.condition,
         "worst_c": wc.minimiser,
-        "verdict": wc.decision.value,
-        "reason": wc.outcome.reason,
-        "witness": wc.outcome.evidence.witness,
+        "conditions": conditions(scene),
+        "verdict": positive_real(scene).decision.value,
+        "reason": positive_real(scene).reason,
+        "witness": positive_real(scene).evidence.witness,
     }
     if show_minors:
         out["principal_minors"] = {tuple(i + 1 for i in k): mn.expr() for k, mn in principal_minors(scene).items()}
@@ -187,7 +190,12 @@ def _text(data: dict[str, Any]) -> str:
                  + (f"   at c = {data['worst_c']}" if data["worst_c"] is not None else ""))
     if "sufficient_condition" in data:
         lines.append(f"sufficient (any graph, Loewner): {sp.sstr(data['sufficient_condition'])}")
+    lines.append("conditions:")
+    width = max(len(c.name) for c in data["conditions"])
+    lines += [f"  {c.name.ljust(width)}  {c.decision.value:<9}  {c.outcome.reason}" for c in data["conditions"]]
     lines.append(f"verdict:           {data['verdict']}  ({data['reason']})")
+    if data["witness"] and data["verdict"] == "disproved":
+        lines.append("witness:           " + ", ".join(f"{k} = {v}" for k, v in data["witness"].items()))
     return "\n".join(lines)
 
 
@@ -212,7 +220,8 @@ def run(args: argparse.Namespace) -> int:
     data = derive(scene, args.minors)
     fmt = "latex" if args.latex else args.format
     if fmt == "json":
-        print(json.dumps(to_jsonable({k: v for k, v in data.items()}), indent=2))
+        print(json.dumps(to_jsonable({k: ([c.to_json() for c in v] if k == "conditions" else v) for k, v in data.items()}),
+                         indent=2))
     elif fmt == "latex":
         print(_latex(data))
     else:

@@ -31,6 +31,7 @@ from hapticproof.teleoperator import (
     filtered_pd_controller,
     parse_controller,
     passivity,
+    passivity_conditions,
     pd_controller,
     worst_case,
 )
@@ -78,14 +79,18 @@ def run(args: argparse.Namespace) -> int:
         params.get("alpha", 1),
     )
     bd, wc = bounds(scene), worst_case(scene)
-    decision = passivity(scene) if not scene.parameters else None
+    decision = passivity(scene)
+    conds = passivity_conditions(scene)
     if args.format == "json":
         out = {"controller": sp.sstr(scene.C), "alpha": sp.sstr(scene.alpha), "bound_master": sp.sstr(bd.master),
                "bound_slave": sp.sstr(bd.slave), "sup_master": to_jsonable(wc.sup_master),
                "sup_slave": to_jsonable(wc.sup_slave), "maximiser": to_jsonable(wc.maximiser),
                "condition": sp.sstr(wc.condition) if wc.condition is not None else None,
                "error_coordinate_damping": sp.sstr(error_coordinate_damping(scene)),
-               "decision": decision.to_json() if decision else None}
+               "conditions": [c.to_json() for c in conds],
+               "verdict": decision.decision.value, "reason": decision.reason,
+               "decision": decision.to_json()}
+        out = to_jsonable(out)
         print(json.dumps(out, indent=2))
         return 0
     cos = r"\cos(\omega T)"
@@ -99,11 +104,27 @@ def run(args: argparse.Namespace) -> int:
     print(f"controller C(z) = {sp.sstr(scene.C)}, alpha = {scene.alpha}")
     print(f"b_m > {sp.sstr(sp.factor(bd.master))}    (c = cos wT)")
     print(f"b_s > {sp.sstr(sp.factor(bd.slave))}")
-    where = f" at c = {to_jsonable(wc.maximiser)}" if wc.maximiser is not None else ""
-    print(f"worst case: sup_c = {to_jsonable(wc.sup_master)} (master), {to_jsonable(wc.sup_slave)} (slave){where}")
-    if wc.condition is not None and scene.parameters:
+    where = f" at c = {_number(wc.maximiser)}" if wc.maximiser is not None else ""
+    print(f"worst case: sup over c of the bounds = {_number(wc.sup_master)} (master), {_number(wc.sup_slave)} (slave){where}")
+    if wc.condition is not None and decision.decision.value == "symbolic":
         print(f"passive if {sp.sstr(wc.condition)}")
     print(f"error-coordinate damping (less conservative): {sp.sstr(error_coordinate_damping(scene))}")
-    if decision is not None:
-        print(f"decision: {decision.decision.value} -- {decision.reason}")
+    print("conditions:")
+    width = max(len(c.name) for c in conds)
+    for cond in conds:
+        print(f"  {cond.name.ljust(width)}  {cond.decision.value:<9}  {cond.outcome.reason}")
+    print(f"verdict: {decision.decision.value} ({decision.reason})")
     return 0
+
+
+def _number(value) -> str:
+    """An exact number, a certified ball (as a decimal) or infinity, for the text output."""
+    if value is None:
+        return "?"
+    if value == sp.oo:
+        return "oo (unbounded: no finite damping suffices)"
+    if hasattr(value, "mid"):
+        return f"{float(value.mid()):.12g}"
+    if hasattr(value, "approx"):
+        return value.approx(12)
+    return sp.sstr(value)
