@@ -47,6 +47,7 @@ __all__ = [
     "integrator_polynomials",
     "path_polynomials",
     "transfer",
+    "path_transfer",
     "circle_form",
     "hermitian_outcome",
     "conditions",
@@ -273,6 +274,17 @@ def transfer(scene: NumericScene) -> tuple[flint.fmpq_poly, flint.fmpq_poly]:
     shifted_pe = flint.fmpq_poly(coeffs[k:])
     P = a * Q + shifted_pe
     return P, Q
+
+
+def path_transfer(scene: NumericScene) -> tuple[flint.fmpq_poly, flint.fmpq_poly]:
+    """``z^{-n} H X_h/V_h`` alone (``b = z_a``) as coprime ``P/Q``, ``Q`` monic."""
+    pe, qe = path_polynomials(scene)
+    if pe.is_zero():
+        return pe, flint.fmpq_poly([1])
+    n = scene.delay
+    coeffs = pe.coeffs()
+    k = min(n, next(i for i, c in enumerate(coeffs) if c != 0))
+    return flint.fmpq_poly(coeffs[k:]), flint.fmpq_poly([0] * (n - k) + qe.coeffs())
 
 
 def circle_form(scene: NumericScene, a: Any = None) -> trigpoly.CircleForm:
@@ -618,6 +630,18 @@ def critical_damping(scene: NumericScene, tol: Any = None) -> tuple[Fraction, Fr
     >>> critical_damping(NumericScene.virtual_wall(K=2, B="0.001", b=1, T="0.001", delay=10))
     (Fraction(1, 50), Fraction(1, 50))
     """
+    P, Q = path_transfer(scene)
+    if max(P.degree(), Q.degree()) <= SMALL_DEGREE:      # short delays: the monomial minimum
+        from hapticproof.unitcircle import circle_real_part
+
+        N, D = circle_real_part(P, Q)
+        if D.degree() <= 0 or not real_roots(D, -1, 1):
+            m = minimise_rational(N, D, -1, 1)
+            if m.exact is not None:
+                value = -Fraction(int(m.exact.p), int(m.exact.q))
+                return value, value
+            lo, hi = trigpoly._arb_fmpq((-m.value).lower()), trigpoly._arb_fmpq((-m.value).upper())
+            return Fraction(int(lo.p), int(lo.q)), Fraction(int(hi.p), int(hi.q))
     form = circle_form(scene, a=0)
     if tol is None:
         ends = max(abs(form.end_value(1)), abs(form.end_value(-1)), flint.fmpq(1, 2**60))

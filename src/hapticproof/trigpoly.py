@@ -217,7 +217,7 @@ class CircleForm:
         best = None
         R0 = remainder(j0)
         if R0 > 0:
-            best = Fraction(int((s[j0] / R0).p), int((s[j0] / R0).q))
+            best = Fraction(int((s[j0] / R0).p), int((s[j0] / R0).q)) * Fraction(1023, 1024)   # strictly inside
         else:
             return "ok", Fraction(4)
         R1 = remainder(j0 + 1)
@@ -228,7 +228,7 @@ class CircleForm:
                 u = Fraction(cand * (1 - 1e-9)).limit_denominator(2**62) if cand > 1e-300 else Fraction(0)
                 for _ in range(60):
                     uq = flint.fmpq(u.numerator, u.denominator)
-                    if u > 0 and s[j0] + s[j0 + 1] * uq - R1 * uq * uq >= 0:
+                    if u > 0 and s[j0] + s[j0 + 1] * uq - R1 * uq * uq > 0:
                         break
                     u /= 2
                 if u > best:
@@ -464,13 +464,13 @@ def _run(form: CircleForm, mode: str, tol: flint.fmpq | None, budget: int) -> Tr
                         return TrigDecision(False, witness=found[0], witness_value=found[1], upper=v,
                                             reason=f"f < 0 next to c = {end}")
                     touching.append(end)
-                else:
-                    bound = v / 2
+                else:        # f = g/w > 0 on the whole exact piece (the bound is strict)
+                    bound = flint.fmpq(0)
                     status, r = form.end_cover(end, bound)
             else:
                 status, r = form.end_cover(end, v)
-                if status != "ok":
-                    bound = v - tol / 2
+                if status != "ok":   # not a local minimum: cover down to the best value so far
+                    bound = upper - tol
                     status, r = form.end_cover(end, bound)
             if status != "ok":
                 return TrigDecision(None, reason=f"no exact expansion at c = {end}")
