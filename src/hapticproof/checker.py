@@ -281,7 +281,7 @@ def _check_transfer_sign(cert: dict, transfer: dict) -> list[str]:
         value = _eval_transfer(transfer, point)
         if not value.re < 0:
             raise _Fail(f"Re F = {value.re} is not negative at the witness")
-        notes.append(f"Re F(witness) = {value.re} < 0 evaluated from the transfer function")
+        notes.append(f"Re F(witness) = {float(value.re):.6g} < 0 evaluated exactly from the transfer function")
         return notes
     if "numerator" not in cert:
         return notes

@@ -374,13 +374,10 @@ def circle_witness(form: CircleForm, theta: flint.fmpq | None = None, *, end: in
     ``theta`` (a point where a ball evaluation was negative) or within ``radius`` of an end."""
     candidates: list[Fraction] = []
     if end is not None:
-        # theta = 2 atan(t): within `radius` of 0 for t <= radius/2, of pi for t >= 2/radius
-        for scale in (2, 4, 16, 256):
-            if end == 1:
-                candidates.append(Fraction(1, 1) * (radius / scale))
-            else:
-                candidates.append(scale / radius)
-        candidates = [Fraction(x).limit_denominator(2**40) if x != 0 else x for x in candidates] + candidates
+        # theta = 2 atan(t) is within `radius` of 0 for t <= radius/2, of pi for t >= 2/radius:
+        # the simplest such t (every point within the radius is negative)
+        k = math.ceil(2 / radius)
+        candidates = [Fraction(1, k), Fraction(1, 2 * k)] if end == 1 else [Fraction(k), Fraction(2 * k)]
     else:
         with flint_precision(128):
             tan = (flint.arb(theta) / 2).tan()
