@@ -6,7 +6,7 @@ import argparse
 import json
 import sys
 
-from hapticproof.audit import audit_paper
+from hapticproof.auditpool import audit_reports
 from hapticproof.cli._common import write_text
 from hapticproof.registry import get_paper, papers
 
@@ -32,6 +32,8 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "e.g. -s 1 -s 2 -s 3.1 for the HVE paper's single-user part)")
     parser.add_argument("--format", "-f", choices=FORMATS, default="table")
     parser.add_argument("--output", "-o", metavar="FILE", help="write to FILE instead of stdout")
+    parser.add_argument("--jobs", "-j", type=int, metavar="N",
+                        help="worker processes (default: the machine's cores; 1: serial); the output is the same")
     parser.set_defaults(handler=run)
 
 
@@ -44,7 +46,10 @@ def run(args: argparse.Namespace) -> int:
         raise_usage("--equation needs exactly one PAPER")
     if args.equation and args.section:
         raise_usage("use --equation or --section, not both")
-    reports = [audit_paper(p, args.equation or _in_sections(p, args.section) or None) for p in selected]
+    if args.jobs is not None and args.jobs < 1:
+        raise_usage("--jobs must be at least 1")
+    only = {p.id: args.equation or _in_sections(p, args.section) for p in selected}
+    reports = audit_reports(selected, only, jobs=args.jobs)
     if args.format == "json":
         if len(reports) == 1 and args.papers and not args.all:
             text = json.dumps(reports[0].to_json(), indent=2)

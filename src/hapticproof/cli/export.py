@@ -6,7 +6,8 @@ import argparse
 import sys
 
 from hapticproof.cli._common import write_text
-from hapticproof.export import export_document
+from hapticproof.errors import InputFormatError
+from hapticproof.export import export_document, reports_from_json
 from hapticproof.registry import get_paper, papers
 
 __all__ = ["register"]
@@ -21,11 +22,36 @@ def register(sub: argparse._SubParsersAction) -> None:
     )
     parser.add_argument("papers", nargs="*", metavar="PAPER", help="paper ids; default: all")
     parser.add_argument("--output", "-o", metavar="FILE", default="hapticproof-conditions.tex")
+    parser.add_argument("--from-audit", metavar="AUDIT.json",
+                        help="reuse a saved 'hapticproof audit --format json' instead of deriving again")
+    parser.add_argument("--jobs", "-j", type=int, metavar="N",
+                        help="worker processes for the derivations (default: the machine's cores)")
     parser.set_defaults(handler=run)
 
 
 def run(args: argparse.Namespace) -> int:
     selected = [get_paper(p) for p in args.papers] if args.papers else list(papers().values())
-    path = write_text(args.output, export_document(selected))
+    if args.jobs is not None and args.jobs < 1:
+        raise InputFormatError("--jobs must be at least 1")
+    if args.from_audit:
+        reports = _saved(args.from_audit, selected)
+    else:
+        from hapticproof.auditpool import audit_reports
+
+        reports = audit_reports(selected, jobs=args.jobs)
+    path = write_text(args.output, export_document(selected, reports))
     print(f"wrote {path}", file=sys.stderr)
     return 0
+
+
+def _saved(path: str, selected: list) -> list:
+    import json
+
+    try:
+        reports = {r.paper: r for r in reports_from_json(json.loads(open(path, encoding="utf-8").read()))}
+    except (OSError, ValueError, KeyError, TypeError) as err:
+        raise InputFormatError(f"--from-audit {path}: not a saved audit ({type(err).__name__}: {err})") from None
+    missing = [p.id for p in selected if p.id not in reports]
+    if missing:
+        raise InputFormatError(f"--from-audit {path} has no audit of {', '.join(missing)}")
+    return [reports[p.id] for p in selected]
