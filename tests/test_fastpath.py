@@ -116,6 +116,17 @@ def test_ten_thousand_samples_decide_in_closed_form():
     assert fp.decide(wall(n=n, b=lo * (1 - F(1, 10**9))), minimum=False).decision == Decision.DISPROVED
 
 
+def test_interior_zeros_touching_fall_back_to_the_kernel(chebyshev):
+    # G^-1 = 1/2 + z^-31/2: Re = (1 + cos 31 theta)/2 >= 0 touches 0 at 16 irrational points,
+    # which no finite cover of balls can prove: the kernel decides the monomial form
+    scene = fp.NumericScene(b=F(1, 2), T=1, H=((F(-1, 2), F(1, 2)), (F(1),)), delay=31)
+    out = fp.decide(scene)
+    assert out.decision == Decision.PROVED
+    assert "touches 0 at 16 points" in out.evidence.facts["conditions"][-1].outcome.reason
+    assert decisions(out) == decisions(reference(scene))
+    certificates_ok(out)
+
+
 def test_above_the_checker_limit_it_says_so(monkeypatch, chebyshev):
     monkeypatch.setenv("HAPTICPROOF_CHECK_MAX_DEGREE", "20")
     out = fp.decide(wall(n=40, b=1))

@@ -64,6 +64,10 @@ SMALL_DEGREE = 24
 #: Up to this degree in ``c`` the certificate is the kernel's monomial sign certificate;
 #: above it a Chebyshev-basis certificate (the monomial form costs ``O(n^3)`` bits).
 MONOMIAL_LIMIT = 200
+#: When the closed form cannot decide (a zero of even multiplicity inside the interval, an
+#: end expansion that vanishes to high order), the kernel decides the monomial form up to this
+#: degree; above it the condition is ``undecided``, with the reason.
+KERNEL_LIMIT = 1000
 
 APPROXIMATIONS = ("forward", "backward", "tustin")
 
@@ -526,11 +530,20 @@ def hermitian_outcome(scene: NumericScene, *, minimum: bool = True, polynomials:
         return outcome
     form = circle_form(scene)
     if not form.regular:          # unit-circle poles of Re G^-1 that do not cancel: the kernel
-        from hapticproof.unitcircle import circle_real_part
-
-        N, D = circle_real_part(P, Q)
-        return _monomial_outcome(N, D, P, Q, None)
+        return _kernel_outcome(P, Q, form.degree + len(form.w) - 1, "poles of Re G^-1 on the circle")
     return _chebyshev_outcome(form, P, Q, minimum)
+
+
+def _kernel_outcome(P: flint.fmpq_poly, Q: flint.fmpq_poly, degree: int, why: str) -> Outcome:
+    """The kernel on the monomial form, up to :data:`KERNEL_LIMIT`; above it, undecided (saying why)."""
+    if degree > KERNEL_LIMIT:
+        return Outcome(Decision.UNDECIDED, Evidence(Method.ROOT_ISOLATION, facts={"degree": degree}),
+                       f"Re G^-1(c): not decided in closed form ({why}); the monomial form has degree {degree}, "
+                       f"above the exact fallback's limit {KERNEL_LIMIT}")
+    from hapticproof.unitcircle import circle_real_part
+
+    N, D = circle_real_part(P, Q)
+    return _monomial_outcome(N, D, P, Q, None)
 
 
 def _trig_verdict(form: trigpoly.CircleForm) -> tuple[str, Any] | None:
@@ -570,8 +583,7 @@ def _chebyshev_outcome(form: trigpoly.CircleForm, P, Q, minimum: bool) -> Outcom
     what = "Re G^-1(c)"
     kwargs = dict(transfer=(P, Q), cover=_cover_summary(d))
     if d.holds is None:
-        return Outcome(Decision.UNDECIDED, Evidence(Method.ROOT_ISOLATION, facts={"degree": degree}),
-                       f"{what}: not decided in closed form ({d.reason}); the monomial form has degree {degree}")
+        return _kernel_outcome(P, Q, degree, d.reason)
     minimiser = value = None
     if minimum:
         minimiser, value = _trig_minimum(form)

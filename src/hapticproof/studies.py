@@ -26,7 +26,8 @@ from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
-__all__ = ["peer_cases", "peer_study", "delay_study", "map_study", "plot_peers", "plot_delays", "peer_available"]
+__all__ = ["peer_cases", "peer_study", "delay_study", "margin_search_study", "map_study", "plot_peers", "plot_delays",
+           "peer_available"]
 
 #: The scene of the comparison (HVE forward-difference virtual wall, Phantom-like numbers).
 PEER_SCENE = {"K": Fraction(2), "B": Fraction(1, 1000), "T": Fraction(1, 1000)}
@@ -292,5 +293,100 @@ def plot_delays(data: dict[str, Any], path: str | Path) -> None:
     fig.savefig(path, dpi=110, bbox_inches="tight")
 
 
-def map_study(*args: Any, **kwargs: Any) -> dict[str, Any]:   # filled in with the map engine
-    raise NotImplementedError
+def margin_search_study(delays: Sequence[int] = (10, 100, 1000), repeat: int = 3,
+                        log: Callable[[str], None] = lambda line: None) -> dict[str, Any]:
+    """The delay margin through the fast decision: for a scene whose exact margin is ``n``
+    (``b`` chosen at the boundary of delay ``n``), the largest passive delay found by doubling
+    and bisection with :func:`hapticproof.fastpath.critical_damping` at each probe -- the call a
+    delay-margin search (issue 11) makes. Timed end to end, with the number of probes."""
+    from hapticproof.fastpath import NumericScene, critical_damping
+
+    K, B, T = PEER_SCENE["K"], PEER_SCENE["B"], PEER_SCENE["T"]
+    rows = []
+    for n in delays:
+        b = critical_damping(NumericScene.virtual_wall(K=K, B=B, b=1, T=T, delay=n))[1]
+
+        def passive(d: int) -> bool:
+            lo, hi = critical_damping(NumericScene.virtual_wall(K=K, B=B, b=1, T=T, delay=d))
+            if b >= hi:
+                return True
+            if b < lo:
+                return False
+            raise ArithmeticError("b inside the enclosure")
+
+        def search() -> tuple[int, int]:
+            probes, good, step = 0, 0, 1
+            while True:
+                probes += 1
+                if not passive(good + step):
+                    bad = good + step
+                    break
+                good, step = good + step, 2 * step
+            while bad - good > 1:
+                mid = (good + bad) // 2
+                probes += 1
+                if passive(mid):
+                    good = mid
+                else:
+                    bad = mid
+            return good, probes
+
+        (found, probes), seconds = _median(search, repeat)
+        rows.append({"delay": n, "found": found, "probes": probes, "seconds": seconds, "correct": found == n})
+        log(f"  margin n = {n:<6d}: found {found} with {probes} exact probes in {seconds * 1e3:.1f} ms")
+    return {"rows": rows}
+
+
+# ---------------------------------------------------------------------------------------------
+# design-space maps
+# ---------------------------------------------------------------------------------------------
+
+
+def map_study(size: int = 316, delays: Sequence[int] = (0, 3, 10), workers: int = 2, dask: bool = True,
+              stability_size: int = 100, plot: str | Path | None = None,
+              log: Callable[[str], None] = lambda line: None) -> dict[str, Any]:
+    """Exact passivity maps of ``size x (size + 1)`` points (``K`` rows, ``b`` lines; HVE virtual
+    wall, ``T = 1 ms``, ``B = 0.001``) serially on one process, with ``workers`` local processes
+    and on a Dask ``LocalCluster`` (its start-up included), checking that the three give identical
+    values; and an exact stability map (``K`` lines over ``T``) of ``stability_size^2`` points."""
+    from hapticproof import designmap as dm
+
+    rows = []
+    first = None
+    for n in delays:
+        spec = dm.MapSpec.build("passivity", f"b=0.0005:0.05:{size + 1}", f"K=0.1:20:{size}",
+                                {"T": "0.001", "B": "0.001", "delay": n})
+        modes = [("serial", {}), (f"{workers} processes", {"workers": workers})]
+        if dask:
+            modes.append((f"dask LocalCluster ({workers} workers)", {"scheduler": "dask", "workers": workers}))
+        reference = None
+        for mode, kwargs in modes:
+            if mode.startswith("dask") and _missing("distributed"):
+                continue
+            result = dm.compute(spec, **kwargs)
+            same = reference is None or bool((result.values == reference).all())
+            reference = result.values if reference is None else reference
+            rows.append({"quantity": "passivity", "delay": n, "points": spec.points, "mode": mode,
+                         "seconds": result.seconds, "points_per_second": spec.points / result.seconds,
+                         "identical_to_serial": same, **result.counts})
+            log(f"  passivity n={n:<3d} {spec.points} points, {mode:28s}: {result.seconds:6.2f} s "
+                f"({spec.points / result.seconds:9.0f} points/s){'' if same else ' DIFFERENT VALUES'}")
+            if first is None:
+                first = result
+    spec = dm.MapSpec.build("stability", f"T=0.0005:0.004:{stability_size}", f"K=1:80:{stability_size}",
+                            {"m": "0.015", "b": "0.02", "B": "0.002", "delay": 2})
+    result = dm.compute(spec)
+    rows.append({"quantity": "stability", "delay": 2, "points": spec.points, "mode": "serial",
+                 "seconds": result.seconds, "points_per_second": spec.points / result.seconds,
+                 "identical_to_serial": True, **result.counts})
+    log(f"  stability n=2 {spec.points} points, serial: {result.seconds:.2f} s; {result.counts}")
+    if plot is not None and first is not None:
+        dm.plot_map(first, plot)
+        dm.plot_map(result, Path(plot).with_name("map_stability.png"))
+    return {"rows": rows}
+
+
+def _missing(module: str) -> bool:
+    import importlib.util
+
+    return importlib.util.find_spec(module) is None

@@ -482,8 +482,8 @@ def _run(form: CircleForm, mode: str, tol: flint.fmpq | None, budget: int) -> Tr
         while queue:
             a, b, depth = queue.popleft()
             count += 1
-            if count > budget or depth > 64:
-                return TrigDecision(None, reason=f"not decided within {budget} pieces (a zero touching 0 inside?)",
+            if count > budget or depth > 48:
+                return TrigDecision(None, reason=f"not decided ({count} pieces, depth {depth}): a zero touching 0 inside?",
                                     lower=lower, upper=upper)
             target = flint.fmpq(0) if mode == "sign" else upper - tol
             env = form.envelope(_piece_ball(a, b))
