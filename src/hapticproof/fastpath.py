@@ -420,7 +420,7 @@ def _small_sign(p: flint.fmpq_poly, max_depth: int = 96) -> tuple[str, Any] | No
     return "proved", tuple(x for x in (lo, hi) if ends[x] == 0)
 
 
-def _negative_circle_point(x: flint.fmpq, negative, is_pole) -> dict[str, Any] | None:
+def _negative_circle_point(x: flint.fmpq, negative, is_pole, p: flint.fmpq_poly | None = None) -> dict[str, Any] | None:
     """A rational point of the circle near ``c = x`` where ``negative(c)`` holds (exactly):
     ``z0 = ((1 - t^2) + 2jt)/(1 + t^2)`` for simple rationals ``t`` approaching
     ``tan(theta/2) = sqrt((1 - x)/(1 + x))``."""
@@ -431,15 +431,20 @@ def _negative_circle_point(x: flint.fmpq, negative, is_pole) -> dict[str, Any] |
         witness = {"c": xf, "z": [xf, Fraction(0)], "omega_T": "0" if xf == 1 else "pi"}
         if not is_pole(witness):
             return witness
+    value = p(x) if p is not None else None
+    slope = p.derivative()(x) if p is not None else None
 
     def candidates():
-        if xf == 1:
-            for k in range(1, 400):
-                yield Fraction(1, 2**k)
-            return
-        if xf == -1:
-            for k in range(1, 400):
-                yield Fraction(2**k)
+        if xf in (-1, 1):
+            # c = (1 - t^2)/(1 + t^2): 1 - c ~ 2 t^2 (t -> 0), 1 + c ~ 2/t^2 (t -> oo); start where
+            # the linear estimate |p(x)/p'(x)| of the negative stretch puts it, then go closer
+            start = 1
+            if slope is not None and slope != 0:
+                width = abs(float(value / slope))
+                if width > 0:
+                    start = max(1, int(-math.log2(math.sqrt(width / 2))) if width < 2 else 1)
+            for k in range(start, 400):
+                yield Fraction(1, 2**k) if xf == 1 else Fraction(2**k)
             return
         t0 = math.sqrt((1 - float(xf)) / (1 + float(xf)))
         for bits in (4, 8, 12, 16, 24, 32, 48, 62):
@@ -485,7 +490,7 @@ def _monomial_outcome(N: flint.fmpq_poly, D: flint.fmpq_poly, P: flint.fmpq_poly
         cert = SignCertificate(p, lo, hi, "c", True, (lo, (lo + hi) / 2, hi), roots, **kwargs)
         return _sign_outcome(cert, None, f"{label}(c)")
     if verdict is not None and verdict[0] == "negative":
-        witness = _negative_circle_point(verdict[1], lambda c: p(c) < 0, _pole_test(Q))
+        witness = _negative_circle_point(verdict[1], lambda c: p(c) < 0, _pole_test(Q), p)
         if witness is not None:
             value = flint.fmpq(witness["c"].numerator, witness["c"].denominator)
             cert = SignCertificate(p, lo, hi, "c", False, witness=value, witness_point=witness["z"], **kwargs)

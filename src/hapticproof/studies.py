@@ -363,14 +363,31 @@ def map_study(size: int = 316, delays: Sequence[int] = (0, 3, 10), workers: int 
         for mode, kwargs in modes:
             if mode.startswith("dask") and _missing("distributed"):
                 continue
-            result = dm.compute(spec, **kwargs)
+            startup = 0.0
+            client = None
+            if "scheduler" in kwargs:        # the cluster's start-up reported apart from the map
+                from hapticproof.scaleout import dask_client
+
+                start = time.perf_counter()
+                client = dask_client("dask", workers)
+                client.run(lambda: __import__("hapticproof.designmap"))
+                startup = time.perf_counter() - start
+                kwargs = {"client": client}
+            try:
+                result = dm.compute(spec, **kwargs)
+            finally:
+                if client is not None:
+                    cluster = client.cluster
+                    client.close()
+                    cluster.close()
             same = reference is None or bool((result.values == reference).all())
             reference = result.values if reference is None else reference
             rows.append({"quantity": "passivity", "delay": n, "points": spec.points, "mode": mode,
                          "seconds": result.seconds, "points_per_second": spec.points / result.seconds,
-                         "identical_to_serial": same, **result.counts})
+                         "startup_seconds": startup, "identical_to_serial": same, **result.counts})
             log(f"  passivity n={n:<3d} {spec.points} points, {mode:28s}: {result.seconds:6.2f} s "
-                f"({spec.points / result.seconds:9.0f} points/s){'' if same else ' DIFFERENT VALUES'}")
+                f"({spec.points / result.seconds:9.0f} points/s)"
+                + (f" + cluster start-up {startup:.1f} s" if startup else "") + ("" if same else " DIFFERENT VALUES"))
             if first is None:
                 first = result
     spec = dm.MapSpec.build("stability", f"T=0.0005:0.004:{stability_size}", f"K=1:80:{stability_size}",
