@@ -23,7 +23,7 @@ def pointwise(spec: dm.MapSpec) -> np.ndarray:
         for j, x in enumerate(spec.x.values):
             params = dict(spec.fixed, **{spec.x.name: x, spec.y.name: y})
             if spec.quantity == "passivity":
-                out[i, j] = dm._passive(dm._wall(params, spec.approximation))
+                out[i, j] = dm._passive(dm._modes(params, spec.approximation))
             else:
                 out[i, j] = dm._stability_point(params)
     return out
@@ -40,6 +40,20 @@ def test_passivity_lines_equal_pointwise_decisions(x, y, fixed, approximation):
     result = dm.compute(spec)
     assert (result.values == pointwise(spec)).all()
     assert result.counts["undecided"] == 0 and 0 < result.counts["passive"] < spec.points
+
+
+def test_users_map_equals_the_m_user_decision():
+    from hapticproof.multiuser import MultiUserScene, positive_real
+
+    spec = dm.MapSpec.build("passivity", "K=0.5:20:5", "users=1:4:4",
+                            {"b": "0.05", "T": "0.001", "B": "0.001", "delay": 2, "K0": 1, "B0": "0.0005"})
+    result = dm.compute(spec)
+    for i, m in enumerate(spec.y.values):
+        for j, K in enumerate(spec.x.values):
+            scene = MultiUserScene.uniform(int(m), b=Fraction(5, 100), K0=1, B0=Fraction(5, 10000), K=K,
+                                           B=Fraction(1, 1000), T=Fraction(1, 1000), delay=2)
+            assert result.values[i, j] == (positive_real(scene).decision.value == "proved")
+    assert 0 < result.counts["passive"] < spec.points
 
 
 def test_stability_lines_equal_pointwise_certified_radii():
@@ -77,7 +91,8 @@ def test_exact_grid_values_and_user_mistakes():
                          (("passivity", "b=1:2:3", "K=1:2:2", {}), "needs --param T=..."),
                          (("passivity", "b=1:2", "K=1:2:2", {"T": 1}), "start:stop:count"),
                          (("stability", "K=1:2:2", "T=0:1:2", {"m": 1, "b": 1}), "T must be positive"),
-                         (("passivity", "b=1:2:3", "delay=0:1.5:2", {"T": 1, "K": 1}), "non-negative integer")):
+                         (("passivity", "b=1:2:3", "delay=0:1.5:2", {"T": 1, "K": 1}), "non-negative integer"),
+                         (("passivity", "b=1:2:3", "K=1:2:2", {"T": 1, "K0": 1}), "K0 and B0")):
         with pytest.raises(InputFormatError, match=message):
             dm.MapSpec.build(*bad)
 

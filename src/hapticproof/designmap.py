@@ -14,6 +14,11 @@ models have (HVE paper, eqs. 21-27; Gil et al. 2004):
   half-lines), and the poles (``0`` and ``1``, ``Res = KT > 0``) do not move: exact decisions
   at both ends and a binary search of the line's sorted values classify every point with
   ``O(log m)`` decisions.
+* **m users** (``users``, with ground ``K0``, ``B0`` and couplings ``K``, ``B`` between every
+  pair, HVE Section 3.2) -- the uniform complete-graph HVE decouples into the walls
+  ``K0 + lambda K``, ``B0 + lambda B`` with ``lambda`` in ``{0, m}``
+  (:func:`hapticproof.multiuser.uniform_modes`): passive iff both are, and the line tricks apply
+  to each (an intersection of intervals is an interval).
 * **stability along K** -- the loop's characteristic polynomial is affine in ``beta = KT^2/m``;
   the stiffnesses where a root crosses the unit circle are isolated with certified balls and
   stability in each gap between them is certified once (:mod:`hapticproof.boundary`), which
@@ -27,7 +32,7 @@ every mode.
 
 >>> spec = MapSpec.build("passivity", "b=0.001:0.003:3", "K=1:3:3", {"T": "0.001", "B": 0})
 >>> compute(spec).values.tolist()          # b >= KT/2 (n = 0, B = 0); K in rows
-[[1, 1, 1], [0, 1, 1], [0, 1, 1]]
+[[1, 1, 1], [1, 1, 1], [0, 1, 1]]
 """
 
 from __future__ import annotations
@@ -51,10 +56,13 @@ __all__ = ["QUANTITIES", "PARAMETERS", "Axis", "MapSpec", "MapResult", "map_chun
 QUANTITIES = ("passivity", "stability")
 #: Parameter names per quantity (passivity: HVE discrete model; stability: the sampled loop of
 #: the device with mass m on the delayed virtual wall).
-PARAMETERS = {"passivity": ("K", "B", "b", "T", "z_a", "delay"), "stability": ("m", "b", "T", "K", "B", "delay")}
+PARAMETERS = {"passivity": ("K", "B", "b", "T", "z_a", "delay", "users", "K0", "B0"),
+              "stability": ("m", "b", "T", "K", "B", "delay")}
 DEFAULTS = {"passivity": {"B": 0, "z_a": 0, "delay": 0}, "stability": {"B": 0, "delay": 0}}
+#: Parameters that only the m-user model has (with ``users``: K, B couple every pair of users).
+MULTI_USER = ("users", "K0", "B0")
 #: Line axes in order of preference (the cheapest structure first).
-LINE_AXES = {"passivity": ("b", "z_a", "K", "B", "T"), "stability": ("K",)}
+LINE_AXES = {"passivity": ("b", "z_a", "K", "B", "T", "K0", "B0"), "stability": ("K",)}
 
 
 def _exact(text: Any, name: str) -> Fraction:
@@ -131,6 +139,15 @@ class MapSpec:
         for name in list(values) + [x.name, y.name]:
             if name not in names:
                 raise InputFormatError(f"unknown parameter {name!r} for a {quantity} map (known: {', '.join(names)})")
+        given = set(values) | {x.name, y.name}
+        if quantity == "passivity":
+            if given & {"K0", "B0"} and "users" not in given:
+                raise InputFormatError("K0 and B0 (ground coupling) need users (the m-user HVE)")
+            if "users" in given:
+                values.setdefault("K0", Fraction(0))
+                values.setdefault("B0", Fraction(0))
+            else:
+                names = tuple(n for n in names if n not in MULTI_USER)
         missing = [n for n in names if n not in values and n not in (x.name, y.name)]
         if missing:
             raise InputFormatError(f"a {quantity} map needs --param {', '.join(f'{m}=...' for m in missing)}")
@@ -153,6 +170,8 @@ class MapSpec:
     def _check(name: str, v: Fraction) -> None:
         if name == "delay" and (v.denominator != 1 or v < 0):
             raise InputFormatError(f"delay must be a non-negative integer, got {v}")
+        if name == "users" and (v.denominator != 1 or v < 1):
+            raise InputFormatError(f"users must be a positive integer, got {v}")
         if name in ("T", "m", "K") and v <= 0:
             raise InputFormatError(f"{name} must be positive, got {v}")
         if name in ("b", "B", "z_a") and v < 0:
@@ -197,12 +216,27 @@ def _wall(params: Mapping[str, Fraction], approximation: str, **override: Any):
                                      delay=int(p["delay"]), z_a=p.get("z_a", 0))
 
 
-def _passive(scene) -> int:
+def _modes(params: Mapping[str, Fraction], approximation: str, **override: Any) -> list:
+    """The single-user walls whose passivity is the scene's: the wall itself, or for ``users = m``
+    the uniform complete-graph m-user HVE's decoupled modes ``K0 + lambda K``, ``B0 + lambda B``
+    with ``lambda`` in ``{0, m}`` (:func:`hapticproof.multiuser.uniform_modes`)."""
+    p = dict(params, **override)
+    if "users" not in p:
+        return [_wall(p, approximation)]
+    m = int(p["users"])
+    return [_wall(dict(p, K=p["K0"] + lam * p["K"], B=p["B0"] + lam * p["B"]), approximation)
+            for lam in ((0, m) if m > 1 else (0,))]
+
+
+def _passive(scenes) -> int:
     from hapticproof.evidence import Decision
     from hapticproof.fastpath import decide
 
-    d = decide(scene, minimum=False).decision
-    return 1 if d == Decision.PROVED else 0 if d == Decision.DISPROVED else -1
+    verdicts = []
+    for scene in scenes if isinstance(scenes, list) else [scenes]:
+        d = decide(scene, minimum=False).decision
+        verdicts.append(1 if d == Decision.PROVED else 0 if d == Decision.DISPROVED else -1)
+    return 0 if 0 in verdicts else -1 if -1 in verdicts else 1
 
 
 def _passivity_damping_line(name: str, values: tuple[Fraction, ...], params: dict, approximation: str) -> np.ndarray:
@@ -211,12 +245,13 @@ def _passivity_damping_line(name: str, values: tuple[Fraction, ...], params: dic
     from hapticproof.fastpath import critical_damping, hermitian_outcome, transfer
     from hapticproof.positivereal import pole_conditions
 
-    base = _wall(params, approximation, **{name: values[0]})
-    poles_ok = all(c.decision == Decision.PROVED for c in pole_conditions(*transfer(base)))
+    bases = _modes(params, approximation, **{name: values[0]})
+    poles_ok = all(c.decision == Decision.PROVED for base in bases for c in pole_conditions(*transfer(base)))
     out = np.zeros(len(values), dtype=np.int8)
     if not poles_ok:
         return out
-    lo, hi = critical_damping(base)
+    bounds = [critical_damping(base) for base in bases]      # passive iff b - z_a >= every beta
+    lo, hi = max(b[0] for b in bounds), max(b[1] for b in bounds)
     # a = b - z_a is monotone along the line: passive iff a >= beta, beta in [lo, hi]
     if name == "b":
         passive_from, failing_below = hi + params.get("z_a", 0), lo + params.get("z_a", 0)
@@ -237,8 +272,8 @@ def _passivity_damping_line(name: str, values: tuple[Fraction, ...], params: dic
             if a < lo:
                 continue
         # inside the certified enclosure of beta: decide this point exactly
-        d = hermitian_outcome(_wall(params, approximation, **{name: v}), minimum=False).decision
-        out[i] = 1 if d == Decision.PROVED else 0 if d == Decision.DISPROVED else -1
+        ds = [hermitian_outcome(w, minimum=False).decision for w in _modes(params, approximation, **{name: v})]
+        out[i] = 0 if Decision.DISPROVED in ds else 1 if all(d == Decision.PROVED for d in ds) else -1
     return out
 
 
@@ -289,9 +324,9 @@ def _convex_line(values: tuple[Fraction, ...], verdict: Callable[[int], int]) ->
 def _passivity_line(name: str, values: tuple[Fraction, ...], params: dict, approximation: str) -> np.ndarray:
     if name in ("b", "z_a"):
         return _passivity_damping_line(name, values, params, approximation)
-    if name in ("K", "B", "T"):
-        return _convex_line(values, lambda i: _passive(_wall(params, approximation, **{name: values[i]})))
-    return np.array([_passive(_wall(params, approximation, **{name: v})) for v in values], dtype=np.int8)
+    if name in ("K", "B", "T", "K0", "B0"):
+        return _convex_line(values, lambda i: _passive(_modes(params, approximation, **{name: values[i]})))
+    return np.array([_passive(_modes(params, approximation, **{name: v})) for v in values], dtype=np.int8)
 
 
 # ---------------------------------------------------------------------------------------------
