@@ -209,13 +209,15 @@ def plot_peers(data: dict[str, Any], path: str | Path) -> None:
     FigureCanvasAgg(fig)
     ax = fig.add_subplot(111)
     xs = range(len(rows))
+    labelled = False
     for i, name in enumerate(names):
         ys = [r[name]["seconds"] * 1e3 for r in rows]
         ax.semilogy(xs, ys, "o*s"[i % 3] + "-", label=name, alpha=0.8)
         bad = [(x, y) for x, y, r in zip(xs, ys, rows) if r[name]["wrong"]]
         if bad:
             ax.plot([x for x, _ in bad], [y for _, y in bad], "rx", ms=10, mew=2,
-                    label="wrong verdict" if i == len(names) - 1 or name != "hapticproof" else None)
+                    label=None if labelled else "wrong verdict")
+            labelled = True
     ax.set_xticks(list(xs))
     ax.set_xticklabels([f"n={r['delay']} {'+' if r['side'] == 'above' else '-'}{r['rel']:.0e}" for r in rows],
                        rotation=60, fontsize=7)
