@@ -43,7 +43,11 @@ COST_HINTS: dict[tuple[str, str], float] = {
 
 
 def default_jobs() -> int:
-    """The machine's cores available to this process (``hapticproof audit --jobs`` default)."""
+    """The machine's cores available to this process (``hapticproof audit --jobs`` default).
+
+    >>> default_jobs() >= 1
+    True
+    """
     try:
         return len(os.sched_getaffinity(0))
     except AttributeError:  # pragma: no cover - not Linux

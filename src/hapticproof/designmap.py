@@ -48,7 +48,7 @@ from typing import Any
 
 import numpy as np
 
-from hapticproof.errors import InputFormatError, SceneError
+from hapticproof.errors import InputFormatError
 
 __all__ = ["QUANTITIES", "PARAMETERS", "Axis", "MapSpec", "MapResult", "map_chunk", "compute", "stream",
            "line_values", "write_map", "plot_map"]
@@ -124,6 +124,12 @@ class MapSpec:
     @classmethod
     def build(cls, quantity: str, x: str | Axis, y: str | Axis, fixed: Mapping[str, Any] | None = None,
               approximation: str = "forward") -> MapSpec:
+        """Validated spec: axes ``NAME=start:stop:count``, fixed parameters by name.
+
+        >>> spec = MapSpec.build("passivity", "b=0.001:0.01:10", "K=1:2:3", {"T": "0.001"})
+        >>> spec.points, spec.line_axis, dict(spec.fixed)["B"]
+        (30, 'x', Fraction(0, 1))
+        """
         if quantity not in QUANTITIES:
             raise InputFormatError(f"unknown map {quantity!r}; choose one of {', '.join(QUANTITIES)}")
         x = Axis.parse(x) if isinstance(x, str) else x
@@ -441,7 +447,12 @@ def line_values(spec: MapSpec, index: int) -> np.ndarray:
 
 
 def map_chunk(task: tuple[MapSpec, tuple[int, ...]]) -> list[tuple[int, np.ndarray]]:
-    """The one chunk function of serial, process and Dask runs: the lines of a chunk."""
+    """The one chunk function of serial, process and Dask runs: the lines of a chunk.
+
+    >>> spec = MapSpec.build("passivity", "b=0.001:0.003:3", "K=1:3:3", {"T": "0.001"})
+    >>> [(i, v.tolist()) for i, v in map_chunk((spec, (2,)))]          # K = 3: b >= 0.0015
+    [(2, [0, 1, 1])]
+    """
     spec, indices = task
     return [(i, line_values(spec, i)) for i in indices]
 
@@ -574,7 +585,14 @@ class _Writer:
 
 
 def write_map(result: MapResult, path: str | Path | None = None) -> str:
-    """The map as CSV text in line order (also written to ``path``)."""
+    """The map as CSV text in line order (also written to ``path``).
+
+    >>> spec = MapSpec.build("passivity", "b=0.001,0.002", "K=3", {"T": "0.001"})
+    >>> print(write_map(compute(spec)), end="")
+    b,K,passive
+    0.001,3,0
+    0.002,3,1
+    """
     buf = io.StringIO()
     writer = csv.writer(buf, lineterminator="\n")
     spec = result.spec

@@ -281,7 +281,11 @@ def transfer(scene: NumericScene) -> tuple[flint.fmpq_poly, flint.fmpq_poly]:
 
 
 def path_transfer(scene: NumericScene) -> tuple[flint.fmpq_poly, flint.fmpq_poly]:
-    """``z^{-n} H X_h/V_h`` alone (``b = z_a``) as coprime ``P/Q``, ``Q`` monic."""
+    """``z^{-n} H X_h/V_h`` alone (``b = z_a``) as coprime ``P/Q``, ``Q`` monic.
+
+    >>> path_transfer(NumericScene.virtual_wall(K=2, B=0, b=1, T=1, delay=1))   # 2/(z(z - 1))
+    (2, x^2 + (-1)*x)
+    """
     pe, qe = path_polynomials(scene)
     if pe.is_zero():
         return pe, flint.fmpq_poly([1])
@@ -293,7 +297,12 @@ def path_transfer(scene: NumericScene) -> tuple[flint.fmpq_poly, flint.fmpq_poly
 
 def circle_form(scene: NumericScene, a: Any = None) -> trigpoly.CircleForm:
     """``Re G^{-1}(e^{j theta})`` in closed form (:class:`hapticproof.trigpoly.CircleForm`);
-    ``a`` replaces ``b - z_a`` (``a = 0``: the path alone, for boundaries)."""
+    ``a`` replaces ``b - z_a`` (``a = 0``: the path alone, for boundaries).
+
+    >>> form = circle_form(NumericScene.virtual_wall(K=2, B=0, b=1, T="0.001", delay=3))
+    >>> form.b                     # Chebyshev coefficients: b - KT/2 - KT (T_1 + T_2 + T_3)
+    [999/1000, -1/500, -1/500, -1/500]
+    """
     pe, qe = path_polynomials(scene)
     a = _fq(scene.b - scene.z_a) if a is None else flint.fmpq(a) if not isinstance(a, flint.fmpq) else a
     return trigpoly.CircleForm(a, scene.delay, pe, qe)
@@ -624,7 +633,11 @@ def _cover_summary(d: trigpoly.TrigDecision) -> dict[str, Any]:
 
 def conditions(scene: NumericScene, *, minimum: bool = True) -> list[Condition]:
     """The four conditions of Definition 2 (HVE paper) for ``G^{-1}``, as
-    :func:`hapticproof.positivereal.conditions` gives them for a numeric scene."""
+    :func:`hapticproof.positivereal.conditions` gives them for a numeric scene.
+
+    >>> [c.decision.value for c in conditions(NumericScene.virtual_wall(K=2, B=0, b="0.0009", T="0.001"))]
+    ['proved', 'proved', 'proved', 'disproved']
+    """
     P, Q = transfer(scene)
     return pole_conditions(P, Q) + [Condition(HERMITIAN, hermitian_outcome(scene, minimum=minimum, polynomials=(P, Q)))]
 

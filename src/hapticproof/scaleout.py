@@ -30,7 +30,11 @@ __all__ = ["ordered_map", "ProgressBar", "default_workers", "dask_client"]
 
 
 def default_workers() -> int:
-    """The machine's cores available to this process."""
+    """The machine's cores available to this process.
+
+    >>> default_workers() >= 1
+    True
+    """
     try:
         return len(os.sched_getaffinity(0))
     except AttributeError:  # pragma: no cover - not Linux

@@ -44,9 +44,11 @@ def _median(func: Callable[[], Any], repeat: int) -> tuple[Any, float]:
 
 def peer_available() -> str | None:
     """``None`` when python-control and cvxopt import, else the reason (for the skip note)."""
+    import importlib
+
     try:
-        import control  # noqa: F401
-        import cvxopt  # noqa: F401
+        for name in ("control", "cvxopt"):
+            importlib.import_module(name)
     except ImportError as err:
         return f"python-control/cvxopt not installed ({err.name}); pip install 'hapticproof[bench]'"
     return None

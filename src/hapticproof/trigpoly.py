@@ -52,7 +52,7 @@ import flint
 
 from hapticproof.realroots import flint_precision, real_roots
 
-__all__ = ["CircleForm", "TrigDecision", "decide", "minimum", "chebyshev_to_monomial", "circle_witness"]
+__all__ = ["CircleForm", "TrigDecision", "decide", "minimum", "chebyshev_to_monomial", "PI_HI"]
 
 def _pi_upper() -> flint.fmpq:
     """A dyadic rational just above pi (pieces may reach past pi: f is symmetric about pi)."""
