@@ -3,9 +3,10 @@
 :func:`audit_reports` audits several papers with ``jobs`` worker processes and returns the
 :class:`~hapticproof.audit.AuditReport` objects the serial run gives, in paper order; every output
 format renders them identically. The parent imports and registers every paper first, so the
-workers (forked) start warm; equations are handed out one at a time, costliest first when a
+workers (forked) start warm; equations are handed out in small chunks, costliest first when a
 previous run's timings are known (:data:`COST_HINTS`), so that the long derivations do not end
-up last on one core. A worker returns each result with its evidence as plain data (the evidence's
+up last on one core, and neighbouring equations of a section travel together (they often share
+cached derivations, which one worker then computes once). A worker returns each result with its evidence as plain data (the evidence's
 own JSON, which every view renders the same way), because certificates hold flint objects that do
 not pickle. A check's exception propagates, as in the serial run.
 
@@ -30,7 +31,10 @@ from dataclasses import replace
 from hapticproof.audit import AuditReport, EquationResult, Paper, audit_paper, run_equation
 from hapticproof.evidence import Evidence
 
-__all__ = ["audit_reports", "default_jobs", "COST_HINTS"]
+__all__ = ["audit_reports", "default_jobs", "COST_HINTS", "CHUNK"]
+
+#: At most this many consecutive equations of one section per task.
+CHUNK = 4
 
 #: Seconds of the slowest derivations in a previous full run (one core): handed out first.
 #: Only the order depends on it; unknown equations count as cheap.
@@ -65,9 +69,30 @@ def _plain(result: EquationResult) -> EquationResult:
     return replace(result, evidence=evidence)
 
 
-def _run(task: tuple[str, str]) -> EquationResult:
+def _run(task: tuple[str, tuple[str, ...]]) -> list[EquationResult]:
     paper = _PAPERS[task[0]]
-    return _plain(run_equation(paper, paper.get(task[1])))
+    return [_plain(run_equation(paper, paper.get(i))) for i in task[1]]
+
+
+def _chunks(papers: Sequence[Paper], selected: Mapping[str, list], size: int) -> list[tuple[str, tuple[str, ...]]]:
+    """Consecutive equations of one section, at most ``size`` per task (neighbours often share
+    cached derivations, which a worker then computes once); the costliest alone."""
+    out: list[tuple[str, tuple[str, ...]]] = []
+    for p in papers:
+        run: list[str] = []
+        section = None
+        for eq in selected[p.id]:
+            if run and (eq.section != section or len(run) >= size or (p.id, eq.id) in COST_HINTS):
+                out.append((p.id, tuple(run)))
+                run = []
+            run.append(eq.id)
+            section = eq.section
+            if (p.id, eq.id) in COST_HINTS:
+                out.append((p.id, tuple(run)))
+                run = []
+        if run:
+            out.append((p.id, tuple(run)))
+    return out
 
 
 def audit_reports(papers: Sequence[Paper], only: Mapping[str, Sequence[str]] | None = None,
@@ -76,17 +101,21 @@ def audit_reports(papers: Sequence[Paper], only: Mapping[str, Sequence[str]] | N
     jobs = default_jobs() if jobs is None else max(1, int(jobs))
     only = only or {}
     selected = {p.id: ([p.get(i) for i in only[p.id]] if only.get(p.id) else p.ordered()) for p in papers}
-    tasks = [(p.id, eq.id) for p in papers for eq in selected[p.id]]
+    tasks = _chunks(papers, selected, CHUNK)
     if jobs <= 1 or len(tasks) <= 1 or "fork" not in multiprocessing.get_all_start_methods():
         return [audit_paper(p, only.get(p.id) or None) for p in papers]
     _PAPERS.clear()
     _PAPERS.update({p.id: p for p in papers})
-    order = sorted(range(len(tasks)), key=lambda i: -COST_HINTS.get(tasks[i], 0.0))
+
+    def cost(task: tuple[str, tuple[str, ...]]) -> float:
+        return sum(COST_HINTS.get((task[0], i), 0.05) for i in task[1])
+
     results: dict[tuple[str, str], EquationResult] = {}
     context = multiprocessing.get_context("fork")
     with concurrent.futures.ProcessPoolExecutor(max_workers=min(jobs, len(tasks)), mp_context=context) as pool:
-        futures = {pool.submit(_run, tasks[i]): tasks[i] for i in order}
+        futures = {pool.submit(_run, task): task for task in sorted(tasks, key=cost, reverse=True)}
         for future in concurrent.futures.as_completed(futures):
-            results[futures[future]] = future.result()
+            for result in future.result():
+                results[(futures[future][0], result.id)] = result
     return [AuditReport(p.id, p.title, tuple(results[(p.id, eq.id)] for eq in selected[p.id])) for p in papers]
 
