@@ -39,3 +39,22 @@ def test_export_from_a_saved_audit(tmp_path, capsys):
     assert main(["export", "hve", "--from-audit", str(saved)]) == 2
     assert "no audit of hve" in capsys.readouterr().err
     assert main(["audit", "classics", "--jobs", "0"]) == 2
+
+
+def test_a_check_that_raises_raises_in_the_parent():
+    import pytest
+
+    from hapticproof.audit import Evidence, Finding, Paper, Verdict
+
+    paper = Paper("demo-errors", title="Demo", source="none")
+
+    @paper.equation("1", kind="claim", printed="fine")
+    def fine(ctx):
+        return Finding(Verdict.CONFIRMED, "fine", Evidence("canonical-form"))
+
+    @paper.equation("2", kind="claim", printed="a bug")
+    def bug(ctx):
+        raise ZeroDivisionError("a bug in a check")
+
+    with pytest.raises(ZeroDivisionError, match="a bug in a check"):
+        audit_reports([paper], jobs=2)

@@ -3,11 +3,12 @@
 :func:`audit_reports` audits several papers with ``jobs`` worker processes and returns the
 :class:`~hapticproof.audit.AuditReport` objects the serial run gives, in paper order; every output
 format renders them identically. The parent imports and registers every paper first, so the
-workers (forked) start warm; equations are handed out in small chunks, costliest first when a
-previous run's timings are known (:data:`COST_HINTS`), so that the long derivations do not end
-up last on one core, and neighbouring equations of a section travel together (they often share
-cached derivations, which one worker then computes once). A worker returns each result with its evidence as plain data (the evidence's
-own JSON, which every view renders the same way), because certificates hold flint objects that do
+workers (forked) start warm. Equations travel in small chunks of neighbours of one section; each
+worker keeps to one paper while it has work (a paper's equations share cached derivations, which
+one worker then computes once) and takes its costliest chunks first (:data:`COST_HINTS`, a
+previous run's slowest derivations), so that the long ones do not end up last on one core. A
+worker returns each result with its evidence as plain data (the evidence's own JSON, which every
+view renders the same way), because certificates hold flint objects that do
 not pickle. A check's exception propagates, as in the serial run.
 
 ``jobs=1`` is the serial run itself (:func:`hapticproof.audit.audit_paper`).
@@ -23,11 +24,12 @@ not pickle. A check's exception propagates, as in the serial run.
 
 from __future__ import annotations
 
-import concurrent.futures
 import multiprocessing
+import multiprocessing.connection
 import os
 from collections.abc import Mapping, Sequence
 from dataclasses import replace
+from typing import Any
 from hapticproof.audit import AuditReport, EquationResult, Paper, audit_paper, run_equation
 from hapticproof.evidence import Evidence
 
@@ -35,6 +37,8 @@ __all__ = ["audit_reports", "default_jobs", "COST_HINTS", "CHUNK"]
 
 #: At most this many consecutive equations of one section per task.
 CHUNK = 4
+#: Assumed seconds of an equation without a hint (only the order depends on it).
+DEFAULT_COST = 0.08
 
 #: Seconds of the slowest derivations in a previous full run (one core): handed out first.
 #: Only the order depends on it; unknown equations count as cheap.
@@ -95,6 +99,54 @@ def _chunks(papers: Sequence[Paper], selected: Mapping[str, list], size: int) ->
     return out
 
 
+def _worker(conn: Any) -> None:
+    """A forked worker: run the chunks it is sent until ``None``; an exception goes back to the
+    parent (which raises it, as the serial run would)."""
+    while True:
+        task = conn.recv()
+        if task is None:
+            conn.close()
+            return
+        try:
+            conn.send(("ok", _run(task)))
+        except BaseException as err:  # noqa: BLE001 - re-raised in the parent
+            import traceback
+
+            try:
+                conn.send(("error", err, traceback.format_exc()))
+            except Exception:  # noqa: BLE001 - an unpicklable exception: its text
+                conn.send(("error", RuntimeError(repr(err)), traceback.format_exc()))
+
+
+def _cost(task: tuple[str, tuple[str, ...]]) -> float:
+    return sum(COST_HINTS.get((task[0], i), DEFAULT_COST) for i in task[1])
+
+
+class _Queues:
+    """Chunks per paper, with paper affinity: a worker keeps to one paper (its cached
+    derivations stay warm) and, when that runs dry, takes the costliest chunk of the paper with
+    the most work left that no worker holds, else of the one with the most work left."""
+
+    def __init__(self, tasks: list[tuple[str, tuple[str, ...]]]):
+        self.papers: dict[str, list] = {}
+        for task in tasks:
+            self.papers.setdefault(task[0], []).append(task)
+        for chunks in self.papers.values():
+            chunks.sort(key=_cost)          # the costliest last: pop() takes it first
+
+    def left(self, paper: str) -> float:
+        return sum(_cost(t) for t in self.papers.get(paper, []))
+
+    def next(self, home: str | None, held: set[str]) -> tuple[str, tuple[str, ...]] | None:
+        if home is None or not self.papers.get(home):
+            free = [p for p, chunks in self.papers.items() if chunks and p not in held]
+            pool = free or [p for p, chunks in self.papers.items() if chunks]
+            if not pool:
+                return None
+            home = max(pool, key=self.left)
+        return self.papers[home].pop()
+
+
 def audit_reports(papers: Sequence[Paper], only: Mapping[str, Sequence[str]] | None = None,
                   jobs: int | None = None) -> list[AuditReport]:
     """Audit ``papers`` (``only[paper.id]``: just those equation ids) with ``jobs`` processes."""
@@ -106,16 +158,54 @@ def audit_reports(papers: Sequence[Paper], only: Mapping[str, Sequence[str]] | N
         return [audit_paper(p, only.get(p.id) or None) for p in papers]
     _PAPERS.clear()
     _PAPERS.update({p.id: p for p in papers})
-
-    def cost(task: tuple[str, tuple[str, ...]]) -> float:
-        return sum(COST_HINTS.get((task[0], i), 0.05) for i in task[1])
-
-    results: dict[tuple[str, str], EquationResult] = {}
     context = multiprocessing.get_context("fork")
-    with concurrent.futures.ProcessPoolExecutor(max_workers=min(jobs, len(tasks)), mp_context=context) as pool:
-        futures = {pool.submit(_run, task): task for task in sorted(tasks, key=cost, reverse=True)}
-        for future in concurrent.futures.as_completed(futures):
-            for result in future.result():
-                results[(futures[future][0], result.id)] = result
+    queues = _Queues(tasks)
+    results: dict[tuple[str, str], EquationResult] = {}
+    workers = []
+    for _ in range(min(jobs, len(tasks))):
+        parent, child = context.Pipe()
+        process = context.Process(target=_worker, args=(child,), daemon=True)
+        process.start()
+        child.close()
+        workers.append([process, parent, None])          # process, pipe, paper in hand
+    try:
+        busy = 0
+        for worker in workers:
+            task = queues.next(None, {w[2] for w in workers if w[2]})
+            if task is None:
+                break
+            worker[2] = task[0]
+            worker[1].send(task)
+            busy += 1
+        by_pipe = {w[1]: w for w in workers}
+        while busy:
+            for pipe in multiprocessing.connection.wait([w[1] for w in workers if w[2] is not None]):
+                worker = by_pipe[pipe]
+                try:
+                    message = pipe.recv()
+                except EOFError:
+                    raise RuntimeError("an audit worker process died") from None
+                if message[0] == "error":
+                    raise message[1] from RuntimeError("in the audit worker:\n" + message[2])
+                paper = worker[2]
+                for result in message[1]:
+                    results[(paper, result.id)] = result
+                worker[2] = None
+                task = queues.next(paper, {w[2] for w in workers if w[2]})
+                if task is None:
+                    busy -= 1
+                    continue
+                worker[2] = task[0]
+                pipe.send(task)
+    finally:
+        for process, pipe, _ in workers:
+            try:
+                pipe.send(None)
+            except (BrokenPipeError, OSError):
+                pass
+        for process, pipe, _ in workers:
+            process.join(timeout=5)
+            if process.is_alive():
+                process.terminate()
+            pipe.close()
     return [AuditReport(p.id, p.title, tuple(results[(p.id, eq.id)] for eq in selected[p.id])) for p in papers]
-
