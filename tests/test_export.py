@@ -20,16 +20,17 @@ def test_document_structure(hve_document):
     assert hve_document.startswith("\\documentclass")
     assert "\\usepackage{amsmath" in hve_document
     assert hve_document.rstrip().endswith("\\end{document}")
-    # every defective printed equation appears with its correction
+    # every defective printed equation appears, labelled, with its correction
     report = audit_paper(get_paper("hve"))
-    for result in report.results:
-        if result.corrected:
-            assert result.corrected in hve_document
+    corrected = [r for r in report.results if r.corrected]
+    assert hve_document.count(r"\hplabel{Corrected}") == len(corrected) > 0
+    for result in corrected:
+        assert "{hve-eq-" + result.id + "}" in hve_document
 
 
 def test_unbalanced_printed_text_is_shown_verbatim():
     shown = safe_math(r"\frac{a}{b))}")
-    assert "\\ttfamily" in shown and "begin{equation" not in shown
+    assert "hpverbatim" in shown and "hpfit" not in shown
     assert escape_text("50% & $x$") == r"50\% \& \$x\$"
 
 
