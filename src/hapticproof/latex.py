@@ -51,6 +51,8 @@ __all__ = [
     "audit_document",
     "longtable",
     "scene_latex",
+    "derivation_document",
+    "derivation_fragment",
     "VERDICT_COLOURS",
 ]
 
@@ -255,7 +257,8 @@ def _depths(tokens: Sequence[str]) -> list[int]:
     return depths
 
 
-def _strip_tag(latex: str) -> tuple[str, str | None]:
+def strip_tag(latex: str) -> tuple[str, str | None]:
+    """``(latex without \\tag{...}, the tag or None)``."""
     match = re.search(r"\\tag\*?\{([^{}]*)\}", latex)
     if not match:
         return latex, None
@@ -295,7 +298,7 @@ def display_lines(latex: str) -> tuple[list[str], str | None]:
     >>> display_lines(r"b > B \tag{20}")
     (['b > B'], '20')
     """
-    latex, tag = _strip_tag(latex.strip())
+    latex, tag = strip_tag(latex.strip())
     lines: list[str] = []
 
     def walk(tokens: list[str]) -> None:
@@ -471,41 +474,41 @@ def _known_commands(latex: str) -> bool:
     return all(env in _INLINE_ENVIRONMENTS or env in _LINE_ENVIRONMENTS for env in envs)
 
 
-def _balanced(text: str) -> bool:
-    """Braces, parentheses and environments nest properly (escaped braces and
-    ``\\left``/``\\right`` delimiters ignored)."""
-    stripped = re.sub(r"\\(left|right|big|Big|bigg|Bigg)[lr]?[()\[\]|.]|\\[{}]", "", text)
-    for opening, closing in ("{}", "()"):
-        depth = 0
-        for ch in stripped:
-            depth += ch == opening
-            depth -= ch == closing
-            if depth < 0:
-                return False
-        if depth:
+def is_balanced(text: str) -> bool:
+    """Braces, environments and ``\\left``/``\\right`` pairs nest properly (escaped braces
+    ignored): what TeX needs. Unbalanced parentheses are printed as they are (an interval
+    ``[0, \\infty)``, or OCR damage the audit reports)."""
+    stripped = re.sub(r"\\[{}]", "", text)
+    depth = 0
+    for ch in stripped:
+        depth += ch == "{"
+        depth -= ch == "}"
+        if depth < 0:
             return False
+    if depth:
+        return False
     stack: list[str] = []
     for kind, name in re.findall(r"\\(begin|end)\{([A-Za-z*]+)\}", text):
         if kind == "begin":
             stack.append(name)
         elif not stack or stack.pop() != name:
             return False
-    return not stack and text.count(r"\left") == text.count(r"\right")
+    return not stack and len(re.findall(r"\\left\b", text)) == len(re.findall(r"\\right\b", text))
 
 
 def is_typesettable(latex: str | None) -> bool:
     r"""True when ``latex`` is structurally sound and uses only known commands (OCR-damaged
     printed text often is not; it is then shown verbatim).
 
-    >>> is_typesettable(r"\frac{a}{b}"), is_typesettable(r"\frac{a}{b))}"), is_typesettable(r"\foo x")
+    >>> is_typesettable(r"\frac{a}{b}"), is_typesettable(r"\frac{a}{b}}"), is_typesettable(r"\foo x")
     (True, False, False)
     """
     if not latex or not latex.strip():
         return False
-    body, _ = _strip_tag(latex)
+    body, _ = strip_tag(latex)
     if r"\tag" in body:
         return False
-    return _balanced(body) and _known_commands(body)
+    return is_balanced(body) and _known_commands(body)
 
 
 def safe_math(latex: str | None, fit: bool = True) -> str:
@@ -550,17 +553,34 @@ def witness_math(witness: Mapping[str, Any] | None) -> str:
 
     items = []
     for name, value in to_jsonable(dict(witness or {})).items():
-        items.append("$" + _name_math(name) + " = " + _value_math(value) + "$" if _value_math(value) is not None
-                     else "$" + _name_math(name) + "$ = " + escape_text(str(value)))
+        items.append("$" + name_math(name) + " = " + value_math(value) + "$" if value_math(value) is not None
+                     else "$" + name_math(name) + "$ = " + escape_text(str(value)))
     return ", ".join(items)
 
 
-def _name_math(name: str) -> str:
+def name_math(name: str) -> str:
+    """A witness name as LaTeX (``z_a`` -> ``z_{a}``, ``omega`` -> ``\\omega``)."""
     return _default_name(name) if re.fullmatch(r"[A-Za-z]+(_[A-Za-z0-9]+)?|[A-Za-z]\d+", name) else (
         r"\text{" + escape_text(name) + "}")
 
 
-def _value_math(value: Any) -> str | None:
+def value_math(value: Any) -> str | None:
+    r"""A witness value (JSON form) as LaTeX, or None when it is not a number, a vector or a
+    matrix of numbers.
+
+    >>> value_math("-3/4"), value_math([["1", "0"], ["0", "-1/2"]])
+    ('-\\tfrac{3}{4}', '\\begin{bmatrix}1 & 0\\\\0 & -\\tfrac{1}{2}\\end{bmatrix}')
+    """
+    if isinstance(value, list) and value:
+        if all(isinstance(row, list) and row for row in value):
+            rows = [[value_math(v) for v in row] for row in value]
+            if all(v is not None for row in rows for v in row):
+                return r"\begin{bmatrix}" + r"\\".join(" & ".join(row) for row in rows) + r"\end{bmatrix}"
+            return None
+        items = [value_math(v) for v in value]
+        return r"\left(" + ", ".join(items) + r"\right)" if all(v is not None for v in items) else None
+    if isinstance(value, dict) and "approx" in value:
+        return value_math(value["approx"])
     text = str(value)
     match = re.fullmatch(r"(-?)(\d+)/(\d+)", text)
     if match:
@@ -668,6 +688,36 @@ def math_cell(latex: str) -> str:
         return r"{\small\ttfamily " + escape_text(latex) + "}"
     lines, _ = display_lines(latex)
     return r"\hpcell{" + r"\allowbreak".join(_joined_pieces(line) for line in lines) + "}"
+
+
+def derivation_document(title: str, items: Sequence[tuple[str, str]], notes: Sequence[tuple[str, str]] = (),
+                        intro: str = "", sections: Sequence[tuple[str, str]] = ()) -> str:
+    r"""A complete document of derived displays: ``items`` are ``(label, LaTeX)``, each shown
+    labelled and breakable; ``notes`` are ``(label, plain text)`` (the decision); ``sections``
+    are further ``(heading, LaTeX body)``.
+
+    >>> doc = derivation_document("demo", [("condition", "b > 0")], [("verdict", "proved (b = 1 > 0)")])
+    >>> doc.startswith(r"\documentclass") and r"\hplabel{condition}" in doc and "$>$" in doc
+    True
+    """
+    body = [labelled(label, safe_math(latex)) for label, latex in items]
+    out: list[tuple[str, str]] = [("Derived conditions", "\n".join(body))] if body else []
+    out += list(sections)
+    if notes:
+        out.append(("Decision", "\n".join(r"\textbf{" + escape_text(label) + r":} " + escape_text(text) + r"\par"
+                                          for label, text in notes)))
+    return document(title, out, intro=intro)
+
+
+def derivation_fragment(items: Sequence[tuple[str, str]]) -> str:
+    r"""The displays of :func:`derivation_document` as plain amsmath displays, each after a
+    ``%`` comment with its label: to paste into a paper (needs only amsmath).
+
+    >>> print(derivation_fragment([("condition", "b > 0")]))
+    % condition
+    \begin{equation*}b > 0\end{equation*}
+    """
+    return "\n".join("% " + " ".join(label.split()) + "\n" + display(latex) for label, latex in items)
 
 
 # --------------------------------------------------------------------------------------------
