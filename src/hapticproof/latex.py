@@ -799,32 +799,45 @@ def audit_document(reports: Sequence[Any], title: str | None = None) -> str:
 # --------------------------------------------------------------------------------------------
 def scene_latex(scene: Any) -> str:
     r"""A scene as mathematics (what it is, not what is derived from it), for notebooks.
+    Parameters that are their own symbol are listed as free.
 
     >>> from hapticproof.scene import SingleUserScene
-    >>> scene_latex(SingleUserScene.virtual_wall(delay=2))
-    '\\text{single-user scene: } H(z) = \\frac{B \\left(z - 1\\right)}{T z} + K,\\quad b,\\quad z_{a} = 0,\\quad t_d = 2 T,\\quad \\text{forward difference}'
+    >>> scene_latex(SingleUserScene.virtual_wall(delay=2, b="0.02"))
+    '\\text{single-user scene, forward difference: }\\ H(z) = \\frac{B \\left(z - 1\\right)}{T z} + K,\\quad t_d = 2 T,\\quad b = \\frac{1}{50},\\quad z_{a} = 0;\\quad \\text{free: } B, K, T'
     """
     kind = type(scene).__name__
-    if kind == "SingleUserScene":
-        H = scene.H
-        n = scene.delay
-        delay = "t_d = 0" if n == 0 else "t_d = T" if n == 1 else "t_d = " + to_latex(n) + " T"
-        b = "b" if scene.b == sp.Symbol("b", positive=True) else "b = " + to_latex(scene.b)
-        approximation = scene.approximation + (" difference" if scene.approximation != "tustin" else "")
-        parts = [r"\text{single-user scene: } H(z) = " + to_latex(H), b, "z_{a} = " + to_latex(scene.z_a), delay,
-                 r"\text{" + approximation + "}"]
-        return r",\quad ".join(parts)
-    if kind == "MultiUserScene":
-        m = len(scene.b)
-        return (r"\text{" + f"{m}-user scene ({scene.approximation}): " + "}"
-                + r"b = " + to_latex(sp.Matrix([list(scene.b)])) + r",\quad K_0 = " + to_latex(sp.Matrix([list(scene.K0)]))
-                + r",\quad B_0 = " + to_latex(sp.Matrix([list(scene.B0)])) + r",\quad T = " + to_latex(scene.T)
-                + r",\quad \text{edges } " + ", ".join(f"({i + 1},{j + 1})" for i, j in scene.edges)
-                + r",\quad n = " + to_latex(sp.Matrix([list(scene.delays)])))
-    if kind == "TeleoperatorScene":
-        return (r"\text{teleoperator scene: } C(z) = " + to_latex(scene.C) + r",\quad \alpha = " + to_latex(scene.alpha)
-                + r",\quad m_m = " + to_latex(scene.m_m) + r",\quad m_s = " + to_latex(scene.m_s)
-                + r",\quad b_m = " + to_latex(scene.b_m) + r",\quad b_s = " + to_latex(scene.b_s)
-                + r",\quad T = " + to_latex(scene.T))
-    return r"\text{" + escape_text(repr(scene)) + "}"
+    free = sorted((s for s in getattr(scene, "parameters", set()) if isinstance(s, sp.Symbol)), key=str)
+    shown: list[str] = []
 
+    def value(name: str, latex_name: str, v: Any) -> None:
+        v = sp.sympify(v)
+        if not (isinstance(v, sp.Symbol) and v.name == name):
+            shown.append(latex_name + " = " + to_latex(v))
+
+    def vector(values: Sequence[Any]) -> str:
+        return r"\left(" + ", ".join(to_latex(v) for v in values) + r"\right)"
+
+    if kind == "SingleUserScene":
+        n = scene.delay
+        head = r"\text{single-user scene, " + scene.approximation + (" difference" if scene.approximation != "tustin" else "") + r": }\ "
+        shown.append("H(z) = " + to_latex(scene.H))
+        shown.append("t_d = 0" if n == 0 else "t_d = T" if n == 1 else "t_d = " + to_latex(n) + " T")
+        value("b", "b", scene.b)
+        value("z_a", "z_{a}", scene.z_a)
+    elif kind == "MultiUserScene":
+        head = r"\text{" + f"{len(scene.b)}-user scene, {scene.approximation} difference" + r": }\ "
+        shown += ["b = " + vector(scene.b), "K_0 = " + vector(scene.K0), "B_0 = " + vector(scene.B0)]
+        edges = ", ".join(f"{i + 1}{j + 1}" for i, j in scene.edges)
+        shown += [r"(K, B)_{" + edges + "} = " + vector(scene.K) + ", " + vector(scene.B),
+                  "n = " + vector(scene.delays), "z_{a} = " + vector(scene.z_a)]
+        value("T", "T", scene.T)
+    elif kind == "TeleoperatorScene":
+        head = r"\text{teleoperator scene: }\ "
+        shown.append("C(z) = " + to_latex(scene.C))
+        for name, latex_name in (("alpha", r"\alpha"), ("m_m", "m_m"), ("m_s", "m_s"), ("b_m", "b_m"), ("b_s", "b_s"),
+                                 ("T", "T")):
+            value(name, latex_name, getattr(scene, name))
+    else:
+        return r"\text{" + escape_text(repr(scene)) + "}"
+    tail = (r";\quad \text{free: } " + ", ".join(to_latex(f) for f in free)) if free else ""
+    return head + r",\quad ".join(shown) + tail
