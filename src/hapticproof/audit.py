@@ -254,6 +254,9 @@ class EquationResult:
             "seconds": round(self.seconds, 6),
         }
 
+    def __repr__(self) -> str:  # short and free of timings (notebooks compare it)
+        return f"EquationResult({self.id!r}, {self.verdict.value})"
+
     def _repr_html_(self) -> str:
         from hapticproof.html import result_html
 
@@ -270,6 +273,10 @@ class AuditReport:
 
     def to_json(self) -> dict[str, Any]:
         return {"paper": self.paper, "title": self.title, "equations": [r.to_json() for r in self.results]}
+
+    def __repr__(self) -> str:  # short and free of timings (notebooks compare it)
+        counts = ", ".join(f"{k} {v}" for k, v in sorted(self.counts().items()))
+        return f"AuditReport({self.paper!r}, {len(self.results)} equations: {counts})"
 
     def counts(self) -> dict[str, int]:
         out: dict[str, int] = {}

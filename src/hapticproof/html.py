@@ -15,7 +15,7 @@ The view only renders :class:`~hapticproof.audit.AuditReport` / ``EquationResult
 objects' ``_repr_html_`` in notebooks.
 
 >>> print(math_html(r"b > \frac{KT}{2}"))  # doctest: +ELLIPSIS
-<div class="hp-display"><div class="hp-line"><math ...><mi>b</mi>...</math><wbr><math ...><mrow /><mo>&#x0003E;</mo><mfrac>...
+<div class="hp-display"><div class="hp-line"><math><mi>b</mi></math><wbr><math><mrow /><mo>&gt;</mo><mfrac>...
 >>> "hp-fallback" in math_html(r"\frac{a}{b}}")
 True
 """
@@ -127,13 +127,34 @@ def _postprocess(mathml: str) -> str:
     return mathml.replace('<mspace linebreak="newline" />', '<mspace width="1em" />')
 
 
+_ESCAPES = {"<": "&lt;", ">": "&gt;", "&": "&amp;", '"': "&quot;"}
+
+
+def _compact(mathml: str) -> str:
+    """Smaller MathML for HTML5: no namespace or display attributes (the page's style sets
+    display style), characters instead of numeric entities, no empty ``<mrow>`` wrappers of
+    one element."""
+    mathml = re.sub(r'<math xmlns="http://www.w3.org/1998/Math/MathML" display="(inline|block)">', "<math>", mathml)
+    mathml = re.sub(r"&#x([0-9A-Fa-f]+);", lambda m: _ESCAPES.get(chr(int(m.group(1), 16)), chr(int(m.group(1), 16))),
+                    mathml)
+    if mathml.startswith("<math><mrow>") and mathml.endswith("</mrow></math>"):
+        depth = 0
+        for tag in re.finditer(r"<(/?)mrow\b[^>]*?(/?)>", mathml[len("<math>"):-len("</math>")]):
+            depth += 0 if tag.group(2) else (-1 if tag.group(1) else 1)
+            if depth == 0:  # the first <mrow> closes here: strip it only if this is the end
+                if tag.end() == len(mathml) - len("<math></math>"):
+                    mathml = "<math>" + mathml[len("<math><mrow>"):-len("</mrow></math>")] + "</math>"
+                break
+    return mathml
+
+
 @functools.lru_cache(maxsize=4096)
 def mathml(latex: str, display: bool = False) -> str | None:
     r"""One piece of LaTeX as a ``<math>`` element, or None when it does not convert cleanly
     (an exception, an ``merror`` or a command left unconverted).
 
     >>> mathml(r"\Re\left\{x\right\}")  # doctest: +ELLIPSIS
-    '<math ...><mrow><mi>&#x0211C;</mi><mrow><mo stretchy="true" fence="true" form="prefix">&#x0007B;</mo>...'
+    '<math><mi>ℜ</mi><mrow><mo stretchy="true" fence="true" form="prefix">{</mo><mi>x</mi>...</math>'
     >>> mathml(r"\foo x") is None
     True
     """
@@ -145,8 +166,8 @@ def mathml(latex: str, display: bool = False) -> str | None:
         return None
     if "merror" in out or re.search(r">\\[A-Za-z]", out):
         return None
-    out = _postprocess(out)
-    return out.replace(' display="inline"', ' display="inline" displaystyle="true"', 1) if not display else out
+    out = _compact(_postprocess(out))
+    return out.replace("<math>", '<math display="block">', 1) if display else out
 
 
 def _line_pieces(line: str) -> list[str]:
@@ -188,7 +209,7 @@ def prose_html(text: str) -> str:
     it converts, the rest escaped.
 
     >>> prose_html(r"with $K = 60$, E < 0")  # doctest: +ELLIPSIS
-    'with <math ...><mi>K</mi><mo>&#x0003D;</mo><mn>60</mn>...</math>, E &lt; 0'
+    'with <math class="hp-inline"><mi>K</mi><mo>=</mo><mn>60</mn></math>, E &lt; 0'
     """
     parts = re.split(r"(?<!\\)\$", text)
     if len(parts) % 2 == 0:
@@ -197,7 +218,7 @@ def prose_html(text: str) -> str:
     for k, part in enumerate(parts):
         converted = mathml(part) if k % 2 and tex.is_balanced(part) else None
         if k % 2 and converted is not None:
-            out.append(converted.replace(' displaystyle="true"', ""))
+            out.append(converted.replace("<math>", '<math class="hp-inline">', 1))
         else:
             out.append(escape(part if k % 2 == 0 else "$" + part + "$"))
     return "".join(out)
@@ -205,19 +226,22 @@ def prose_html(text: str) -> str:
 
 def _inline_math(latex: str | None, text: str) -> str:
     converted = mathml(latex) if latex is not None else None
-    return converted.replace(' displaystyle="true"', "") if converted else escape(text)
+    return converted if converted else escape(text)
 
 
 # --------------------------------------------------------------------------------------------
 # evidence: witness, facts, plots
 # --------------------------------------------------------------------------------------------
 def _witness_table(witness: Mapping[str, Any]) -> str:
-    rows = []
+    """The witness as a small two-row table: names over exact values."""
+    names, values = [], []
     for name, value in to_jsonable(dict(witness)).items():
-        rows.append("<tr><th>" + _inline_math(tex.name_math(name), name) + "</th><td>"
-                    + _inline_math(tex.value_math(value), json.dumps(value) if not isinstance(value, str) else value)
-                    + "</td></tr>")
-    return '<table class="hp-witness"><caption>witness</caption>' + "".join(rows) + "</table>"
+        latex = tex.value_math(value)
+        names.append("<th>" + _inline_math(tex.name_math(name), name) + "</th>")
+        values.append("<td>" + _inline_math(latex.replace(r"\tfrac", r"\frac") if latex else None,
+                                            json.dumps(value) if not isinstance(value, str) else value) + "</td>")
+    return ('<table class="hp-witness"><caption>witness</caption><tr>' + "".join(names) + "</tr><tr>"
+            + "".join(values) + "</tr></table>")
 
 
 def _plots(value: Any, path: str = "") -> list[tuple[str, Plot]]:
@@ -261,7 +285,7 @@ def plot_svg(plot: Plot, key: str = "plot") -> str:
               "points": dict(ls=":", marker="o", ms=4)}
     with matplotlib.rc_context({"svg.fonttype": "none", "svg.hashsalt": key, "font.size": 9,
                                 "font.family": "sans-serif"}):
-        fig = Figure(figsize=(6.0, 3.0))
+        fig = Figure(figsize=(6.0, 3.0), layout="constrained")
         FigureCanvasSVG(fig)
         ax = fig.add_subplot(111)
         for k, series in enumerate(plot.series):
@@ -274,7 +298,7 @@ def plot_svg(plot: Plot, key: str = "plot") -> str:
         if any(s.label for s in plot.series):
             ax.legend(fontsize=8)
         buffer = io.StringIO()
-        fig.savefig(buffer, format="svg", bbox_inches="tight", metadata={"Date": None, "Creator": None})
+        fig.savefig(buffer, format="svg", metadata={"Date": None, "Creator": None})
     svg = buffer.getvalue()
     svg = svg[svg.index("<svg"):]
     svg = re.sub(r"<metadata>.*?</metadata>\s*", "", svg, flags=re.S)
@@ -424,7 +448,7 @@ _STYLE = """<style>
  font-weight:600;text-decoration:none;white-space:nowrap}
 .hp-report .hp-summary .hp-badge{font-size:.95rem;padding:.2rem .7rem}
 .hp-report .hp-index-row{margin:.3rem 0}.hp-report .hp-count{font-weight:600;margin:0 .3rem}
-.hp-report .hp-links a{color:#2b6cb0;text-decoration:none}
+.hp-report .hp-links a{color:#2b6cb0;text-decoration:none;white-space:nowrap}
 .hp-report .hp-eq{border:1px solid #e2e8f0;border-left:.35rem solid #a0aec0;border-radius:.3rem;
  padding:.6rem .9rem;margin:1rem 0;background:#fff;scroll-margin-top:.5rem}
 .hp-report .hp-eq:target{box-shadow:0 0 0 3px #bee3f8}
@@ -438,7 +462,7 @@ _STYLE = """<style>
 .hp-report .hp-display{margin:.2rem 0 .2rem 1rem;overflow-x:auto;overflow-y:hidden;max-width:100%}
 .hp-report .hp-line{padding-left:2rem;text-indent:-2rem;margin:.25rem 0;font-size:1.1rem}
 .hp-report .hp-line math{text-indent:0}
-.hp-report math{math-style:normal}
+.hp-report math{math-style:normal}.hp-report math.hp-inline{math-style:compact}
 .hp-report mtd[columnalign=left]{text-align:left}.hp-report mtd[columnalign=right]{text-align:right}
 .hp-report .hp-boxed{border:1px solid currentColor;padding:.1em .2em}
 .hp-report .hp-tag{float:right;text-indent:0}
@@ -451,6 +475,8 @@ _STYLE = """<style>
 .hp-report table{border-collapse:collapse;margin:.3rem 0;max-width:100%}
 .hp-report .hp-witness caption{text-align:left;font-size:.8rem;color:#4a5568}
 .hp-report th,.hp-report td{border:1px solid #e2e8f0;padding:.1rem .5rem;text-align:left;vertical-align:top}
+.hp-report .hp-witness th{background:#f7fafc;text-align:center}.hp-report .hp-witness td{text-align:center}
+.hp-report .hp-witness{display:block;overflow-x:auto;max-width:100%}
 .hp-report .hp-facts{font-size:.85rem;table-layout:auto}
 .hp-report .hp-facts td{overflow-wrap:anywhere}.hp-report code{overflow-wrap:anywhere;font-size:.8rem}
 .hp-report details summary{cursor:pointer;color:#2b6cb0}

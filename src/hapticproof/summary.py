@@ -120,6 +120,9 @@ class SceneSummary:
     def _repr_latex_(self) -> str:
         return "$$" + self.to_latex() + "$$"
 
+    def __repr__(self) -> str:  # short and free of timings (notebooks compare it)
+        return f"SceneSummary({self.system}, {self.approximation}, delay {self.delay}: {self.verdict})"
+
     def dumps(self, fmt: str, fragment: bool = False) -> str:
         """``json``, ``latex`` (a complete document; ``fragment``: one amsmath display) or text."""
         if fmt == "json":
