@@ -328,7 +328,7 @@ class AuditReport:
     def _repr_html_(self) -> str:
         from hapticproof.html import report_fragment
 
-        return report_fragment([self], timings=False)
+        return report_fragment([self], timings=False, prefixed=True)
 
     def dumps(self, fmt: str) -> str:
         if fmt == "json":

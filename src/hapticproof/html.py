@@ -382,11 +382,13 @@ def _counts(reports: Sequence[Any]) -> dict[Verdict, list[tuple[Any, Any]]]:
     return out
 
 
-def report_fragment(reports: Iterable[Any], timings: bool = True, title: str | None = None) -> str:
+def report_fragment(reports: Iterable[Any], timings: bool = True, title: str | None = None,
+                    prefixed: bool | None = None) -> str:
     """The body of the report (with its scoped style): summary of counts per verdict with
-    links, an index per verdict, then one card per equation. Notebooks show this."""
+    links, an index per verdict, then one card per equation. Notebooks show this (with
+    ``prefixed`` anchors, ``hve-eq-17``, as several reports may share a page)."""
     reports = list(reports)
-    single = len(reports) == 1
+    single = len(reports) == 1 if prefixed is None else not prefixed
     if title is None:
         title = f"Audit of {reports[0].title} ({reports[0].paper})" if single else "hapticproof audit"
     counts = _counts(reports)
@@ -454,7 +456,8 @@ _STYLE = """<style>
 .hp-report .hp-eq:target{box-shadow:0 0 0 3px #bee3f8}
 .hp-report .hp-eq>header{display:flex;align-items:baseline;gap:.6rem;flex-wrap:wrap}
 .hp-report .hp-eq>header .hp-badge{margin-left:auto}
-.hp-report .hp-id{font-weight:700;font-size:1.15rem;color:#1a202c;text-decoration:none}
+.hp-report a.hp-id{font-weight:700;font-size:1.15rem;color:#1a202c;text-decoration:none}
+.hp-report a.hp-badge,.hp-report a.hp-badge:hover{color:#fff;text-decoration:none}
 .hp-report .hp-kind{color:#4a5568;font-size:.9rem}
 .hp-report .hp-detail{margin:.4rem 0}.hp-report .hp-assumptions{margin:.2rem 0;font-size:.9rem;color:#4a5568}
 .hp-report .hp-block{margin:.5rem 0}

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import shutil
 import sys
 import time
 
@@ -70,8 +71,10 @@ def run(args: argparse.Namespace) -> int:
 
         text = report_html(reports)
     elif args.format == "table":
+        terminal = sys.stdout.isatty() and not args.output
         style = colour_verdict if use_colour(sys.stdout) and not args.output else None
-        text = "\n\n".join(r.to_table(wide=args.wide, style=style) for r in reports)
+        width = shutil.get_terminal_size((120, 24)).columns if terminal else 120
+        text = "\n\n".join(r.to_table(width=width, wide=args.wide, style=style) for r in reports)
     else:
         text = "\n\n".join(r.dumps(args.format) for r in reports)
     if args.output:
