@@ -267,7 +267,7 @@ def strip_tag(latex: str) -> tuple[str, str | None]:
 
 def _whole_environment(tokens: list[str]) -> tuple[str, list[str]] | None:
     """``(name, body tokens)`` when the tokens are exactly one line environment."""
-    core = [t for t in tokens]
+    core = list(tokens)
     while core and core[0].isspace():
         core.pop(0)
     while core and core[-1].isspace():
@@ -333,7 +333,7 @@ def display_lines(latex: str) -> tuple[list[str], str | None]:
             walk(row)
 
     walk(_tokens(latex))
-    return lines, tag
+    return (lines or ([latex] if latex else [])), tag
 
 
 def display_pieces(line: str) -> list[str]:
