@@ -396,12 +396,16 @@ def display_breaks(line: str) -> list[tuple[str, int]]:
 
 
 def _joined_pieces(line: str) -> str:
-    """The pieces of a line as LaTeX: free breaks between top-level pieces, discouraged
-    ones inside parentheses."""
+    """The pieces of a line as LaTeX, with TeX's order of preference for breaks: after a
+    comma or before a quad, then before a relation, then before a binary operator; breaks
+    inside parentheses are discouraged."""
     out = []
     for k, (piece, level) in enumerate(display_breaks(line)):
         if k:
-            out.append(r"\allowbreak" if level == 0 else r"\penalty" + str(min(900, 300 * level)) + " ")
+            first = _tokens(piece[2:] if piece.startswith("{}") else piece)[0]
+            penalty = 100 if first in _RELATIONS else 200 if first in _BINARY else 0
+            penalty = min(900, penalty + 300 * level)
+            out.append(r"\allowbreak" if penalty == 0 else r"\penalty" + str(penalty) + " ")
         out.append(r"\hpfit{" + _inline_safe(piece) + "}")
     return "".join(out)
 
@@ -437,7 +441,7 @@ def fit_display(latex: str) -> str:
 
     >>> print(fit_display(r"b > \frac{KT}{2} + B"))
     \begin{hpdisplay}
-    \hpline{\hpfit{b}\allowbreak\hpfit{{}> \frac{KT}{2}}\allowbreak\hpfit{{}+ B}}
+    \hpline{\hpfit{b}\penalty100 \hpfit{{}> \frac{KT}{2}}\penalty200 \hpfit{{}+ B}}
     \end{hpdisplay}
     """
     lines, tag = display_lines(latex)
@@ -629,7 +633,7 @@ _PREAMBLE = r"""\documentclass[10pt]{article}
   {\large\bfseries #2}\hfill #3\par\nopagebreak\addvspace{2pt}}
 \newcommand{\needspace}{\penalty-100\relax}
 \newcommand{\hpcell}[1]{\setlength{\hpmaxwidth}{\linewidth}\setlength{\lineskiplimit}{2pt}%
-  \setlength{\lineskip}{4pt}#1}
+  \setlength{\lineskip}{4pt}\vspace{0pt}#1\par\vspace{3pt}}
 """
 
 
@@ -667,13 +671,13 @@ def longtable(header: Sequence[str], rows: Iterable[Sequence[str]], widths: Sequ
     >>> print(longtable(["a", "b"], [["1", "2"]], [0.3, 0.6]))
     \begin{longtable}{@{}>{\raggedright\arraybackslash}p{0.3\linewidth}>{\raggedright\arraybackslash}p{0.6\linewidth}@{}}
     \textbf{a} & \textbf{b}\\ \hline\endhead
-    1 & 2\\
+    1 & 2\\[3pt]
     \end{longtable}
     """
     spec = "".join(r">{\raggedright\arraybackslash}p{" + f"{w:g}" + r"\linewidth}" for w in widths)
     lines = [r"\begin{longtable}{@{}" + spec + "@{}}",
              " & ".join(r"\textbf{" + escape_text(h) + "}" for h in header) + r"\\ \hline\endhead"]
-    lines += [" & ".join(row) + r"\\" for row in rows]
+    lines += [" & ".join(row) + r"\\[3pt]" for row in rows]
     lines.append(r"\end{longtable}")
     return "\n".join(lines)
 
@@ -682,7 +686,7 @@ def math_cell(latex: str) -> str:
     r"""Mathematics in a table cell: pieces that wrap at the column's width.
 
     >>> math_cell("a + b")
-    '\\hpcell{\\hpfit{a}\\allowbreak\\hpfit{{}+ b}}'
+    '\\hpcell{\\hpfit{a}\\penalty200 \\hpfit{{}+ b}}'
     """
     if not is_typesettable(latex):
         return r"{\small\ttfamily " + escape_text(latex) + "}"

@@ -104,8 +104,11 @@ def run(args: argparse.Namespace) -> int:
         if args.fragment:
             print(tex.derivation_fragment(items))
             return 0
-        notes = [("worst case", f"sup over c = {to_jsonable(wc.sup_master)} (master), {to_jsonable(wc.sup_slave)} (slave)"
-                  + (f" at c = {to_jsonable(wc.maximiser)}" if wc.maximiser is not None else ""))]
+        notes = []
+        if sp.sympify(wc.sup_master).is_number:
+            notes.append(("worst case", f"sup over c = {to_jsonable(wc.sup_master)} (master), "
+                          f"{to_jsonable(wc.sup_slave)} (slave)"
+                          + (f" at c = {to_jsonable(wc.maximiser)}" if wc.maximiser is not None else "")))
         if decision is not None:
             notes.append(("decision", f"{decision.decision.value} ({decision.reason})"))
         print(tex.derivation_document("hapticproof derive teleoperator", items, notes,
