@@ -24,18 +24,18 @@ def test_workers_give_the_serial_reports():
     assert without_seconds(parallel.to_json()) == without_seconds(serial.to_json())
     assert parallel.to_table() == serial.to_table() and parallel.to_latex() == serial.to_latex()
     # a saved audit read back renders the same export as the audit in memory (no re-derivation)
-    assert export_document([paper], reports_from_json(serial.to_json())) == export_document([paper], [serial])
+    assert export_document([paper], reports=reports_from_json(serial.to_json(), [paper])) == export_document([paper], reports=[serial])
 
 
 def test_export_from_a_saved_audit(tmp_path, capsys):
     paper = get_paper("classics")
     saved = tmp_path / "audit.json"
     assert main(["audit", "classics", "--format", "json", "--jobs", "2", "-o", str(saved)]) == 0
-    reports = reports_from_json(json.loads(saved.read_text()))
+    reports = reports_from_json(json.loads(saved.read_text()), [paper])
     assert [r.id for r in reports[0].results] == [eq.id for eq in paper.ordered()]
     out = tmp_path / "conditions.tex"
     assert main(["export", "classics", "--from-audit", str(saved), "-o", str(out)]) == 0
-    assert out.read_text() == export_document([paper], reports)
+    assert out.read_text() == export_document([paper], reports=reports)
     assert main(["export", "hve", "--from-audit", str(saved)]) == 2
     assert "no audit of hve" in capsys.readouterr().err
     assert main(["audit", "classics", "--jobs", "0"]) == 2

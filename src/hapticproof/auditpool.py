@@ -27,7 +27,7 @@ from __future__ import annotations
 import multiprocessing
 import multiprocessing.connection
 import os
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import replace
 from typing import Any
 from hapticproof.audit import AuditReport, EquationResult, Paper, audit_paper, run_equation
@@ -147,15 +147,22 @@ class _Queues:
         return self.papers[home].pop()
 
 
-def audit_reports(papers: Sequence[Paper], only: Mapping[str, Sequence[str]] | None = None,
-                  jobs: int | None = None) -> list[AuditReport]:
-    """Audit ``papers`` (``only[paper.id]``: just those equation ids) with ``jobs`` processes."""
+def audit_reports(papers: Sequence[Paper], only: Mapping[str, Sequence[str] | None] | None = None,
+                  jobs: int | None = None, progress: Callable[[int, int], None] | None = None) -> list[AuditReport]:
+    """Audit ``papers`` (``only[paper.id]``: just those equation ids) with ``jobs`` processes;
+    ``progress(done, total)`` after each equation (serial) or each finished chunk (parallel)."""
     jobs = default_jobs() if jobs is None else max(1, int(jobs))
     only = only or {}
     selected = {p.id: ([p.get(i) for i in only[p.id]] if only.get(p.id) else p.ordered()) for p in papers}
     tasks = _chunks(papers, selected, CHUNK)
+    total = sum(len(eqs) for eqs in selected.values())
     if jobs <= 1 or len(tasks) <= 1 or "fork" not in multiprocessing.get_all_start_methods():
-        return [audit_paper(p, only.get(p.id) or None) for p in papers]
+        reports: list[AuditReport] = []
+        for p in papers:
+            base = sum(len(r.results) for r in reports)
+            tick = (lambda k, _n, base=base: progress(base + k, total)) if progress else None
+            reports.append(audit_paper(p, only.get(p.id) or None, progress=tick))
+        return reports
     _PAPERS.clear()
     _PAPERS.update({p.id: p for p in papers})
     context = multiprocessing.get_context("fork")
@@ -190,6 +197,8 @@ def audit_reports(papers: Sequence[Paper], only: Mapping[str, Sequence[str]] | N
                 paper = worker[2]
                 for result in message[1]:
                     results[(paper, result.id)] = result
+                if progress:
+                    progress(len(results), total)
                 worker[2] = None
                 task = queues.next(paper, {w[2] for w in workers if w[2]})
                 if task is None:

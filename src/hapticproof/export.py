@@ -1,8 +1,9 @@
 """Export the derived conditions of registered papers as one LaTeX document.
 
 For every equation the document shows the toolkit's derivation and, where the printed equation
-is defective, the corrected LaTeX. A paper may also list ``conditions``: ``(label, condition LaTeX, source)``
-rows collected into one table in a common notation.
+is defective, the printed display and its correction, each labelled. A paper may also list
+``conditions``: ``(label, condition LaTeX, source)`` rows collected into one table in a common
+notation (a table whose cells wrap, across pages).
 
 >>> from hapticproof.audit import Paper
 >>> doc = export_document([Paper("demo", title="Demo", source="none")])
@@ -12,7 +13,7 @@ True
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from typing import Any
 
 from hapticproof import latex as tex
@@ -22,9 +23,11 @@ from hapticproof.evidence import Evidence, Verdict
 __all__ = ["export_document", "conditions_table", "reports_from_json"]
 
 
-def reports_from_json(data: Any) -> list[AuditReport]:
+def reports_from_json(data: Any, papers: Iterable[Paper] = ()) -> list[AuditReport]:
     """Audit reports read back from ``hapticproof audit --format json`` output (one paper or
-    ``{"papers": [...]}``): everything the export shows, without deriving it again.
+    ``{"papers": [...]}``): everything the export shows, without deriving it again. The
+    registered ``papers`` supply what the JSON does not carry (each equation's section and
+    assumptions).
 
     >>> r = reports_from_json({"paper": "demo", "title": "Demo", "equations": [{"id": "1", "kind": "claim",
     ...     "printed": "1 + 1 = 2", "derived": None, "verdict": "confirmed", "detail": "arithmetic",
@@ -32,16 +35,19 @@ def reports_from_json(data: Any) -> list[AuditReport]:
     >>> r[0].results[0].verdict.value
     'confirmed'
     """
-    papers = data["papers"] if "papers" in data else [data]
+    registered = {p.id: p for p in papers}
     out = []
-    for p in papers:
+    for p in data["papers"] if "papers" in data else [data]:
+        known = registered[p["paper"]].equations if p["paper"] in registered else {}
         results = tuple(
             EquationResult(id=e["id"], kind=e["kind"], printed=e["printed"], derived=e.get("derived"),
                            verdict=Verdict(e["verdict"]), detail=e["detail"], corrected=e.get("corrected"),
                            evidence=Evidence(e["evidence"]["method"], witness=e["evidence"].get("witness"),
                                              instances=e["evidence"].get("instances"),
                                              facts=e["evidence"].get("facts", {})),
-                           seconds=e.get("seconds", 0.0))
+                           seconds=e.get("seconds", 0.0),
+                           section=known[e["id"]].section if e["id"] in known else "",
+                           assumptions=known[e["id"]].assumptions if e["id"] in known else "")
             for e in p["equations"])
         out.append(AuditReport(p["paper"], p.get("title", ""), results))
     return out
@@ -52,40 +58,41 @@ def conditions_table(papers: Iterable[Paper]) -> str:
     rows = []
     for paper in papers:
         for label, condition, source in paper.condition_rows():
-            rows.append(
-                tex.escape_text(label) + " & $\\displaystyle " + condition + "$ & " + tex.escape_text(source) + r" \\"
-            )
+            rows.append([tex.escape_text(label), tex.math_cell(condition), r"{\small " + tex.escape_text(source) + "}"])
     if not rows:
         return ""
-    return "\n".join(
-        [r"\begin{center}\begin{tabular}{lll}", r"condition & statement & source \\ \hline", *rows, r"\end{tabular}\end{center}"]
-    )
+    return tex.longtable(["condition", "statement", "source"], rows, [0.25, 0.45, 0.24])
 
 
-def export_document(papers: Iterable[Paper], reports: Iterable[Any] | None = None) -> str:
-    """The derived (and corrected) conditions of ``papers`` as a complete amsmath document.
+def export_document(papers: Iterable[Paper], progress: Callable[[int, int], None] | None = None,
+                    reports: Iterable[AuditReport] | None = None) -> str:
+    """The derived (and corrected) conditions of ``papers`` as a complete document.
 
-    ``reports``: the papers' audit reports when already computed (one per paper, in order:
-    :func:`hapticproof.auditpool.audit_reports`, or a saved audit read back with
-    :func:`reports_from_json`), so that exporting does not derive everything a second time."""
+    ``progress(done, total)`` is called after each audited equation (over all papers);
+    ``reports`` (the papers' audit reports, in the same order) are used instead of auditing.
+    """
     papers = list(papers)
-    given = {r.paper: r for r in reports} if reports is not None else {}
+    if reports is None:
+        total = sum(len(p.equations) for p in papers)
+        done = 0
+        audited = []
+        for paper in papers:
+            def tick(k: int, _n: int, base: int = done) -> None:
+                if progress is not None:
+                    progress(base + k, total)
+            audited.append(audit_paper(paper, progress=tick))
+            done += len(paper.equations)
+        reports = audited
     sections: list[tuple[str, str]] = []
     table = conditions_table(papers)
     if table:
         sections.append(("All conditions in one notation", table))
-    for paper in papers:
-        report = given.get(paper.id) or audit_paper(paper)
+    for paper, report in zip(papers, reports):
         body: list[str] = []
         for result in report.results:
             if not result.derived and not result.corrected:
                 continue
-            label = f"({result.id}) {result.verdict.value}"
-            body.append(r"\paragraph{" + tex.escape_text(label) + "}" + " " + tex.escape_text(result.detail))
-            if result.derived:
-                body.append(tex.safe_math(result.derived))
-            if result.corrected and result.verdict != Verdict.CONFIRMED:
-                body.append(r"\textit{Corrected printed equation:}")
-                body.append(tex.safe_math(result.corrected))
-        sections.append((f"{paper.title} ({paper.id})", "\n".join(body) or "No derived conditions."))
+            body.append(tex.equation_block(result, tex.anchor(paper.id, result.id, single=False),
+                                           show_printed=bool(result.corrected), evidence=False))
+        sections.append((f"{paper.title} ({paper.id})", "\n\n".join(body) or "No derived conditions."))
     return tex.document("Derived stability and passivity conditions (hapticproof)", sections)

@@ -257,6 +257,11 @@ class MultiUserScene:
         if any(v.is_number and v < 0 for v in numbers):
             raise SceneError("dampings, stiffnesses and shortages of passivity must be non-negative")
 
+    def _repr_latex_(self) -> str:
+        from hapticproof.latex import scene_latex
+
+        return "$" + scene_latex(self) + "$"
+
     # -- constructors ---------------------------------------------------------------------------
     @classmethod
     def symbolic(

@@ -224,6 +224,11 @@ class TeleoperatorScene:
     def C_s(self) -> sp.Expr:
         return self.C
 
+    def _repr_latex_(self) -> str:
+        from hapticproof.latex import scene_latex
+
+        return "$" + scene_latex(self) + "$"
+
     @property
     def parameters(self) -> set[sp.Symbol]:
         out: set[sp.Symbol] = set()

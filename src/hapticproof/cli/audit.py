@@ -4,15 +4,18 @@ from __future__ import annotations
 
 import argparse
 import json
+import shutil
 import sys
+import time
 
 from hapticproof.auditpool import audit_reports
 from hapticproof.cli._common import write_text
+from hapticproof.cli._terminal import colour_verdict, progress_bar, summary_line, use_colour
 from hapticproof.registry import get_paper, papers
 
 __all__ = ["register"]
 
-FORMATS = ("table", "markdown", "json", "tex")
+FORMATS = ("table", "markdown", "json", "tex", "html")
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -30,8 +33,10 @@ def register(sub: argparse._SubParsersAction) -> None:
     parser.add_argument("--section", "-s", action="append", default=[], metavar="S",
                         help="audit only equations of section S and its subsections (repeatable; "
                         "e.g. -s 1 -s 2 -s 3.1 for the HVE paper's single-user part)")
-    parser.add_argument("--format", "-f", choices=FORMATS, default="table")
+    parser.add_argument("--format", "-f", choices=FORMATS, default="table",
+                        help="table (default), markdown, json, tex (a LaTeX document) or html (one self-contained page)")
     parser.add_argument("--output", "-o", metavar="FILE", help="write to FILE instead of stdout")
+    parser.add_argument("--wide", action="store_true", help="table: full details instead of one shortened line each")
     parser.add_argument("--jobs", "-j", type=int, metavar="N",
                         help="worker processes (default: the machine's cores; 1: serial); the output is the same")
     parser.set_defaults(handler=run)
@@ -48,8 +53,12 @@ def run(args: argparse.Namespace) -> int:
         raise_usage("use --equation or --section, not both")
     if args.jobs is not None and args.jobs < 1:
         raise_usage("--jobs must be at least 1")
-    only = {p.id: args.equation or _in_sections(p, args.section) for p in selected}
-    reports = audit_reports(selected, only, jobs=args.jobs)
+    selection = [args.equation or _in_sections(p, args.section) or None for p in selected]
+    total = sum(len(only) if only else len(p.equations) for p, only in zip(selected, selection))
+    bar, start = progress_bar(sys.stderr, "audit"), time.perf_counter()
+    reports = audit_reports(selected, {p.id: only for p, only in zip(selected, selection)}, jobs=args.jobs,
+                            progress=(lambda k, _n: bar(k, total)) if bar else None)
+    seconds = time.perf_counter() - start
     if args.format == "json":
         if len(reports) == 1 and args.papers and not args.all:
             text = json.dumps(reports[0].to_json(), indent=2)
@@ -58,11 +67,16 @@ def run(args: argparse.Namespace) -> int:
     elif args.format == "tex":
         from hapticproof import latex as tex
 
-        sections = []
-        for report in reports:
-            sections.append((f"{report.paper}: {report.title}", ""))
-            sections += report.to_latex_sections()
-        text = tex.document("hapticproof audit", sections)
+        text = tex.audit_document(reports)
+    elif args.format == "html":
+        from hapticproof.html import report_html
+
+        text = report_html(reports)
+    elif args.format == "table":
+        terminal = sys.stdout.isatty() and not args.output
+        style = colour_verdict if use_colour(sys.stdout) and not args.output else None
+        width = shutil.get_terminal_size((120, 24)).columns if terminal else 120
+        text = "\n\n".join(r.to_table(width=width, wide=args.wide, style=style) for r in reports)
     else:
         text = "\n\n".join(r.dumps(args.format) for r in reports)
     if args.output:
@@ -70,6 +84,11 @@ def run(args: argparse.Namespace) -> int:
         print(f"wrote {path}", file=sys.stderr)
     else:
         print(text)
+    counts: dict[str, int] = {}
+    for report in reports:
+        for verdict, n in report.counts().items():
+            counts[verdict] = counts.get(verdict, 0) + n
+    print(summary_line(counts, use_colour(sys.stderr), len(reports), seconds), file=sys.stderr)
     return 0
 
 

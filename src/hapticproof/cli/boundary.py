@@ -15,38 +15,14 @@ from __future__ import annotations
 
 import argparse
 import sys
-import time
 
 from hapticproof.borderlines import printed_borderline
 from hapticproof.cli._common import add_param_option, parse_params
+from hapticproof.cli._terminal import ProgressBar, progress_bar
 from hapticproof.errors import InputFormatError
 from hapticproof.maps import SYSTEMS, SceneFamily, boundary_curve, grid, plot_curves
 
 __all__ = ["register", "handler", "ProgressBar"]
-
-
-class ProgressBar:
-    """A one-line text progress bar on a stream (no dependency).
-
-    >>> import io
-    >>> buf = io.StringIO()
-    >>> bar = ProgressBar(buf, width=10)
-    >>> bar(5, 10); bar(10, 10)
-    >>> buf.getvalue().splitlines()[-1].strip()
-    '[##########] 10/10'
-    """
-
-    def __init__(self, stream=sys.stderr, width: int = 30):
-        self.stream, self.width, self.start = stream, width, time.monotonic()
-
-    def __call__(self, done: int, total: int) -> None:
-        filled = int(self.width * done / max(total, 1))
-        bar = "#" * filled + "-" * (self.width - filled)
-        elapsed = time.monotonic() - self.start
-        end = "\n" if done >= total else ""
-        suffix = f" {elapsed:.1f}s" if self.stream is sys.stderr else ""
-        self.stream.write(f"\r[{bar}] {done}/{total}{suffix}{end}")
-        self.stream.flush()
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -105,11 +81,11 @@ def handler(args: argparse.Namespace) -> int:
     )
     family.scene(**{args.vary: 1.0, over_name: float(over_values[0])})  # fail early, clearly
     border = printed_borderline(family, args.vary)
-    show = not args.no_progress and (sys.stderr.isatty() or len(over_values) >= 50)
+    bar = None if args.no_progress else progress_bar(sys.stderr, "boundary")  # a terminal only
     curve = boundary_curve(
         family, args.vary, (over_name, over_values), printed_borderline=border,
         search=_search(args.search), rtol=args.rtol, workers=args.workers,
-        progress=ProgressBar() if show else None,
+        progress=bar,
     )
     vary = args.vary
     print(f"{over_name:>12} {vary + '_exact':>18} {vary + '_printed':>18} {'ratio':>9}  notes")

@@ -59,7 +59,10 @@ def register(systems: argparse._SubParsersAction) -> None:
                         help="coupling graph: complete (default), path, star, ring, or edges like 1-2,2-3")
     parser.add_argument("--approximation", choices=APPROXIMATIONS, default="forward")
     parser.add_argument("--latex", action="store_true", help="same as --format latex")
-    parser.add_argument("--format", choices=("text", "latex", "json"), default="text")
+    parser.add_argument("--format", choices=("text", "latex", "json"), default="text",
+                        help="text (default), latex (a complete document) or json")
+    parser.add_argument("--fragment", action="store_true",
+                        help="with --format latex: only the displays (amsmath), not a complete document")
     parser.add_argument("--minors", choices=("auto", "all", "none"), default="auto",
                         help="print the principal minors (auto: when m <= 3)")
     add_param_option(parser)
@@ -199,31 +202,57 @@ def _text(data: dict[str, Any]) -> str:
     return "\n".join(lines)
 
 
-def _latex(data: dict[str, Any]) -> str:
-    parts = [
-        r"G^{-1}(z) = " + tex.to_latex(data["G_inverse"]),
-        r"R_0 = " + tex.to_latex(data["residue_at_1"]) if data["residue_at_1"] is not None else "",
-        r"G^{-1} + G^{-H} = " + tex.to_latex(data["hermitian_part"], cos_name=COS),
-    ]
+def _matrix_items(label: str, name: str, matrix: sp.Matrix, cos_name: str | None = None) -> list[tuple[str, str]]:
+    """A matrix as one display, or entry by entry (upper triangle when symmetric) when it
+    is too long to read as one."""
+    whole = tex.to_latex(matrix, cos_name=cos_name)
+    if len(whole) <= 600:
+        return [(label, f"{name} = " + whole)]
+    symmetric = matrix.is_symmetric()
+    return [(f"{label}, entry ({i + 1}, {j + 1})", f"{name}_{{{i + 1}{j + 1}}} = " + tex.to_latex(matrix[i, j], cos_name=cos_name))
+            for i in range(matrix.rows) for j in range(matrix.cols) if not symmetric or j >= i]
+
+
+def _latex_items(data: dict[str, Any]) -> list[tuple[str, str]]:
+    """``(label, display)`` of everything the command derives."""
+    items = _matrix_items("inverse transfer matrix", r"G^{-1}(z)", data["G_inverse"])
+    if data["residue_at_1"] is not None:
+        items += _matrix_items("residue matrix at z = 1", "R_0", data["residue_at_1"])
+    items += _matrix_items("Hermitian part on the unit circle", "M", data["hermitian_part"], COS)
     for k, v in data.get("principal_minors", {}).items():
-        parts.append(r"\Delta_{" + "".join(map(str, k)) + "} = " + tex.to_latex(v, cos_name=COS))
+        items.append((f"principal minor {k}", r"\Delta_{" + "".join(map(str, k)) + "} = " + tex.to_latex(v, cos_name=COS)))
     if data["worst_case_condition"] not in (None, sp.true, sp.false):
-        parts.append(tex.to_latex(data["worst_case_condition"]))
+        items.append((f"worst case over frequency ({data['worst_case_method']})", tex.to_latex(data["worst_case_condition"])))
     if "sufficient_condition" in data:
-        parts.append(tex.to_latex(data["sufficient_condition"]))
-    return "\n".join(p for p in parts if p)
+        items.append(("sufficient condition (any graph, Loewner order)", tex.to_latex(data["sufficient_condition"])))
+    return items
+
+
+def _latex(data: dict[str, Any], fragment: bool = False) -> str:
+    """A complete document (or, with ``fragment``, the amsmath displays alone)."""
+    items = _latex_items(data)
+    if fragment:
+        return tex.derivation_fragment(items)
+    intro = tex.escape_text(f"{data['users']}-user HVE, {data['approximation']} difference, delays {data['delays']}, "
+                            f"edges {data['edges']}.")
+    notes = [("verdict", f"{data['verdict']} ({data['reason']})"), ("residue condition", str(data["residue_condition"]))]
+    if data["witness"]:
+        notes.append(("witness", ", ".join(f"{k} = {v}" for k, v in to_jsonable(data["witness"]).items())))
+    return tex.derivation_document(f"hapticproof derive multi-user ({data['users']} users)", items, notes, intro=intro)
 
 
 def run(args: argparse.Namespace) -> int:
+    fmt = "latex" if args.latex else args.format
+    if args.fragment and fmt != "latex":
+        raise InputFormatError("--fragment needs --format latex")
     scene = build_scene(args.users, args.delay, args.uniform, args.active, args.graph, args.approximation,
                         parse_params(args.param))
     data = derive(scene, args.minors)
-    fmt = "latex" if args.latex else args.format
     if fmt == "json":
         print(json.dumps(to_jsonable({k: ([c.to_json() for c in v] if k == "conditions" else v) for k, v in data.items()}),
                          indent=2))
     elif fmt == "latex":
-        print(_latex(data))
+        print(_latex(data, args.fragment))
     else:
         print(_text(data))
     return 0

@@ -28,7 +28,10 @@ def register(systems: argparse._SubParsersAction) -> None:
     parser.add_argument("--environment", metavar="H(z)",
                         help="custom real-rational H(z) in z and the parameter names (default: K + B*(z-1)/(T*z))")
     parser.add_argument("--active", action="store_true", help="include the operator's shortage of passivity z_a")
-    parser.add_argument("--format", choices=("text", "latex", "json"), default="text")
+    parser.add_argument("--format", choices=("text", "latex", "json"), default="text",
+                        help="text (default), latex (a complete document) or json")
+    parser.add_argument("--fragment", action="store_true",
+                        help="with --format latex: only the displays (amsmath), not a complete document")
     parser.add_argument("--profile", action="store_true", help="print the time of each computed stage")
     add_param_option(parser)
     parser.set_defaults(handler=run)
@@ -51,6 +54,8 @@ def _environment(text: str | None, T: sp.Expr) -> sp.Expr | None:
 
 
 def run(args: argparse.Namespace) -> int:
+    if args.fragment and args.format != "latex":
+        raise InputFormatError("--fragment needs --format latex")
     params = parse_params(args.param)
     unknown = set(params) - {"b", "K", "B", "T", "z_a", "t_d"}
     if unknown:
@@ -70,5 +75,5 @@ def run(args: argparse.Namespace) -> int:
     if H is not None:
         base = SingleUserScene(b=base.b, T=base.T, H=H, approximation=base.approximation, delay=base.delay, z_a=base.z_a)
     scene = base.with_values({k: v for k, v in params.items() if k != "T" or not t_d_given})
-    print(summarize_single_user(scene, with_profile=args.profile).dumps(args.format))
+    print(summarize_single_user(scene, with_profile=args.profile).dumps(args.format, fragment=args.fragment))
     return 0

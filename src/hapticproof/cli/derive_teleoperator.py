@@ -52,7 +52,10 @@ def register(systems: argparse._SubParsersAction) -> None:
     )
     parser.add_argument("--controller", default="pd", metavar="C(z)",
                         help="'pd', 'filtered-pd' or an expression in z (default: pd)")
-    parser.add_argument("--format", choices=("text", "latex", "json"), default="text")
+    parser.add_argument("--format", choices=("text", "latex", "json"), default="text",
+                        help="text (default), latex (a complete document) or json")
+    parser.add_argument("--fragment", action="store_true",
+                        help="with --format latex: only the displays (amsmath), not a complete document")
     add_param_option(parser)
     parser.set_defaults(handler=run)
 
@@ -68,6 +71,8 @@ def _controller(text: str, params: dict) -> sp.Expr:
 
 
 def run(args: argparse.Namespace) -> int:
+    if args.fragment and args.format != "latex":
+        raise InputFormatError("--fragment needs --format latex")
     params = parse_params(args.param)
     unknown = set(params) - set(PARAMETERS)
     if unknown:
@@ -95,11 +100,24 @@ def run(args: argparse.Namespace) -> int:
         return 0
     cos = r"\cos(\omega T)"
     if args.format == "latex":
-        lines = [r"C(z) = " + tex.to_latex(scene.C),
-                 r"b_m > " + tex.to_latex(bd.master, cos_name=cos), r"b_s > " + tex.to_latex(bd.slave, cos_name=cos)]
+        items = [("controller", r"C(z) = " + tex.to_latex(scene.C)),
+                 ("master damping bound (c = cos wT)", r"b_m > " + tex.to_latex(bd.master, cos_name=cos)),
+                 ("slave damping bound", r"b_s > " + tex.to_latex(bd.slave, cos_name=cos))]
         if wc.condition is not None:
-            lines.append(tex.to_latex(wc.condition))
-        print("\n".join(tex.display(line) for line in lines))
+            items.append(("worst case over frequency", tex.to_latex(wc.condition)))
+        items.append(("error-coordinate damping (less conservative)", r"b_e = " + tex.to_latex(error_coordinate_damping(scene))))
+        if args.fragment:
+            print(tex.derivation_fragment(items))
+            return 0
+        notes = []
+        if sp.sympify(wc.sup_master).is_number:
+            notes.append(("worst case", f"sup over c = {to_jsonable(wc.sup_master)} (master), "
+                          f"{to_jsonable(wc.sup_slave)} (slave)"
+                          + (f" at c = {to_jsonable(wc.maximiser)}" if wc.maximiser is not None else "")))
+        if decision is not None:
+            notes.append(("decision", f"{decision.decision.value} ({decision.reason})"))
+        print(tex.derivation_document("hapticproof derive teleoperator", items, notes,
+                                      intro=tex.escape_text(f"PEB teleoperator, alpha = {scene.alpha}.")))
         return 0
     print(f"controller C(z) = {sp.sstr(scene.C)}, alpha = {scene.alpha}")
     print(f"b_m > {sp.sstr(sp.factor(bd.master))}    (c = cos wT)")

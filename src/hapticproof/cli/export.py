@@ -4,8 +4,10 @@ from __future__ import annotations
 
 import argparse
 import sys
+import time
 
 from hapticproof.cli._common import write_text
+from hapticproof.cli._terminal import progress_bar, summary_line, use_colour
 from hapticproof.errors import InputFormatError
 from hapticproof.export import export_document, reports_from_json
 from hapticproof.registry import get_paper, papers
@@ -33,14 +35,22 @@ def run(args: argparse.Namespace) -> int:
     selected = [get_paper(p) for p in args.papers] if args.papers else list(papers().values())
     if args.jobs is not None and args.jobs < 1:
         raise InputFormatError("--jobs must be at least 1")
+    start = time.perf_counter()
     if args.from_audit:
         reports = _saved(args.from_audit, selected)
     else:
         from hapticproof.auditpool import audit_reports
 
-        reports = audit_reports(selected, jobs=args.jobs)
-    path = write_text(args.output, export_document(selected, reports))
+        total = sum(len(p.equations) for p in selected)
+        bar = progress_bar(sys.stderr, "export")
+        reports = audit_reports(selected, jobs=args.jobs, progress=(lambda k, _n: bar(k, total)) if bar else None)
+    path = write_text(args.output, export_document(selected, reports=reports))
+    counts: dict[str, int] = {}
+    for report in reports:
+        for verdict, n in report.counts().items():
+            counts[verdict] = counts.get(verdict, 0) + n
     print(f"wrote {path}", file=sys.stderr)
+    print(summary_line(counts, use_colour(sys.stderr), len(reports), time.perf_counter() - start), file=sys.stderr)
     return 0
 
 
@@ -48,7 +58,7 @@ def _saved(path: str, selected: list) -> list:
     import json
 
     try:
-        reports = {r.paper: r for r in reports_from_json(json.loads(open(path, encoding="utf-8").read()))}
+        reports = {r.paper: r for r in reports_from_json(json.loads(open(path, encoding="utf-8").read()), selected)}
     except (OSError, ValueError, KeyError, TypeError) as err:
         raise InputFormatError(f"--from-audit {path}: not a saved audit ({type(err).__name__}: {err})") from None
     missing = [p.id for p in selected if p.id not in reports]
