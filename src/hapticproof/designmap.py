@@ -537,11 +537,11 @@ def _line_rows(spec: MapSpec, line: int, verdicts: np.ndarray) -> Iterator[tuple
 
 
 def _number(value: Fraction) -> str:
-    """A grid value as written: exact integers and short decimals as such, else a float repr."""
+    """A grid value as written: integers and decimals as such; a value that is no short decimal
+    (``8/3`` from ``K=0.5:20:10``) as the nearest double (the verdict is the exact value's)."""
     if value.denominator == 1:
         return str(value.numerator)
-    as_float = float(value)
-    return repr(as_float) if Fraction(repr(as_float)) == value else f"{value.numerator}/{value.denominator}"
+    return repr(float(value))
 
 
 class _Writer:
