@@ -329,7 +329,7 @@ def normalise_variables(expr: sp.Expr, variable: str, where: str = "") -> sp.Exp
         bad = sorted(map(sp.sstr, expr.atoms(sp.Function))) or ["a float"]
         if bad != ["a float"]:
             raise SceneError(f"{prefix}{bad[0]} in {_DOMAIN[variable]}: only rational expressions are allowed")
-        expr = expr.xreplace({f: sp.Rational(f) for f in expr.atoms(sp.Float)})
+        expr = expr.xreplace({f: sp.Rational(repr(float(f))) for f in expr.atoms(sp.Float)})  # as typed
     return expr
 
 
@@ -341,4 +341,4 @@ def write_expression(expr: sp.Expr) -> str:
     >>> read_expression(write_expression(e)) == e
     True
     """
-    return sp.sstr(sp.sympify(expr), order="none")
+    return sp.sstr(sp.sympify(expr))

@@ -164,7 +164,8 @@ class TeleoperatorScene:
     ----------
     m_m, m_s, b_m, b_s : expr
         Masses and dampings (positive when numeric). The masses do not enter the passivity
-        bounds (they store energy losslessly) but the stability checks use them.
+        bounds (they store energy losslessly) and may be ``None``; the stability checks
+        (:meth:`to_sampled`) need them.
     T : expr
         Sampling period.
     C : expr
@@ -182,13 +183,17 @@ class TeleoperatorScene:
     alpha: Any = 1
 
     def __post_init__(self) -> None:
+        from hapticproof.expr import normalise_variables
+
         for name in ("m_m", "m_s", "b_m", "b_s", "T", "alpha"):
             value = getattr(self, name)
+            if value is None and name in ("m_m", "m_s"):
+                continue                      # masses are optional: they do not enter the bounds
             value = value if isinstance(value, sp.Basic) and not value.is_number else exact(value)
             object.__setattr__(self, name, value)
             if value.is_number and not value > 0:
                 raise SceneError(f"{name} must be positive, got {value}")
-        C = sp.sympify(self.C)
+        C = normalise_variables(self.C, "z", "C(z)")
         if not C.is_rational_function(Z_SYM):
             raise SceneError(f"C(z) must be a rational function of z, got {C}")
         num, den = sp.fraction(sp.cancel(sp.together(C)))
@@ -224,7 +229,8 @@ class TeleoperatorScene:
     def parameters(self) -> set[sp.Symbol]:
         out: set[sp.Symbol] = set()
         for value in (self.m_m, self.m_s, self.b_m, self.b_s, self.T, self.C, self.alpha):
-            out |= sp.sympify(value).free_symbols
+            if value is not None:
+                out |= sp.sympify(value).free_symbols
         return out - {Z_SYM}
 
     @property
@@ -243,7 +249,7 @@ class TeleoperatorScene:
             if key not in by_name:
                 raise SceneError(f"unknown parameter {key!r}; the scene has {sorted(by_name)}")
             mapping[by_name[key]] = exact(value)
-        sub = lambda v: sp.sympify(v).subs(mapping)  # noqa: E731
+        sub = lambda v: None if v is None else sp.sympify(v).subs(mapping)  # noqa: E731
         return replace(self, m_m=sub(self.m_m), m_s=sub(self.m_s), b_m=sub(self.b_m), b_s=sub(self.b_s),
                        T=sub(self.T), C=sub(self.C), alpha=sub(self.alpha))
 
@@ -253,6 +259,8 @@ class TeleoperatorScene:
 
         if self.parameters:
             raise SceneError(f"the scene has free parameters {sorted(map(str, self.parameters))}")
+        if self.m_m is None or self.m_s is None:
+            raise SceneError("the sampled-data loop needs the masses m_m and m_s")
         num, den = sp.fraction(sp.cancel(sp.together(self.C)))
         pn, pd = sp.Poly(num, Z_SYM), sp.Poly(den, Z_SYM)
         tf = DiscreteTF(tuple(pn.all_coeffs()), tuple(pd.all_coeffs()))
