@@ -45,6 +45,8 @@ def brief(expr: Any, limit: int = LIMIT, verbose: bool = False) -> str:
     text = sp.sstr(expr)
     if verbose or len(text) <= limit:
         return text
+    if isinstance(expr, (list, tuple)):
+        return f"{len(expr)} entries, {len(text)} characters [full text: --verbose or --format json]"
     expr = sp.sympify(expr)
     names = {s.name: s for s in getattr(expr, "free_symbols", set())}
     var = next((names[v] for v in _VARIABLES if v in names), None)

@@ -10,6 +10,8 @@ Examples::
     hapticproof derive teleoperator --controller filtered-pd --param a=1/2
     hapticproof derive teleoperator --controller "K/(1 - 0.5/z)" --param K=1 --param T=0.001 \\
         --param b_m=0.02 --param b_s=0.02
+    hapticproof derive teleoperator --controller 'K_p + K_i/s' --discretize tustin --param K_i=2 \\
+        --param T=0.001 --param b_m=0.02 --param b_s=0.02 --range K_p
 """
 
 from __future__ import annotations
@@ -20,65 +22,45 @@ import json
 import sympy as sp
 
 from hapticproof import latex as tex
-from hapticproof.cli._common import add_param_option, parse_params
-from hapticproof.errors import InputFormatError
+from hapticproof.cli._common import add_output_option, add_scene_options, check_output, scene_from_args, write_output
+from hapticproof.cli.derive_single_user import add_design_options, design_answers
 from hapticproof.evidence import to_jsonable
-from hapticproof.teleoperator import (
-    TELE_SYMBOLS,
-    TeleoperatorScene,
-    bounds,
-    error_coordinate_damping,
-    filtered_pd_controller,
-    parse_controller,
-    passivity,
-    pd_controller,
-    worst_case,
-)
+from hapticproof.teleoperator import bounds, error_coordinate_damping, passivity, worst_case
 
 __all__ = ["register", "run"]
-
-PARAMETERS = ("K", "B", "T", "a", "alpha", "b_m", "b_s", "m_m", "m_s")
-
 
 def register(systems: argparse._SubParsersAction) -> None:
     parser = systems.add_parser(
         "teleoperator",
         help="sampled-data position-error-based teleoperator (teleoperator paper, Fig. 2)",
         description="Per-robot damping bounds of eq. (32) (eq. (29) at alpha = 1) as exact functions of "
-        "c = cos(wT), their worst case over w, and the exact passivity decision when every parameter is fixed. "
-        "Controllers: 'pd' (eq. 33, default), 'filtered-pd' (derivative low-pass with pole a), or any "
-        "rational C(z) in z and the names " + ", ".join(PARAMETERS) + ".",
+        "c = cos(wT), their worst case over w, and the exact passivity decision when the controller, T, "
+        "alpha, b_m and b_s are numbers (the masses m_m, m_s do not enter the bound: they are needed only "
+        "for the stability boundary). Controllers: 'pd' (eq. 33, default), 'filtered-pd' (derivative "
+        "low-pass with pole a), any rational C(z), or C(s) with --discretize; any parameter names.",
     )
-    parser.add_argument("--controller", default="pd", metavar="C(z)",
-                        help="'pd', 'filtered-pd' or an expression in z (default: pd)")
+    add_scene_options(parser, "teleoperator")
+    add_design_options(parser, margin=False)
     parser.add_argument("--format", choices=("text", "latex", "json"), default="text")
-    add_param_option(parser)
+    parser.add_argument("--verbose", action="store_true", help="print large expressions in full (text format)")
+    add_output_option(parser)
     parser.set_defaults(handler=run)
 
 
-def _controller(text: str, params: dict) -> sp.Expr:
-    T = params.get("T", TELE_SYMBOLS["T"])
-    if text == "pd":
-        return pd_controller(params.get("K", TELE_SYMBOLS["K"]), params.get("B", TELE_SYMBOLS["B"]), T)
-    if text == "filtered-pd":
-        return filtered_pd_controller(params.get("K", TELE_SYMBOLS["K"]), params.get("B", TELE_SYMBOLS["B"]), T,
-                                      params.get("a", TELE_SYMBOLS["a"]))
-    return parse_controller(text, {k: v for k, v in params.items() if k in ("K", "B", "T", "a")})
-
-
 def run(args: argparse.Namespace) -> int:
-    params = parse_params(args.param)
-    unknown = set(params) - set(PARAMETERS)
-    if unknown:
-        raise InputFormatError(f"unknown parameter(s) {sorted(unknown)}; the teleoperator has {', '.join(PARAMETERS)}")
-    sym = TELE_SYMBOLS
-    scene = TeleoperatorScene(
-        params.get("m_m", sym["m_m"]), params.get("m_s", sym["m_s"]), params.get("b_m", sym["b_m"]),
-        params.get("b_s", sym["b_s"]), params.get("T", sym["T"]), _controller(args.controller, params),
-        params.get("alpha", 1),
-    )
+    from hapticproof.discretize import is_rational
+    from hapticproof.readable import brief, number
+
+    check_output(args.output, "--output")
+    spec = scene_from_args(args, "teleoperator")
+    scene = spec.build()
+    if not is_rational(scene.C):
+        write_output(args.output, f"C(z) = {sp.sstr(scene.C)}\nC(z) has transcendental coefficients (e^(pT) of the exact "
+                     f"{spec.discretize} map): an exact decision needs rational coefficients")
+        return 0
     bd, wc = bounds(scene), worst_case(scene)
     decision = passivity(scene) if not scene.parameters else None
+    extra, lines = design_answers(spec, args, False)
     if args.format == "json":
         out = {"controller": sp.sstr(scene.C), "alpha": sp.sstr(scene.alpha), "bound_master": sp.sstr(bd.master),
                "bound_slave": sp.sstr(bd.slave), "sup_master": to_jsonable(wc.sup_master),
@@ -86,24 +68,40 @@ def run(args: argparse.Namespace) -> int:
                "condition": sp.sstr(wc.condition) if wc.condition is not None else None,
                "error_coordinate_damping": sp.sstr(error_coordinate_damping(scene)),
                "decision": decision.to_json() if decision else None}
-        print(json.dumps(out, indent=2))
+        if spec.discretize is not None:
+            out["continuous_design"] = {"C_s": sp.sstr(spec.controller), "discretize": spec.discretize}
+        out.update(extra)
+        write_output(args.output, json.dumps(out, indent=2))
         return 0
     cos = r"\cos(\omega T)"
     if args.format == "latex":
-        lines = [r"C(z) = " + tex.to_latex(scene.C),
-                 r"b_m > " + tex.to_latex(bd.master, cos_name=cos), r"b_s > " + tex.to_latex(bd.slave, cos_name=cos)]
+        rows = [r"C(z) = " + tex.to_latex(scene.C),
+                r"b_m > " + tex.to_latex(bd.master, cos_name=cos), r"b_s > " + tex.to_latex(bd.slave, cos_name=cos)]
         if wc.condition is not None:
-            lines.append(tex.to_latex(wc.condition))
-        print("\n".join(tex.display(line) for line in lines))
+            rows.append(tex.to_latex(wc.condition))
+        write_output(args.output, "\n".join(tex.display(line) for line in rows))
         return 0
-    print(f"controller C(z) = {sp.sstr(scene.C)}, alpha = {scene.alpha}")
-    print(f"b_m > {sp.sstr(sp.factor(bd.master))}    (c = cos wT)")
-    print(f"b_s > {sp.sstr(sp.factor(bd.slave))}")
-    where = f" at c = {to_jsonable(wc.maximiser)}" if wc.maximiser is not None else ""
-    print(f"worst case: sup_c = {to_jsonable(wc.sup_master)} (master), {to_jsonable(wc.sup_slave)} (slave){where}")
+    v = args.verbose
+    out_lines = []
+    if spec.discretize is not None:
+        out_lines.append(f"C(s) = {sp.sstr(spec.controller)}  ->  {spec.discretize}")
+    out_lines += [f"controller C(z) = {brief(scene.C, verbose=v)}, alpha = {scene.alpha}",
+                  f"b_m > {brief(sp.factor(bd.master), verbose=v)}    (c = cos wT)",
+                  f"b_s > {brief(sp.factor(bd.slave), verbose=v)}"]
+    where = f" at c = {number(wc.maximiser) if not hasattr(wc.maximiser, 'approx') else wc.maximiser.approx(12)}" \
+        if wc.maximiser is not None else ""
+    if wc.sup_master is sp.oo or wc.sup_master == sp.oo:
+        out_lines.append("worst case: the bounds are unbounded (C(z) has a pole on the unit circle): no finite damping "
+                         "makes the teleoperator passive")
+    else:
+        out_lines.append(f"worst case: sup over c of the bounds = {number(wc.sup_master)} (master), "
+                         f"{number(wc.sup_slave)} (slave){where}")
     if wc.condition is not None and scene.parameters:
-        print(f"passive if {sp.sstr(wc.condition)}")
-    print(f"error-coordinate damping (less conservative): {sp.sstr(error_coordinate_damping(scene))}")
+        out_lines.append(f"passive if {brief(wc.condition, verbose=v)}")
+    out_lines.append(f"error-coordinate damping (less conservative): {sp.sstr(error_coordinate_damping(scene))}")
     if decision is not None:
-        print(f"decision: {decision.decision.value} -- {decision.reason}")
+        out_lines.append(f"decision: {decision.decision.value} -- {decision.reason}")
+    elif scene.parameters:
+        out_lines.append(f"decision: symbolic (fix {', '.join(sorted(map(str, scene.parameters)))} for an exact decision)")
+    write_output(args.output, "\n".join(out_lines + lines))
     return 0

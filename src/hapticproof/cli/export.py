@@ -27,5 +27,6 @@ def register(sub: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     selected = [get_paper(p) for p in args.papers] if args.papers else list(papers().values())
     path = write_text(args.output, export_document(selected))
-    print(f"wrote {path}", file=sys.stderr)
+    if path is not None:  # "-" is standard output
+        print(f"wrote {path}", file=sys.stderr)
     return 0
