@@ -64,7 +64,7 @@ import flint
 import sympy as sp
 
 from hapticproof.errors import SceneError
-from hapticproof.evidence import Decision, Outcome, to_jsonable
+from hapticproof.evidence import Decision, Evidence, Method, Outcome, to_jsonable
 from hapticproof.realroots import RealRoot, as_fmpq, flint_precision, minimise_rational, real_roots, to_rational
 
 __all__ = ["DelayMargin", "Endpoint", "ParameterRange", "delay_margin", "passive_range"]
@@ -121,7 +121,7 @@ class DelayMargin:
                "lower": self.lower, "upper": self.upper, "proved_up_to": self.proved_up_to,
                "decided": list(self.decided), "proof": self.proof, "seconds": round(self.seconds, 4)}
         if self.failing is not None:
-            out["failing"] = self.failing.to_json()
+            out["failing"] = _outcome_summary(self.failing)
         return to_jsonable(out)
 
     def to_text(self) -> str:
@@ -136,11 +136,26 @@ class DelayMargin:
             head = f"delay margin: N = {self.margin}" + (f" (t_d <= {t})" if t is not None else "") + \
                 f": passive for every n <= {self.margin}, not at n = {self.margin + 1}"
         lines = [head, f"  how: {self.reason}" if self.decision == Decision.PROVED else ""]
-        if self.failing is not None and self.failing.witness:
-            shown = ", ".join(f"{k} = {v}" for k, v in self.failing.witness.items() if k in ("c", "omega_T", "pole"))
-            lines.append(f"  at n = {self.margin + 1 if self.margin is not None else '?'}: {self.failing.reason}" +
-                         (f" ({shown})" if shown else ""))
+        if self.failing is not None:
+            lines.append(f"  at n = {self.margin + 1 if self.margin is not None else '?'}: {_short(self.failing.reason)}")
         return "\n".join(line for line in lines if line)
+
+
+def _short(text: str, limit: int = 240) -> str:
+    """A reason with its exact numbers abbreviated when they are huge (the full data is in JSON)."""
+    from hapticproof.readable import shorten_numbers
+
+    return shorten_numbers(text)
+
+
+def _outcome_summary(out: Outcome) -> dict[str, Any]:
+    """The decision at the failing delay: its reason and witness (no certificate: at long delays its
+    numbers have thousands of digits; re-derive that one delay for it)."""
+    witness = {}
+    for key, value in (out.witness or {}).items():
+        text = str(value) if not isinstance(value, sp.Rational) or len(str(value.q)) < 4000 else "<large>"
+        witness[key] = text
+    return {"decision": out.decision.value, "reason": _short(out.reason), "witness": witness}
 
 
 def _flint_poly(poly: sp.Poly) -> flint.fmpq_poly:
@@ -276,8 +291,13 @@ def delay_margin(scene: Any, max_delay: int = 2000) -> DelayMargin:
         if first.decision != Decision.PROVED:
             return DelayMargin(Decision.PROVED, -1, T, "exact", "not passive without delay", decided=(0,),
                                failing=first, proof=proof, seconds=time.perf_counter() - start)
-    return _scan(lambda n: _decide_single(model, n), low + 1, fail, max_delay, T, "bound+exact", start, proof,
-                 low if low >= 0 else None, decided)
+    limit = to_rational(a + F01 - R * (fail + flint.fmpq(1, 2)))
+    at_fail = Outcome(Decision.DISPROVED,
+                      Evidence(Method.ENDPOINT_ANALYSIS, witness={"c": "-> 1", "limit": limit},
+                               facts={"limit": f"a + F_0(1) - R(n + 1/2) at n = {fail}"}),
+                      f"Re G^-1 -> a + F_0(1) - R(n + 1/2) = {limit} < 0 as c -> 1 (w -> 0) at n = {fail}")
+    return _scan(lambda n: at_fail if n == fail else _decide_single(model, n), low + 1, fail, max_delay, T,
+                 "bound+exact", start, proof, low if low >= 0 else None, decided)
 
 
 def _scan(decide, first: int, last: int | None, max_delay: int, T: Any, method: str, start: float,
@@ -371,7 +391,7 @@ class Endpoint:
 
     def approx(self, digits: int = 15) -> str:
         if self.value is not None:
-            return str(self.value)
+            return str(sp.N(self.value, digits))
         root = RealRoot(as_fmpq(self.lo), as_fmpq(self.hi), self.polynomial)
         return root.approx(digits)
 

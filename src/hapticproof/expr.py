@@ -325,10 +325,10 @@ def normalise_variables(expr: sp.Expr, variable: str, where: str = "") -> sp.Exp
     mine = _VARIABLES[variable]
     if variable in names and names[variable] != mine:
         expr = expr.xreplace({names[variable]: mine})
-    if expr.atoms(sp.Function) or expr.has(sp.Float):
-        bad = sorted(map(sp.sstr, expr.atoms(sp.Function))) or ["a float"]
-        if bad != ["a float"]:
-            raise SceneError(f"{prefix}{bad[0]} in {_DOMAIN[variable]}: only rational expressions are allowed")
+    bad = sorted(sp.sstr(f) for f in expr.atoms(sp.Function) if mine in f.free_symbols)
+    if bad:      # a function of the variable (exp(-T/tau), a coefficient of ZOH, is fine)
+        raise SceneError(f"{prefix}{bad[0]} in {_DOMAIN[variable]}: only rational expressions are allowed")
+    if expr.has(sp.Float):
         expr = expr.xreplace({f: sp.Rational(repr(float(f))) for f in expr.atoms(sp.Float)})  # as typed
     return expr
 

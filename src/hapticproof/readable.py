@@ -19,7 +19,7 @@ from typing import Any
 import flint
 import sympy as sp
 
-__all__ = ["brief", "number", "LIMIT"]
+__all__ = ["brief", "number", "shorten_numbers", "LIMIT"]
 
 #: Characters up to which an expression is printed in full in text output.
 LIMIT = 400
@@ -83,3 +83,16 @@ def number(value: Any, digits: int = 15) -> str:
     if value.is_number:
         return f"{sp.sstr(value)} ~ {sp.N(value, digits)}"
     return sp.sstr(value)
+
+
+def shorten_numbers(text: str, digits: int = 40, verbose: bool = False) -> str:
+    """Integers of more than ``digits`` digits in a sentence abbreviated (exact data stays in JSON).
+
+    >>> shorten_numbers("Re G^-1(c) = -" + "7" * 60 + "/3 < 0")
+    'Re G^-1(c) = -<60-digit integer>/3 < 0'
+    """
+    import re
+
+    if verbose:
+        return text
+    return re.sub(r"\d{%d,}" % digits, lambda m: f"<{len(m.group(0))}-digit integer>", text)

@@ -73,7 +73,7 @@ class SceneSummary:
         return to_jsonable(out)
 
     def to_text(self, verbose: bool = False) -> str:
-        from hapticproof.readable import brief
+        from hapticproof.readable import brief, shorten_numbers
 
         lines = [
             f"system:          {self.system} ({self.approximation} difference, delay n = {self.delay})",
@@ -86,8 +86,8 @@ class SceneSummary:
         ]
         width = max((len(c.name) for c in self.conditions), default=0)
         for cond in self.conditions:
-            lines.append(f"  {cond.name.ljust(width)}  {cond.decision.value:<9}  {cond.outcome.reason}")
-        lines.append(f"verdict:         {self.verdict}  ({self.reason})")
+            lines.append(f"  {cond.name.ljust(width)}  {cond.decision.value:<9}  {shorten_numbers(cond.outcome.reason, verbose=verbose)}")
+        lines.append(f"verdict:         {self.verdict}  ({shorten_numbers(self.reason, verbose=verbose)})")
         if self.witness:
             lines.append("witness:         " + ", ".join(f"{k} = {_show(v)}" for k, v in self.witness.items()))
         if self.stages:
