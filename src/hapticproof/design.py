@@ -387,7 +387,12 @@ class Endpoint:
         if root.is_exact:
             return cls(to_rational(root.lo))
         r = root.refine(flint.fmpq(1, 2**60))
-        return cls(None, root.poly, to_rational(r.lo), to_rational(r.hi))
+        poly = root.poly
+        for factor, _ in root.poly.factor()[1]:          # the irreducible factor of the root
+            if factor.degree() > 0 and real_roots(flint.fmpq_poly(factor), r.lo, r.hi):
+                poly = factor
+                break
+        return cls(None, poly, to_rational(r.lo), to_rational(r.hi))
 
     def approx(self, digits: int = 15) -> str:
         if self.value is not None:
@@ -451,7 +456,10 @@ class ParameterRange:
         text = f"passive range of {self.parameter} (others fixed): {body}   [{tag}; {len(self.cells)} cells decided]"
         algebraic = [e for i in self.intervals for e in (i[0], i[2]) if e is not None and e.value is None]
         for e in algebraic:
-            text += f"\n  {e.approx(12)}... is the root of {flint.fmpz_poly(e.polynomial)} in [{e.lo}, {e.hi}]"
+            poly = str(flint.fmpz_poly(e.polynomial))
+            if len(poly) > 160:
+                poly = f"an irreducible polynomial of degree {e.polynomial.degree()} (in the JSON output)"
+            text += f"\n  {e.approx(12)}... is the root of {poly} in [{float(e.lo):.15g}, {float(e.hi):.15g}]"
         return text
 
     def to_json(self) -> dict[str, Any]:

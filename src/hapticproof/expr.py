@@ -100,10 +100,22 @@ def parameter_symbol(name: str, assumption: str | None = None) -> sp.Symbol:
         raise ExpressionError(f"{name!r} is not a parameter name (letters, digits and _, not starting with _ or a digit)")
     if name in _VARIABLES:
         raise ExpressionError(f"{name!r} is a transform variable, not a parameter name")
-    word = assumption or DEFAULT_ASSUMPTIONS.get(name, "real")
+    word = assumption or DEFAULT_ASSUMPTIONS.get(name) or _indexed_default(name)
     if word not in ASSUMPTIONS:
         raise ExpressionError(f"{name}: unknown assumption {word!r}; use one of {', '.join(ASSUMPTIONS)}")
     return sp.Symbol(name, **ASSUMPTIONS[word])
+
+
+_INDEXED = re.compile(r"(b|K_0|B_0|K|B|z_a|m)_?[0-9][0-9_]*")
+
+
+def _indexed_default(name: str) -> str:
+    """Per-user names of m-user scenes (``b_1``, ``K_01``, ``B_12``, ``z_a2``, ``m_3``) carry
+    their group's sign, as :func:`hapticproof.multiuser.user_symbols` builds them."""
+    match = _INDEXED.fullmatch(name)
+    if match is None:
+        return "real"
+    return DEFAULT_ASSUMPTIONS.get(match.group(1), "real")
 
 
 def read_number(text: str, where: str = "") -> sp.Rational:
