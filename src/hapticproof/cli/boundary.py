@@ -67,7 +67,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         description="Stability boundary of one parameter (--vary) of a scene -- the same scene as 'derive' "
         "(options or --scene FILE), plus the device masses m (m_1.. or m_m, m_s) -- at the scene's values or "
         "along a sweep of another parameter (--over), next to the borderline of the paper's printed "
-        "condition when the scene is the paper's own.",
+        "condition when the scene is the paper's own. The virtual damping B (B_0) is 0 unless given.",
     )
     parser.add_argument("system", nargs="?", choices=SYSTEMS, help="the system (default: the scene file's)")
     parser.add_argument("--scene", metavar="FILE", help="read the scene from a scene file (TOML)")
@@ -160,6 +160,10 @@ def handler(args: argparse.Namespace) -> int:
         raise InputFormatError("--vary/--over parameters must not also be fixed with --param")
     # a value in the scene file is the design point: the boundary varies it
     spec = spec.with_params({args.vary: None, **({over_name: None} if over_name else {})})
+    # the virtual damping is 0 unless given (as the papers' stability studies)
+    unset = {"B", "B_0"} & spec.names() - set(dict(spec.params)) - {args.vary, over_name}
+    if unset:
+        spec = spec.with_params({name: 0 for name in unset})
     loops = SceneLoops(spec)
     if args.over is None:
         if args.csv or args.plot:
