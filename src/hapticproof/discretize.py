@@ -121,9 +121,8 @@ def _poles(den: sp.Poly) -> dict[sp.Expr, int]:
 
 def _laurent_terms(F: sp.Expr, s: sp.Symbol) -> list[tuple[sp.Expr, int, sp.Expr]]:
     """Partial fractions ``F = sum c/(s - p)^k`` of a strictly proper rational ``F``: ``(p, k, c)``."""
-    num, den = sp.fraction(sp.cancel(sp.together(F)))
+    _, den = sp.fraction(sp.cancel(sp.together(F)))
     den_poly = sp.Poly(den, s)
-    lead = den_poly.LC()
     out = []
     for p, mult in _poles(den_poly).items():
         rest = sp.cancel(F * (s - p) ** mult)
@@ -133,7 +132,6 @@ def _laurent_terms(F: sp.Expr, s: sp.Symbol) -> list[tuple[sp.Expr, int, sp.Expr
             coeff = sp.simplify(coeff)
             if coeff != 0:
                 out.append((p, k, coeff))
-    del lead
     return out
 
 

@@ -312,7 +312,3 @@ def write_scene(scene, path: str | Path) -> Path | None:
     path.parent.mkdir(parents=True, exist_ok=True)
     path.write_text(text, encoding="utf-8")
     return path
-
-
-def _as_sympy(value: Any) -> Any:  # pragma: no cover - kept for symmetry with toml_value
-    return sp.sympify(value)

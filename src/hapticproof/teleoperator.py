@@ -32,7 +32,6 @@ analysis for the symbolic PD controller (33).
 
 from __future__ import annotations
 
-import re
 from collections.abc import Mapping
 from dataclasses import dataclass, replace
 from functools import lru_cache
@@ -127,30 +126,23 @@ def discretize_pd(method: str, K: Any = TELE_SYMBOLS["K"], B: Any = TELE_SYMBOLS
     return sp.cancel(as_poly(num) * z ** (top - len(num) + 1) / (as_poly(den) * z ** (top - len(den) + 1)))
 
 
-_ALLOWED = re.compile(r"^[A-Za-z0-9_.+\-*/()^ \t]*$")
-
-
 def parse_controller(text: str, params: Mapping[str, Any] | None = None) -> sp.Expr:
-    """A user's controller ``C(z)`` from text such as ``"K + B*(z-1)/(T*z)"``.
+    """A user's controller ``C(z)`` from text such as ``"K + B*(z-1)/(T*z)"`` (read by
+    :func:`hapticproof.expr.read_expression`: exact decimals, any parameter names).
 
-    Names other than ``z`` must be given in ``params`` (exact values) or be one of the
-    teleoperator symbols (``K``, ``B``, ``T``, ``a``, ``alpha``...), which stay symbolic.
+    Names given in ``params`` get those exact values; the others stay symbolic (the teleoperator
+    symbols ``K``, ``B``, ``T``, ``a``, ``alpha``... with their signs).
 
     >>> parse_controller("K + B*(z - 1)/(T*z)", {"K": 2, "B": "0.01", "T": "0.001"})
     2 + 10*(z - 1)/z
     """
-    if not isinstance(text, str) or not text.strip() or not _ALLOWED.match(text):
-        raise InputFormatError(f"controller {text!r}: use numbers, z, parameter names, + - * / ^ and ()")
-    names = {"z": Z_SYM, **TELE_SYMBOLS}
-    values = {k: exact(v) for k, v in (params or {}).items()}
-    for ident in re.findall(r"[A-Za-z_][A-Za-z0-9_]*", text):
-        if ident not in names and ident not in values:
-            raise InputFormatError(f"controller {text!r}: unknown name {ident!r}")
-    try:
-        expr = sp.sympify(text.replace("^", "**"), locals={**names, **{k: sp.Symbol(k) for k in values}}, rational=True)
-    except (sp.SympifyError, SyntaxError, TypeError) as err:
-        raise InputFormatError(f"controller {text!r} is not a valid expression") from err
-    expr = expr.subs({sp.Symbol(k): v for k, v in values.items()})
+    from hapticproof.expr import read_expression
+
+    if not isinstance(text, str) or not text.strip():
+        raise InputFormatError(f"controller {text!r}: give C(z) as an expression in z")
+    expr = read_expression(text, "z", where="controller", symbols=TELE_SYMBOLS)
+    values = {sym: exact(params[sym.name]) for sym in expr.free_symbols if params and sym.name in params}
+    expr = expr.subs(values)
     if not isinstance(expr, sp.Expr) or not expr.is_rational_function(Z_SYM):
         raise InputFormatError(f"controller {text!r} must be a rational function of z")
     return expr
