@@ -44,7 +44,7 @@ import sympy as sp
 from hapticproof.audit import AuditContext, Paper
 from hapticproof.certify import compare_expressions, is_identically_zero
 from hapticproof.energy import Sinusoid, input_energy, port_admittance
-from hapticproof.evidence import Decision, Evidence, Finding, Method, Verdict
+from hapticproof.evidence import Decision, Evidence, Finding, Method, Plot, Series, Verdict
 from hapticproof.latex import to_latex
 from hapticproof.networks import (
     absolute_stability,
@@ -1738,6 +1738,14 @@ def eq47(ctx: AuditContext) -> Finding:
     return Finding(Verdict.CONFIRMED, "T_1 is passive", result.evidence)
 
 
+def fig3_plot(traces: dict[int, Any]) -> Plot:
+    """The Fig. 3 runs ``E_s(t)`` (every 10th sample) as evidence data for the reports."""
+    series = tuple(Series(f"k_vmyz = {k}", tr.times[::10], tr.energy[::10], "line" if k == 60 else "dashed")
+                   for k, tr in traces.items())
+    return Plot("Fig. 3 regenerated: input energy at the master port, slave terminated by (47)", "t (s)", "E_s(t) (J)",
+                series, hline=0.0)
+
+
 FIG3_PRINTED_46 = ("if the control gains are selected according to (46), e.g., as listed in Table 1, with $K_{vmyz} = 60$")
 
 
@@ -1770,7 +1778,8 @@ def fig3_60(ctx: AuditContext) -> Finding:
                        "E_s(t) >= 0 for every input from rest; simulated (exact between samples) E_s stays >= 0 "
                        f"(min {trace.minimum:.3g} J over {trace.times[-1]:.0f} s)",
                        Evidence(Method.SIMULATION, facts={"absolute_stability": verdict.reason, "input_impedance": zin.reason,
-                                                          "E_min": trace.minimum, "E_final": trace.final}))
+                                                          "E_min": trace.minimum, "E_final": trace.final,
+                                                          "plot": fig3_plot({60: trace})}))
     return Finding(Verdict.WRONG, "the k_vmyz = 60 case is not stable/passive", verdict.evidence)
 
 
@@ -1793,5 +1802,6 @@ def fig3_6(ctx: AuditContext) -> Finding:
                        f"E_s negative from t ~ {negative:.3g} s (min {trace.minimum:.3g} J); the same forces give E_s >= 0 for "
                        f"k_vmyz = 60 (min {same_forces_60:.3g} J). The paper does not state its sine inputs; the sign depends on them",
                        Evidence(Method.SIMULATION, facts={"certificate": _certificate_facts(cert), "input_impedance": zin.reason,
-                                                          "first_negative_time": negative, "E_min": trace.minimum}))
+                                                          "first_negative_time": negative, "E_min": trace.minimum,
+                                                          "plot": fig3_plot({6: trace, 60: fig3_energy(60)})}))
     return Finding(Verdict.UNDECIDED, "potential instability not established", Evidence(Method.INSTANCES))

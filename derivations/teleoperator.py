@@ -25,7 +25,7 @@ from hapticproof import boundary as bnd
 from hapticproof import classics, teleoperator as tele
 from hapticproof.audit import AuditContext, Paper, malformed
 from hapticproof.certify import compare_bounds, compare_expressions, is_identically_zero
-from hapticproof.evidence import Evidence, Finding, Method, Verdict
+from hapticproof.evidence import Evidence, Finding, Method, Plot, Series, Verdict
 from hapticproof.parse import SymbolTable
 from hapticproof.symbols import c as C_SYM
 from hapticproof.symbols import z as Z_SYM
@@ -1271,7 +1271,18 @@ def table1(ctx: AuditContext) -> Finding:
                        Evidence(Method.SPECTRAL, instances=len(TABLE_I), facts=facts))
     return Finding(Verdict.CONFIRMED, "all 8 reported outcomes agree with the exact ZOH model (spectral radius < 1 exactly for "
                    "the stable entries) and with (35) (K T < b there); the MSE values are hardware data and are not reproduced",
-                   Evidence(Method.SPECTRAL, instances=len(TABLE_I), facts=facts))
+                   Evidence(Method.SPECTRAL, instances=len(TABLE_I), facts={**facts, "plot": _table1_plot(facts)}))
+
+
+def _table1_plot(facts: dict[str, dict[str, Any]]) -> Plot:
+    """Table I's spectral radii against K, one series per T (evidence data for the reports)."""
+    series = []
+    for Tms in sorted({Tms for Tms, _ in TABLE_I}):
+        gains = sorted((Kt for T_, Kt in TABLE_I if T_ == Tms), key=float)
+        series.append(Series(f"T = {Tms} ms", [float(k) for k in gains],
+                             [facts[f"T={Tms}ms,K={k}"]["rho"] for k in gains], "points"))
+    return Plot("Table I: spectral radius of the exact ZOH loop (above 1: unstable)", "K (N/m)", "spectral radius",
+                tuple(series), hline=1.0)
 
 
 @PAPER.equation("table1-mse", kind="claim", after="40", section="V-F",
@@ -1288,6 +1299,15 @@ def table1_mse(ctx: AuditContext) -> Finding:
     return Finding(verdict, f"{decreasing} of {len(steps)} gain increases in the stable region lower the reported MSE "
                    "(the exception: T = 7 ms, K = 2.0 -> 2.4); checked on the table's own numbers",
                    Evidence(Method.INSTANCES, instances=len(steps), facts={"decreases": decreasing}))
+
+
+def _boundary_plot(ratios: dict[str, dict[str, float]]) -> Plot:
+    """The exact FF and FC stability boundaries relative to (35)'s b/T (evidence data for the reports)."""
+    T = [float(k.split()[0]) for k in ratios]
+    return Plot("Exact stability boundaries K* relative to the (35) borderline b/T", "T (ms)", "K* / (b/T)",
+                tuple(Series(name, T, [r[key] for r in ratios.values()], "points")
+                      for name, key in (("free/free (Fig. 5)", "FF/(35)"), ("free/clamped (Fig. 6)", "FC/(35)"))),
+                hline=1.0)
 
 
 def _boundary_ratios(times: tuple[int, ...]) -> dict[str, dict[str, float]]:
@@ -1317,7 +1337,8 @@ def fig5(ctx: AuditContext) -> Finding:
                    f"in the model the FF stability boundary is within {100 * (worst - 1):.2f}% above (35)'s b/T for T = 1..15 ms "
                    "(K_FF = K*_(1 robot)/2 = (b/T)(1 + bT/(6m) + ...)), so a close match is what the model predicts and (35) "
                    "stays on the safe side; the experimental points themselves are not reproducible here",
-                   Evidence(Method.SPECTRAL, facts={"ratios": ratios, "two_robot_loop_at_15ms": (below, above)}))
+                   Evidence(Method.SPECTRAL, facts={"ratios": ratios, "two_robot_loop_at_15ms": (below, above),
+                                                    "plot": _boundary_plot(ratios)}))
 
 
 @PAPER.equation("fig6-fc", kind="claim", after="40", section="V-E",
@@ -1336,7 +1357,7 @@ def fig6(ctx: AuditContext) -> Finding:
     return Finding(Verdict.CONFIRMED if ok else Verdict.UNDECIDED,
                    "with the slave clamped the master alone sees the spring K, whose exact stability limit is about 2b/T, "
                    "twice (35)'s b/T: the FC stable region is larger, as reported",
-                   Evidence(Method.SPECTRAL, facts={"ratios": ratios, "fc_loop_at_10ms": radii}))
+                   Evidence(Method.SPECTRAL, facts={"ratios": ratios, "fc_loop_at_10ms": radii, "plot": _boundary_plot(ratios)}))
 
 
 # ---------------------------------------------------------------------------------------------

@@ -265,7 +265,7 @@ def test_designer_answers_on_the_command_line(capsys):
 def test_teleoperator_decides_without_masses_and_prints_no_raw_dict(capsys):
     code, out, _ = run(capsys, "derive", "teleoperator", "--param", "K=1", "--param", "B=0.01", "--param", "T=0.001",
                        "--param", "b_m=0.02", "--param", "b_s=0.02")
-    assert code == 0 and "decision: disproved" in out
+    assert code == 0 and "verdict: disproved" in out
     code, out, _ = run(capsys, "derive", "teleoperator", "--controller", "K/(z-1)", "--param", "K=1",
                        "--param", "T=0.001", "--param", "b_m=0.02", "--param", "b_s=0.02")
     assert code == 0 and "{'exact'" not in out and "unbounded" in out

@@ -16,7 +16,8 @@ The check derives its counterpart with the toolkit and compares, returning a
 :class:`~hapticproof.evidence.Finding` (one verdict with evidence). A printed string the parser
 rejects becomes ``malformed`` automatically (with the position), unless the check handles the
 parse error itself (for documented OCR readings). Reports render as a text table, Markdown,
-the JSON of DESIGN.md and a compilable LaTeX file.
+the JSON of DESIGN.md, a compilable LaTeX file (:mod:`hapticproof.latex`) and a self-contained
+HTML page (:mod:`hapticproof.html`; also the report's view in a notebook).
 
 >>> paper = Paper("demo", title="Demo", source="none")
 >>> @paper.equation("1", kind="claim", printed="1 + 1 = 2")
@@ -253,6 +254,14 @@ class EquationResult:
             "seconds": round(self.seconds, 6),
         }
 
+    def __repr__(self) -> str:  # short and free of timings (notebooks compare it)
+        return f"EquationResult({self.id!r}, {self.verdict.value})"
+
+    def _repr_html_(self) -> str:
+        from hapticproof.html import result_html
+
+        return result_html(self, timings=False)
+
 
 @dataclass(frozen=True)
 class AuditReport:
@@ -265,14 +274,19 @@ class AuditReport:
     def to_json(self) -> dict[str, Any]:
         return {"paper": self.paper, "title": self.title, "equations": [r.to_json() for r in self.results]}
 
+    def __repr__(self) -> str:  # short and free of timings (notebooks compare it)
+        counts = ", ".join(f"{k} {v}" for k, v in sorted(self.counts().items()))
+        return f"AuditReport({self.paper!r}, {len(self.results)} equations: {counts})"
+
     def counts(self) -> dict[str, int]:
         out: dict[str, int] = {}
         for r in self.results:
             out[r.verdict.value] = out.get(r.verdict.value, 0) + 1
         return out
 
-    def to_table(self, width: int = 120) -> str:
-        """Plain-text table: equation, verdict, one-line detail."""
+    def to_table(self, width: int = 120, wide: bool = False, style: Callable[[str], str] | None = None) -> str:
+        """Plain-text table: equation, verdict, detail (shortened to one line unless ``wide``);
+        ``style(verdict_text)`` may decorate the verdict column (the CLI colours it)."""
         lines = [f"{self.paper}: {self.title}", ""]
         id_w = max([len("eq")] + [len(r.id) for r in self.results])
         v_w = max(len(v.value) for v in Verdict)
@@ -280,8 +294,9 @@ class AuditReport:
         lines += [header, "-" * min(width, len(header) + 60)]
         detail_w = max(30, width - id_w - v_w - 4)
         for r in self.results:
-            detail = textwrap.shorten(r.detail, detail_w, placeholder=" ...")
-            lines.append(f"{r.id.ljust(id_w)}  {r.verdict.value.ljust(v_w)}  {detail}")
+            detail = r.detail if wide else textwrap.shorten(r.detail, detail_w, placeholder=" ...")
+            verdict = r.verdict.value.ljust(v_w)
+            lines.append(f"{r.id.ljust(id_w)}  {style(verdict) if style else verdict}  {detail}")
         summary = ", ".join(f"{k}: {v}" for k, v in sorted(self.counts().items()))
         lines += ["", f"{len(self.results)} equations ({summary})"]
         return "\n".join(lines)
@@ -297,23 +312,23 @@ class AuditReport:
         return "\n".join(lines) + "\n"
 
     def to_latex_sections(self) -> list[tuple[str, str]]:
-        sections = []
-        for r in self.results:
-            body = [
-                r"\textbf{Verdict:} \texttt{" + r.verdict.value + r"} --- " + tex.escape_text(r.detail),
-                r"\par\textbf{Printed:}",
-                tex.safe_math(r.printed) if r.kind != "claim" else tex.verbatim_block(r.printed),
-            ]
-            if r.derived:
-                body += [r"\textbf{Derived:}", tex.safe_math(r.derived)]
-            if r.corrected:
-                body += [r"\textbf{Corrected:}", tex.safe_math(r.corrected)]
-            sections.append((f"({r.id}) [{r.kind}]", "\n".join(body)))
-        return sections
+        """One (heading, body) section per equation (rendered by :mod:`hapticproof.latex`)."""
+        return [("", tex.equation_block(r, tex.anchor(self.paper, r.id))) for r in self.results]
 
     def to_latex(self) -> str:
-        """A complete LaTeX document: printed vs derived side by side, corrections."""
-        return tex.document(f"Audit of {self.title} ({self.paper})", self.to_latex_sections())
+        """A complete LaTeX document: counts per verdict, then printed / derived / corrected."""
+        return tex.audit_document([self])
+
+    def to_html(self) -> str:
+        """A self-contained HTML page (:func:`hapticproof.html.report_html`)."""
+        from hapticproof.html import report_html
+
+        return report_html([self])
+
+    def _repr_html_(self) -> str:
+        from hapticproof.html import report_fragment
+
+        return report_fragment([self], timings=False, prefixed=True)
 
     def dumps(self, fmt: str) -> str:
         if fmt == "json":
@@ -322,6 +337,8 @@ class AuditReport:
             return self.to_markdown()
         if fmt in ("tex", "latex"):
             return self.to_latex()
+        if fmt == "html":
+            return self.to_html()
         return self.to_table()
 
 
@@ -364,11 +381,17 @@ def run_equation(paper: Paper, equation: Equation) -> EquationResult:
     )
 
 
-def audit_paper(paper: Paper, only: Iterable[str] | None = None) -> AuditReport:
-    """Audit every registered equation of ``paper`` (or only the given ids), in order."""
+def audit_paper(paper: Paper, only: Iterable[str] | None = None,
+                progress: Callable[[int, int], None] | None = None) -> AuditReport:
+    """Audit every registered equation of ``paper`` (or only the given ids), in order;
+    ``progress(done, total)`` is called after each equation."""
     equations = [paper.get(i) for i in only] if only else paper.ordered()
-    results = tuple(run_equation(paper, eq) for eq in equations)
-    return AuditReport(paper.id, paper.title, results)
+    results = []
+    for eq in equations:
+        results.append(run_equation(paper, eq))
+        if progress is not None:
+            progress(len(results), len(equations))
+    return AuditReport(paper.id, paper.title, tuple(results))
 
 
 def reports_to_json(reports: Iterable[AuditReport]) -> str:

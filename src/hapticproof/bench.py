@@ -405,12 +405,16 @@ def _machine() -> dict[str, Any]:
 
 
 def run(tasks: Iterable[str], outdir: str | Path, quick: bool = False, repeat: int = 3,
-        log: Callable[[str], None] = print) -> dict[str, Any]:
-    """Run the named studies, write ``<task>.json`` (+ PNG) into ``outdir``, return a summary."""
+        log: Callable[[str], None] = print, progress: Callable[..., None] | None = None) -> dict[str, Any]:
+    """Run the named studies, write ``<task>.json`` (+ PNG) into ``outdir``, return a summary;
+    ``progress(done, total, label)`` is called before each study and at the end."""
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
     summary: dict[str, Any] = {"machine": _machine(), "quick": quick, "repeat": repeat}
-    for task in tasks:
+    tasks = list(tasks)
+    for number, task in enumerate(tasks):
+        if progress is not None:
+            progress(number, len(tasks), f"bench {task}")
         start = time.perf_counter()
         log(f"[bench] {task} ...")
         if task == "margin":
@@ -452,6 +456,8 @@ def run(tasks: Iterable[str], outdir: str | Path, quick: bool = False, repeat: i
         data["seconds"] = time.perf_counter() - start
         (outdir / f"{task}.json").write_text(json.dumps(_jsonable(data), indent=1))
         summary[task] = {"seconds": data["seconds"]}
+    if progress is not None:
+        progress(len(tasks), len(tasks), "bench")
     (outdir / "summary.json").write_text(json.dumps(summary, indent=1))
     return summary
 

@@ -542,7 +542,41 @@ def _check_residue(cert: dict) -> list[str]:
     return [f"Res/z0 = {value} at z0 = {pole}"]
 
 
-_CHECKS = {"sign": _check_sign, "psd": _check_psd, "roots": _check_roots, "residue": _check_residue}
+def _charpoly_coefficients(M: list[list[_G]]) -> list[Fraction]:
+    """``E_1..E_m`` (sums of principal minors) by Faddeev-LeVerrier over the Gaussian rationals."""
+    m = len(M)
+    identity = [[_G(Fraction(int(i == j))) for j in range(m)] for i in range(m)]
+    Mk = [row[:] for row in identity]
+    coeffs = [_G(Fraction(1))]        # det(lambda I - M) = sum c_k lambda^(m-k)
+    for k in range(1, m + 1):
+        AM = [[sum((M[i][t] * Mk[t][j] for t in range(m)), _G(Fraction(0))) for j in range(m)] for i in range(m)]
+        trace = sum((AM[i][i] for i in range(m)), _G(Fraction(0)))
+        ck = _G(-trace.re / k, -trace.im / k)
+        coeffs.append(ck)
+        Mk = [[AM[i][j] + (identity[i][j] * ck) for j in range(m)] for i in range(m)]
+    # E_k = (-1)^k c_k, real for a Hermitian matrix
+    return [(-1) ** k * coeffs[k].re for k in range(1, m + 1)]
+
+
+def _check_constant_psd(cert: dict) -> list[str]:
+    M = [[_G(_q(a), _q(b)) for a, b in row] for row in cert["matrix"]]
+    m = len(M)
+    if any(M[i][j].re != M[j][i].re or M[i][j].im != -M[j][i].im for i in range(m) for j in range(m)):
+        raise _Fail("the matrix is not Hermitian")
+    E = _charpoly_coefficients(M)
+    holds = all(e >= 0 for e in E)
+    if holds != cert["holds"]:
+        raise _Fail("the characteristic coefficients contradict the certificate")
+    if not holds and "negative_minor" in cert:
+        rows = cert["negative_minor"]["rows"]
+        value = _det([[M[i][j] for j in rows] for i in rows]).re
+        if not value < 0 or value != _q(cert["negative_minor"]["value"]):
+            raise _Fail("the recorded principal minor is not negative")
+    return [f"{m}x{m} matrix: E_k = {', '.join(str(e) for e in E[:4])}{'...' if m > 4 else ''} (Faddeev-LeVerrier)"]
+
+
+_CHECKS = {"sign": _check_sign, "psd": _check_psd, "roots": _check_roots, "residue": _check_residue,
+           "constant-psd": _check_constant_psd}
 
 
 def check_certificate(cert: dict) -> CheckResult:

@@ -22,7 +22,7 @@ from typing import Any
 
 import sympy as sp
 
-__all__ = ["Decision", "Verdict", "Method", "Evidence", "Outcome", "Finding", "to_jsonable", "exact"]
+__all__ = ["Decision", "Verdict", "Method", "Evidence", "Outcome", "Finding", "Series", "Plot", "to_jsonable", "exact"]
 
 
 class Decision(enum.StrEnum):
@@ -119,6 +119,53 @@ def to_jsonable(value: Any) -> Any:
     return str(value)
 
 
+@dataclass(frozen=True, slots=True)
+class Series:
+    """One curve of a :class:`Plot`: ``style`` is ``line``, ``dashed`` or ``points``."""
+
+    label: str
+    x: tuple[float, ...]
+    y: tuple[float, ...]
+    style: str = "line"
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "x", tuple(float(v) for v in self.x))
+        object.__setattr__(self, "y", tuple(float(v) for v in self.y))
+        if len(self.x) != len(self.y):
+            raise ValueError(f"series {self.label!r}: {len(self.x)} x values but {len(self.y)} y values")
+        if self.style not in ("line", "dashed", "points"):
+            raise ValueError(f"series style must be line, dashed or points, got {self.style!r}")
+
+    def to_json(self) -> dict[str, Any]:
+        return {"label": self.label, "x": list(self.x), "y": list(self.y), "style": self.style}
+
+
+@dataclass(frozen=True, slots=True)
+class Plot:
+    """Figure data carried in an :class:`Evidence`'s facts (computed by the check; the HTML
+    report only draws it): curves, axis labels and an optional horizontal reference line.
+
+    >>> Plot("E_s", "t (s)", "E (J)", (Series("k = 6", (0, 1), (0, -0.5)),), hline=0).to_json()["series"][0]["y"]
+    [0.0, -0.5]
+    """
+
+    title: str
+    xlabel: str
+    ylabel: str
+    series: tuple[Series, ...]
+    hline: float | None = None
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "series", tuple(self.series))
+
+    def to_json(self) -> dict[str, Any]:
+        out = {"title": self.title, "xlabel": self.xlabel, "ylabel": self.ylabel,
+               "series": [s.to_json() for s in self.series]}
+        if self.hline is not None:
+            out["hline"] = self.hline
+        return out
+
+
 @dataclass(frozen=True)
 class Evidence:
     """What backs a decision or verdict.
@@ -133,7 +180,8 @@ class Evidence:
     instances : int, optional
         Number of exact instances checked (for ``instances`` evidence).
     facts : mapping
-        Further data: values of both sides at the witness, minimisers, certificates.
+        Further data: values of both sides at the witness, minimisers, certificates, and
+        :class:`Plot` data where a finding is about a figure or a boundary.
     """
 
     method: str
@@ -214,3 +262,8 @@ class Finding:
         object.__setattr__(self, "verdict", Verdict(self.verdict))
         if not self.detail:
             raise ValueError("a finding needs a one-sentence detail")
+
+    def _repr_html_(self) -> str:
+        from hapticproof.html import finding_html
+
+        return finding_html(self)

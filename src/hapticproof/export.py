@@ -1,8 +1,9 @@
 """Export the derived conditions of registered papers as one LaTeX document.
 
 For every equation the document shows the toolkit's derivation and, where the printed equation
-is defective, the corrected LaTeX. A paper may also list ``conditions``: ``(label, condition LaTeX, source)``
-rows collected into one table in a common notation.
+is defective, the printed display and its correction, each labelled. A paper may also list
+``conditions``: ``(label, condition LaTeX, source)`` rows collected into one table in a common
+notation (a table whose cells wrap, across pages).
 
 >>> from hapticproof.audit import Paper
 >>> doc = export_document([Paper("demo", title="Demo", source="none")])
@@ -12,11 +13,10 @@ True
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 
 from hapticproof import latex as tex
-from hapticproof.audit import Paper, audit_paper
-from hapticproof.evidence import Verdict
+from hapticproof.audit import AuditReport, Paper, audit_paper
 
 __all__ = ["export_document", "conditions_table"]
 
@@ -26,35 +26,41 @@ def conditions_table(papers: Iterable[Paper]) -> str:
     rows = []
     for paper in papers:
         for label, condition, source in paper.condition_rows():
-            rows.append(
-                tex.escape_text(label) + " & $\\displaystyle " + condition + "$ & " + tex.escape_text(source) + r" \\"
-            )
+            rows.append([tex.escape_text(label), tex.math_cell(condition), r"{\small " + tex.escape_text(source) + "}"])
     if not rows:
         return ""
-    return "\n".join(
-        [r"\begin{center}\begin{tabular}{lll}", r"condition & statement & source \\ \hline", *rows, r"\end{tabular}\end{center}"]
-    )
+    return tex.longtable(["condition", "statement", "source"], rows, [0.25, 0.45, 0.24])
 
 
-def export_document(papers: Iterable[Paper]) -> str:
-    """The derived (and corrected) conditions of ``papers`` as a complete amsmath document."""
+def export_document(papers: Iterable[Paper], progress: Callable[[int, int], None] | None = None,
+                    reports: Iterable[AuditReport] | None = None) -> str:
+    """The derived (and corrected) conditions of ``papers`` as a complete document.
+
+    ``progress(done, total)`` is called after each audited equation (over all papers);
+    ``reports`` (the papers' audit reports, in the same order) are used instead of auditing.
+    """
     papers = list(papers)
+    if reports is None:
+        total = sum(len(p.equations) for p in papers)
+        done = 0
+        audited = []
+        for paper in papers:
+            def tick(k: int, _n: int, base: int = done) -> None:
+                if progress is not None:
+                    progress(base + k, total)
+            audited.append(audit_paper(paper, progress=tick))
+            done += len(paper.equations)
+        reports = audited
     sections: list[tuple[str, str]] = []
     table = conditions_table(papers)
     if table:
         sections.append(("All conditions in one notation", table))
-    for paper in papers:
-        report = audit_paper(paper)
+    for paper, report in zip(papers, reports):
         body: list[str] = []
         for result in report.results:
             if not result.derived and not result.corrected:
                 continue
-            label = f"({result.id}) {result.verdict.value}"
-            body.append(r"\paragraph{" + tex.escape_text(label) + "}" + " " + tex.escape_text(result.detail))
-            if result.derived:
-                body.append(tex.safe_math(result.derived))
-            if result.corrected and result.verdict != Verdict.CONFIRMED:
-                body.append(r"\textit{Corrected printed equation:}")
-                body.append(tex.safe_math(result.corrected))
-        sections.append((f"{paper.title} ({paper.id})", "\n".join(body) or "No derived conditions."))
+            body.append(tex.equation_block(result, tex.anchor(paper.id, result.id, single=False),
+                                           show_printed=bool(result.corrected), evidence=False))
+        sections.append((f"{paper.title} ({paper.id})", "\n\n".join(body) or "No derived conditions."))
     return tex.document("Derived stability and passivity conditions (hapticproof)", sections)

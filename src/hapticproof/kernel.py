@@ -58,6 +58,8 @@ __all__ = [
     "simplest_between",
     "transfer_json",
     "ResidueCertificate",
+    "ConstantPsdCertificate",
+    "decide_constant_psd",
     "residue_outcome",
     "circle_point",
     "axis_point",
@@ -370,8 +372,8 @@ def _refine_off_ends(roots: list, lo: flint.fmpq, hi: flint.fmpq | None) -> list
 
 def _sign(p: flint.fmpq_poly, lo: Any, hi: Any, variable: str, label: str,
           numerator: flint.fmpq_poly | None = None, denominator: flint.fmpq_poly | None = None,
-          transfer: dict[str, Any] | None = None, transfer_den: flint.fmpq_poly | None = None
-          ) -> tuple[SignCertificate, dict[str, Any] | None]:
+          transfer: dict[str, Any] | None = None, transfer_den: flint.fmpq_poly | None = None,
+          pole_variable: str | None = None) -> tuple[SignCertificate, dict[str, Any] | None]:
     lo_q = as_fmpq(lo)
     hi_q = None if hi is None else as_fmpq(hi)
     if hi_q is not None and lo_q > hi_q:
@@ -386,7 +388,7 @@ def _sign(p: flint.fmpq_poly, lo: Any, hi: Any, variable: str, label: str,
     # the ends first (exact points the user knows: c = +-1, w = 0), then the gaps
     negative = [(pt, None) for pt in (lo_q, hi_q) if pt is not None and p(pt) < 0]
     negative += [(pt, gap) for gap in gaps for pt in (gap[2],) if p(pt) < 0]
-    is_pole = _pole_test(transfer, transfer_den)
+    is_pole = _pole_test(transfer or ({"variable": pole_variable} if pole_variable else None), transfer_den)
     witness = None
     for point, gap in negative:
         witness = _witness_data(variable, point, gap, lo_q, hi_q, is_pole)
@@ -528,6 +530,17 @@ def _negative_principal_minor(M: sp.Matrix) -> tuple[tuple[int, ...], Any] | Non
     return None
 
 
+def _transfer_poles(transfer: dict[str, Any]) -> flint.fmpq_poly:
+    """The lcm of the denominators of a transfer matrix given as JSON (its poles)."""
+    out = flint.fmpq_poly([1])
+    for row in transfer["entries"]:
+        for entry in row:
+            den = flint.fmpq_poly([flint.fmpq(Fraction(v).numerator, Fraction(v).denominator) for v in entry["den"]])
+            if den.degree() > 0:
+                out = out * den / out.gcd(den)
+    return out
+
+
 def decide_psd(coefficients: Sequence[flint.fmpq_poly], lo: Any, hi: Any, variable: str = "c", *,
                scale: flint.fmpq_poly | None = None,
                evaluate: Callable[[dict[str, Any]], sp.Matrix] | None = None,
@@ -553,8 +566,10 @@ def decide_psd(coefficients: Sequence[flint.fmpq_poly], lo: Any, hi: Any, variab
         if not scale_cert.holds:
             raise ArithmeticError("the scale of the characteristic coefficients is negative somewhere")
     certs = []
+    poles = _transfer_poles(transfer) if transfer is not None else None
     for k, p in enumerate(coefficients, start=1):
-        cert, witness = _sign(flint.fmpq_poly(p), lo_q, hi_q, variable, f"E_{k}")
+        cert, witness = _sign(flint.fmpq_poly(p), lo_q, hi_q, variable, f"E_{k}", transfer=None,
+                              transfer_den=poles, pole_variable=(transfer or {}).get("variable", "z"))
         certs.append(cert)
         if not cert.holds:
             matrix = evaluate(witness) if evaluate is not None else None
@@ -571,6 +586,53 @@ def decide_psd(coefficients: Sequence[flint.fmpq_poly], lo: Any, hi: Any, variab
     interval = f"[{q_str(lo_q)}, {'oo' if hi_q is None else q_str(hi_q)}]"
     return Outcome(Decision.PROVED, Evidence(Method.ROOT_ISOLATION, facts={"certificate": full, "size": len(coefficients)}),
                    f"{what} >= 0 for all {variable} in {interval}: every characteristic coefficient E_k >= 0")
+
+
+@dataclass(frozen=True, eq=False)
+class ConstantPsdCertificate:
+    """A constant Hermitian matrix (Gaussian rationals) is PSD: its characteristic coefficients
+    ``E_k`` (exact) are all ``>= 0``; or it is not: a negative principal minor."""
+
+    matrix: Any
+    holds: bool
+    coefficients: tuple[Any, ...]
+    negative_minor: tuple[tuple[int, ...], Any] | None = None
+
+    def to_json(self) -> dict[str, Any]:
+        out: dict[str, Any] = {
+            "certificate": "constant-psd",
+            "matrix": [[[q_str(sp.re(v)), q_str(sp.im(v))] for v in row] for row in self.matrix.tolist()],
+            "holds": self.holds,
+            "coefficients": [q_str(e) for e in self.coefficients],
+        }
+        if self.negative_minor is not None:
+            out["negative_minor"] = {"rows": list(self.negative_minor[0]), "value": q_str(self.negative_minor[1])}
+        return out
+
+
+def decide_constant_psd(matrix: Any, what: str = "the matrix") -> Outcome:
+    """Exact PSD decision of a constant Hermitian matrix with rational (or Gaussian rational)
+    entries by its characteristic coefficients; a disproof names a negative principal minor.
+
+    >>> decide_constant_psd(sp.Matrix([[0, 0], [0, -1]])).reason
+    'the matrix is not PSD: principal minor [2] = -1 < 0'
+    """
+    from hapticproof.psd import is_psd
+
+    M = sp.Matrix(matrix)
+    test = is_psd(M)
+    minor = None
+    if not test.holds:
+        minor = test.minor or _negative_principal_minor(M)
+    cert = ConstantPsdCertificate(sp.ImmutableMatrix(M), test.holds, test.coefficients[1:], minor)
+    if test.holds:
+        return Outcome(Decision.PROVED, Evidence(Method.CANONICAL_FORM, facts={"certificate": cert}),
+                       f"{what} is PSD (every characteristic coefficient E_k >= 0)")
+    rows = [i + 1 for i in minor[0]] if minor else []
+    value = minor[1] if minor else None
+    return Outcome(Decision.DISPROVED,
+                   Evidence(Method.CANONICAL_FORM, witness={"principal_minor": rows, "value": value}, facts={"certificate": cert}),
+                   f"{what} is not PSD: principal minor {rows} = {value} < 0")
 
 
 # ---------------------------------------------------------------------------------------------

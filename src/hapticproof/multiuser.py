@@ -66,8 +66,10 @@ import sympy as sp
 
 from hapticproof.errors import SceneError
 from hapticproof.evidence import Decision, Evidence, Method, Outcome
+from hapticproof.kernel import decide_constant_psd, locate_roots, poly_json
 from hapticproof.lazy import stage
 from hapticproof.models import integrator
+from hapticproof.positivereal import Condition, combine
 from hapticproof.positivereal import worst_case as single_worst_case
 from hapticproof.psd import (
     HermitianPart,
@@ -100,6 +102,8 @@ __all__ = [
     "principal_minors",
     "worst_case",
     "positive_real",
+    "conditions",
+    "transfer_entries",
     "kernel_bounds",
     "worst_case_matrix",
     "uniform_modes",
@@ -252,6 +256,11 @@ class MultiUserScene:
         numbers = [*self.b, *self.K0, *self.B0, *self.z_a, *self.K, *self.B]
         if any(v.is_number and v < 0 for v in numbers):
             raise SceneError("dampings, stiffnesses and shortages of passivity must be non-negative")
+
+    def _repr_latex_(self) -> str:
+        from hapticproof.latex import scene_latex
+
+        return "$" + scene_latex(self) + "$"
 
     # -- constructors ---------------------------------------------------------------------------
     @classmethod
@@ -488,6 +497,59 @@ def _kernels(approximation: str, n: int) -> tuple[tuple[flint.fmpq_poly, flint.f
         im = imaginary_part_rational(kernel).numeric()
         out.append(((re.num, re.den), (im.num, im.den)))
     return tuple(out)  # ((reK, imK), (reB, imB))
+
+
+@lru_cache(maxsize=None)
+def _kernel_polynomials(approximation: str, n: int) -> tuple[tuple[flint.fmpq_poly, flint.fmpq_poly], ...]:
+    """``k_K = z^-n I/T`` and ``k_B = z^-n I (z-1)/(Tz)`` as coprime (num, den) in ``z`` (flint)."""
+    iota = sp.cancel(integrator(approximation, 1))
+    out = []
+    for kernel in (iota, sp.cancel(iota * (Z_SYM - 1) / Z_SYM)):
+        num, den = sp.fraction(sp.cancel(kernel))
+        pn = flint.fmpq_poly([flint.fmpq(int(sp.Rational(a).p), int(sp.Rational(a).q)) for a in sp.Poly(num, Z_SYM).all_coeffs()[::-1]])
+        pd = flint.fmpq_poly([flint.fmpq(int(sp.Rational(a).p), int(sp.Rational(a).q)) for a in sp.Poly(den, Z_SYM).all_coeffs()[::-1]])
+        pd = pd * flint.fmpq_poly([0] * n + [1])
+        g = pn.gcd(pd)
+        out.append((pn / g, pd / g))
+    return tuple(out)
+
+
+def transfer_entries(scene: MultiUserScene) -> dict[str, Any]:
+    """``G^{-1}(z)`` of a numeric scene as polynomials per entry (JSON for the checker),
+    built from the kernels: ``G_ij = (b_i - z_ai) delta_ij + T Kmat_ij k_K + Bmat_ij k_B``.
+
+    >>> s = MultiUserScene.from_values(b=[1, 1], T=1, K0=[1, 1], K={(0, 1): 1}, edges=[(0, 1)])
+    >>> transfer_entries(s)["entries"][0][1]
+    {'num': ['-1'], 'den': ['-1', '1']}
+    """
+    if not scene.is_numeric:
+        raise SceneError("transfer_entries needs numeric parameters")
+    m = scene.users
+    Kmat, Bmat = stiffness_matrix(scene), damping_matrix(scene)
+    T = _fmpq(scene.T)
+    rows = []
+    for i in range(m):
+        (kn, kd), (bn, bd) = _kernel_polynomials(scene.approximation, scene.delays[i])
+        row = []
+        for j in range(m):
+            num, den = flint.fmpq_poly([0]), flint.fmpq_poly([1])
+            terms = [(T * _fmpq(Kmat[i, j]), kn, kd), (_fmpq(Bmat[i, j]), bn, bd)]
+            if i == j:
+                terms.append((_fmpq(scene.b[i] - scene.z_a[i]), flint.fmpq_poly([1]), flint.fmpq_poly([1])))
+            for weight, pn, pd in terms:
+                if weight != 0:
+                    num, den = num * pd + weight * pn * den, den * pd
+            g = num.gcd(den) if not num.is_zero() else den
+            num, den = num / g, den / g
+            lead = den.coeffs()[-1]
+            row.append({"num": poly_json(num / lead), "den": poly_json(den / lead)})
+        rows.append(row)
+    return {"variable": "z", "entries": rows}
+
+
+def _fmpq(value: Any) -> flint.fmpq:
+    value = sp.Rational(value)
+    return flint.fmpq(int(value.p), int(value.q))
 
 
 def _combine(p: tuple, q: tuple, sign: int) -> tuple[flint.fmpq_poly, flint.fmpq_poly]:
@@ -790,7 +852,7 @@ def worst_case(scene: MultiUserScene) -> MatrixWorstCase:
     otherwise ``undecided`` (give numbers).
     """
     if scene.is_numeric:
-        decision = decide_psd_on_circle(hermitian(scene))
+        decision = decide_psd_on_circle(hermitian(scene), transfer=transfer_entries(scene))
         holds = decision.decision == Decision.PROVED
         return MatrixWorstCase(decision.outcome, sp.true if holds else sp.false, "root-isolation",
                                decision.witness, {"failing_k": decision.failing})
@@ -869,20 +931,50 @@ def _mode_condition(wall: SingleUserScene) -> sp.Basic:
     return sp.Ge(wall.b - wall.z_a, sp.expand(bound[0] - wall.z_a))
 
 
+@stage("conditions")
+def conditions(scene: MultiUserScene) -> list[Condition]:
+    """Definition 2 for the matrix ``G^{-1}``, each condition decided: poles in the closed disk
+    and simple on the circle (those of the kernels ``k_K``, ``k_B``, parameter-free), the residue
+    matrix at ``z = 1`` (``T Kmat``) PSD, the Hermitian part PSD for every ``c``.
+
+    >>> s = MultiUserScene.uniform(2, b="0.02", K0=10, B0=0, K=5, B=0, T="0.001")
+    >>> [c.decision.value for c in conditions(s)]
+    ['proved', 'proved', 'proved', 'proved']
+    """
+    dens = flint.fmpq_poly([1])
+    for n in sorted(set(scene.delays)):
+        for _, den in _kernel_polynomials(scene.approximation, n):
+            dens = dens * den / dens.gcd(den)
+    roots = locate_roots(dens, "disk")
+    facts = {"certificate": roots, "kernel_denominator": str(dens)}
+    poles_ok = Outcome(Decision.PROVED if roots.outside == 0 else Decision.DISPROVED,
+                       Evidence(Method.ROOT_ISOLATION, facts=facts),
+                       "the poles of G^-1 are among those of its kernels: "
+                       + (f"none outside the unit circle ({sum(r.multiplicity for r in roots.boundary)} on it)"
+                          if roots.outside == 0 else f"{roots.outside} outside the unit circle"))
+    simple_ok = Outcome(Decision.PROVED if roots.boundary_simple else Decision.DISPROVED,
+                        Evidence(Method.ROOT_ISOLATION, facts=facts),
+                        "every unit-circle pole of the kernels is simple" if roots.boundary_simple
+                        else "a unit-circle pole of the kernels is not simple")
+    R = sp.Matrix(scene.T * stiffness_matrix(scene))
+    if R.free_symbols:
+        from hapticproof.psd import _psd_outcome
+
+        residue = _psd_outcome(R, "the residue matrix T Kmat at z = 1")
+    else:
+        residue = decide_constant_psd(R, "the residue matrix T Kmat at z = 1")
+    wc = worst_case(scene)
+    herm = wc.outcome
+    if wc.decision == Decision.SYMBOLIC and wc.condition is not None:
+        herm = Outcome(Decision.SYMBOLIC, herm.evidence, f"{sp.sstr(wc.condition)} ({herm.reason})", minimiser=wc.minimiser)
+    return [Condition("poles in |z| <= 1", poles_ok), Condition("unit-circle poles simple", simple_ok),
+            Condition("residue matrix at z = 1 PSD", residue), Condition("M(c) = G^-1 + G^-H PSD for all c", herm)]
+
+
 @stage("positive_real")
 def positive_real(scene: MultiUserScene) -> Outcome:
-    """All three conditions of Definition 2 for ``G^{-1}``: poles (``z = 0``, ``z = 1``),
-    residue matrices (``T Kmat >= 0``) and the Hermitian part."""
-    for r in residues(scene):
-        if r.outcome.decision == Decision.DISPROVED:
-            return r.outcome
-    wc = worst_case(scene)
-    if wc.decision in (Decision.DISPROVED, Decision.UNDECIDED):
-        return wc.outcome
-    if wc.decision == Decision.SYMBOLIC:
-        return Outcome(Decision.SYMBOLIC, wc.outcome.evidence, f"positive real iff {sp.sstr(wc.condition)}")
-    return Outcome(Decision.PROVED, wc.outcome.evidence,
-                   "G^-1 is positive real: poles in the closed disk, residue matrix T Kmat >= 0, Hermitian part >= 0 for all c")
+    """All three conditions of Definition 2 for ``G^{-1}``, combined (:func:`conditions`)."""
+    return combine(conditions(scene))
 
 
 # ---------------------------------------------------------------------------------------------

@@ -865,10 +865,13 @@ class CircleDecision:
         return self.outcome.decision
 
 
-def decide_psd_on_circle(H: HermitianPart, lo: Any = -1, hi: Any = 1, method: str = "auto") -> CircleDecision:
-    """Exact decision of ``M(c) >= 0`` on ``[lo, hi]`` (numeric parameters), by root isolation
-    of every characteristic coefficient ``E_k(c)``; a failure comes with a rational witness
-    ``c`` re-checked by exact evaluation and by floating-point eigenvalues.
+def decide_psd_on_circle(H: HermitianPart, lo: Any = -1, hi: Any = 1, method: str = "auto",
+                         transfer: Any = None) -> CircleDecision:
+    """Exact decision of ``M(c) >= 0`` on ``[lo, hi]`` (numeric parameters) by the decision
+    kernel (:func:`hapticproof.kernel.decide_psd`): every characteristic coefficient ``E_k(c)``
+    is decided with a certificate. A failure comes with a rational point ``z0`` of the circle,
+    the exact matrix there and a negative principal minor; ``transfer`` (the transfer matrix as
+    polynomials, see :func:`hapticproof.kernel.transfer_json`) lets the checker recompute it.
 
     >>> from hapticproof.symbols import z
     >>> G = sp.Matrix([[2 + 1/(z - 1), -1/(z - 1)], [-1/(z - 1), 2 + 1/(z - 1)]])
@@ -876,37 +879,23 @@ def decide_psd_on_circle(H: HermitianPart, lo: Any = -1, hi: Any = 1, method: st
     >>> d.decision.value
     'proved'
     """
+    from hapticproof.kernel import decide_psd
+
     if not H.is_numeric:
         raise ValueError("decide_psd_on_circle needs numeric parameters (use subs)")
     coeffs = characteristic_coefficients(H, method)
-    touches: dict[int, list[str]] = {}
-    for k in range(1, H.size + 1):
-        p = coeffs[k]
-        if p.is_zero():
-            continue
-        result = nonnegative_on(p, lo, hi)
-        if not result.holds:
-            witness = result.witness
-            value = p(as_fmpq(witness))
-            assert value < 0, "witness re-check failed"
-            theta = float(np.arccos(float(witness)))
-            eig = float(np.min(np.linalg.eigvalsh(H.evaluate(theta))))
-            outcome = Outcome(
-                Decision.DISPROVED,
-                Evidence(Method.ROOT_ISOLATION, witness={"c": witness},
-                         facts={"k": k, "E_k_numerator_at_witness": sp.Rational(int(value.p), int(value.q)),
-                                "min_eigenvalue_at_witness": eig}),
-                f"M(c) is not PSD at c = {witness}: the sum of its {k}x{k} principal minors is negative",
-                minimiser=witness,
-            )
-            return CircleDecision(outcome, tuple(coeffs), k, witness)
-        touches[k] = [str(r) for r in result.touches_zero]
-    outcome = Outcome(
-        Decision.PROVED,
-        Evidence(Method.ROOT_ISOLATION, facts={"size": H.size, "touches_zero": touches,
-                                              "degrees": [coeffs[k].degree() for k in range(1, H.size + 1)]}),
-        f"M(c) >= 0 for all c in [{lo}, {hi}]: every characteristic coefficient E_k(c) is >= 0 (exact root isolation)",
-    )
+
+    def evaluate(witness: Mapping[str, Any]) -> sp.Matrix | None:
+        if "z" not in witness:
+            return None
+        c0, s0 = witness["z"]
+        return H.at(sp.Rational(c0.numerator, c0.denominator), sp.Rational(s0.numerator, s0.denominator))
+
+    scale = H.den if H.den.degree() > 0 else None
+    outcome = decide_psd(coeffs[1:], lo, hi, "c", scale=scale, evaluate=evaluate, transfer=transfer, what="M(c)")
+    if outcome.decision == Decision.DISPROVED:
+        witness = outcome.witness["c"]
+        return CircleDecision(outcome, tuple(coeffs), outcome.evidence.facts["failing_k"], witness)
     return CircleDecision(outcome, tuple(coeffs))
 
 

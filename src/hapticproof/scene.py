@@ -166,6 +166,11 @@ class SingleUserScene:
     def has_delay(self) -> bool:
         return self.delay != 0
 
+    def _repr_latex_(self) -> str:
+        from hapticproof.latex import scene_latex
+
+        return "$" + scene_latex(self) + "$"
+
     def with_values(self, values: Mapping[Any, Any] | None = None, **named: Any) -> SingleUserScene:
         """Substitute exact values for parameters (by symbol or by name).
 

@@ -94,23 +94,49 @@ class SceneSummary:
             lines.append("stages (s):      " + ", ".join(f"{k} {v:.4f}" for k, v in self.stages.items()))
         return "\n".join(lines)
 
-    def to_latex(self) -> str:
+    def latex_rows(self) -> list[tuple[str, str, str]]:
+        """``(label, left-hand side, right-hand side)`` of each derived display."""
         herm = self.hermitian_part
         rows = [
-            r"G^{-1}(z) &= " + tex.to_latex(self.G_inverse),
-            r"\Re\, G^{-1}(e^{j\omega T}) &= " + (tex.to_latex(herm, cos_name=COS) if not isinstance(herm, str) else herm),
+            ("inverse transfer function", r"G^{-1}(z)", "= " + tex.to_latex(self.G_inverse)),
+            ("Hermitian part on the unit circle", r"\Re\, G^{-1}(e^{j\omega T})",
+             "= " + (tex.to_latex(herm, cos_name=COS) if not isinstance(herm, str) else herm)),
         ]
         for r in self.residues:
-            rows.append(r"\operatorname{Res}_{z=" + tex.to_latex(r.pole) + r"} G^{-1} &= " + tex.to_latex(r.residue))
+            rows.append(("residue on the unit circle", r"\operatorname{Res}_{z=" + tex.to_latex(r.pole) + r"} G^{-1}",
+                         "= " + tex.to_latex(r.residue)))
         if self.worst_case is not None and self.worst_case not in (sp.true, sp.false):
-            rows.append(r"\text{worst case: } & " + tex.to_latex(self.worst_case, cos_name=COS))
+            rows.append(("worst case over frequency", r"\text{worst case: }", tex.to_latex(self.worst_case, cos_name=COS)))
+        return rows
+
+    def to_latex(self) -> str:
+        """The derived displays as one ``aligned`` block (mathematics, for a display or a notebook)."""
+        rows = [lhs + " &" + (rhs if rhs.startswith("=") else " " + rhs) for _, lhs, rhs in self.latex_rows()]
         return "\\begin{aligned}\n" + " \\\\\n".join(rows) + "\n\\end{aligned}"
 
-    def dumps(self, fmt: str, verbose: bool = False) -> str:
+    def latex_document(self) -> str:
+        """A complete LaTeX document: the scene, the labelled derived displays, the decision."""
+        items = [(label, lhs + (" " if rhs.startswith("=") else " ") + rhs) for label, lhs, rhs in self.latex_rows()]
+        notes = [("verdict", f"{self.verdict} ({self.reason})")]
+        if self.witness is not None:
+            notes.append(("witness", f"c = cos(wT) = {self.witness}"))
+        if self.minimiser is not None:
+            notes.append(("minimiser", f"c = {self.minimiser}, minimum = {self.minimum}"))
+        intro = tex.escape_text(f"{self.system} scene, {self.approximation} difference, delay n = {self.delay}.")
+        return tex.derivation_document(f"hapticproof derive {self.system}", items, notes, intro=intro)
+
+    def _repr_latex_(self) -> str:
+        return "$$" + self.to_latex() + "$$"
+
+    def __repr__(self) -> str:  # short and free of timings (notebooks compare it)
+        return f"SceneSummary({self.system}, {self.approximation}, delay {self.delay}: {self.verdict})"
+
+    def dumps(self, fmt: str, fragment: bool = False, verbose: bool = False) -> str:
+        """``json``, ``latex`` (a complete document; ``fragment``: one amsmath display) or text."""
         if fmt == "json":
             return json.dumps(self.to_json(), indent=2)
         if fmt == "latex":
-            return self.to_latex()
+            return tex.display(self.to_latex()) if fragment else self.latex_document()
         return self.to_text(verbose=verbose)
 
 

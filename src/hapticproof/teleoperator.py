@@ -37,6 +37,7 @@ from dataclasses import dataclass, replace
 from functools import lru_cache
 from typing import Any
 
+import flint
 import sympy as sp
 
 from hapticproof.classics import leak_bound
@@ -44,7 +45,8 @@ from hapticproof.errors import InputFormatError, SceneError
 from hapticproof.evidence import Decision, Evidence, Method, Outcome, exact
 from hapticproof.lazy import stage
 from hapticproof.positivereal import symbolic_minimum
-from hapticproof.realroots import as_fmpq_poly, minimise_rational, nonnegative_on, real_roots
+from hapticproof.positivereal import Condition, combine
+from hapticproof.realroots import as_fmpq, as_fmpq_poly, minimise_rational, real_roots
 from hapticproof.scene import SYMBOLS
 from hapticproof.symbols import c as C_SYM
 from hapticproof.symbols import z as Z_SYM
@@ -61,6 +63,8 @@ __all__ = [
     "bounds",
     "worst_case",
     "passivity",
+    "passivity_conditions",
+    "margin_transfer",
     "error_coordinate_damping",
 ]
 
@@ -217,6 +221,11 @@ class TeleoperatorScene:
     def C_s(self) -> sp.Expr:
         return self.C
 
+    def _repr_latex_(self) -> str:
+        from hapticproof.latex import scene_latex
+
+        return "$" + scene_latex(self) + "$"
+
     @property
     def parameters(self) -> set[sp.Symbol]:
         out: set[sp.Symbol] = set()
@@ -330,31 +339,89 @@ def worst_case(scene: TeleoperatorScene) -> TeleWorstCase:
     return TeleWorstCase(out[0][0], out[1][0], out[0][1], sp.And(out[0][2], out[1][2]))
 
 
-def passivity(scene: TeleoperatorScene) -> Outcome:
-    """Decide the sufficient passivity condition (32) for a numeric scene (exact, with a
-    witness frequency when it fails), or return it symbolically.
+def _bound_parameters(scene: TeleoperatorScene) -> set[sp.Symbol]:
+    """The parameters the passivity bound depends on (the masses store energy losslessly and
+    do not enter it)."""
+    out: set[sp.Symbol] = set()
+    for value in (scene.b_m, scene.b_s, scene.T, scene.C, scene.alpha):
+        out |= sp.sympify(value).free_symbols
+    return out - {Z_SYM}
 
-    >>> sc = TeleoperatorScene.pd(K=1, B=0, T=sp.Rational(15, 1000), m_m=1, m_s=1, b_m="0.01822", b_s="0.01822")
+
+def _fmpq_poly(expr: sp.Expr) -> flint.fmpq_poly:
+    return as_fmpq_poly(sp.Poly(sp.expand(expr), Z_SYM).as_expr() if sp.expand(expr).free_symbols else sp.expand(expr), Z_SYM)
+
+
+def margin_transfer(scene: TeleoperatorScene, robot: str) -> tuple[flint.fmpq_poly, flint.fmpq_poly]:
+    """``F(z) = b - w T C(z)/(1 - z)`` (``w = alpha(alpha + 1)`` for the master, ``alpha + 1`` for
+    the slave) as polynomials: on the unit circle ``Re F = b - bound(c)`` (eq. 32), because
+    ``T/(1 - cos wT) Re{(1 - e^{-jwT}) C} = 2T Re{C(z)/(1 - z)}``.
+
+    >>> sc = TeleoperatorScene.pd(K=2, B=0, T=sp.Rational(1, 10), m_m=1, m_s=1, b_m=1, b_s=1)
+    >>> margin_transfer(sc, "slave")                 # 1 - 2*(1/10)*2/(1 - z)
+    (x + (-3/5), x + (-1))
+    """
+    weight = scene.alpha * (scene.alpha + 1) if robot == "master" else scene.alpha + 1
+    damping = scene.b_m if robot == "master" else scene.b_s
+    num, den = sp.fraction(sp.cancel(sp.together(scene.C)))
+    cn, cd = _fmpq_poly(num), _fmpq_poly(den)
+    one_minus_z = flint.fmpq_poly([1, -1])
+    P = as_fmpq(damping) * one_minus_z * cd - as_fmpq(weight * scene.T) * cn
+    Q = one_minus_z * cd
+    g = P.gcd(Q) if not P.is_zero() else Q
+    P, Q = P / g, Q / g
+    lead = Q.coeffs()[-1]
+    return P / lead, Q / lead
+
+
+def passivity_conditions(scene: TeleoperatorScene) -> list[Condition]:
+    """The decided conditions of the passivity criterion (32) for a scene: the controller has no
+    pole outside the unit circle (the criterion presumes a stable controller), and each robot's
+    damping exceeds its bound at every frequency (exact; a witness frequency when it fails).
+    Symbolic parameters of the bound give the conditions symbolically."""
+    from hapticproof.kernel import decide_rational_sign, locate_roots, transfer_json
+    from hapticproof.unitcircle import circle_real_part
+
+    if _bound_parameters(scene):
+        wc = worst_case(scene)
+        conds = []
+        for robot, sup, damping in (("master", wc.sup_master, scene.b_m), ("slave", wc.sup_slave, scene.b_s)):
+            conds.append(Condition(f"{robot}: b >= bound(c) for all w",
+                                   Outcome(Decision.SYMBOLIC, Evidence(Method.ENDPOINT_ANALYSIS, facts={"supremum": sup}),
+                                           f"{sp.sstr(damping)} >= {sp.sstr(sup)}")))
+        return conds
+    num, den = sp.fraction(sp.cancel(sp.together(scene.C)))
+    roots = locate_roots(_fmpq_poly(den), "disk")
+    if roots.outside:
+        where = ", ".join(f"z ~ {complex(p):.6g}".replace("+0j", "").replace("(", "").replace(")", "") for p in roots.outside_points[:3])
+        poles = Outcome(Decision.DISPROVED, Evidence(Method.ROOT_ISOLATION, witness={"pole": where}, facts={"certificate": roots}),
+                        f"C(z) has {roots.outside} pole(s) outside the unit circle ({where}): the controller is unstable, "
+                        "the criterion (32) presumes a stable controller")
+    else:
+        on = [r.label() for r in roots.boundary]
+        poles = Outcome(Decision.PROVED, Evidence(Method.ROOT_ISOLATION, facts={"certificate": roots}),
+                        "no controller pole outside the unit circle" + (f" (on it: {', '.join(on)})" if on else ""))
+    conds = [Condition("controller poles in |z| <= 1", poles)]
+    for robot in ("master", "slave"):
+        P, Q = margin_transfer(scene, robot)
+        N, D = circle_real_part(P, Q)
+        out = decide_rational_sign(N, D, -1, 1, "c", f"b_{robot[0]} - bound", transfer=transfer_json(P, Q), transfer_den=Q)
+        conds.append(Condition(f"{robot}: b_{robot[0]} >= bound(c) for all w", out))
+    return conds
+
+
+def passivity(scene: TeleoperatorScene) -> Outcome:
+    """Decide the passivity condition (32) for a scene whose bound is numeric (exact, with a
+    witness frequency when it fails; the masses need not be given), or return it symbolically.
+
+    >>> sc = TeleoperatorScene.pd(K=1, B=0, T=sp.Rational(15, 1000), b_m="0.01822", b_s="0.01822")
     >>> passivity(sc).decision.value, passivity(sc).witness          # KT = 0.015 < b: passive
     ('proved', None)
+    >>> unstable = TeleoperatorScene(1, 1, 1, 1, sp.Rational(1, 100), 2 / (Z_SYM - 3))
+    >>> passivity(unstable).decision.value
+    'disproved'
     """
-    if scene.parameters:
-        wc = worst_case(scene)
-        return Outcome(Decision.SYMBOLIC, Evidence(Method.ENDPOINT_ANALYSIS, facts={"condition": wc.condition}),
-                       "passive if the per-robot bounds hold at their worst frequency")
-    bd = bounds(scene)
-    for robot, bound, damping in (("master", bd.master, scene.b_m), ("slave", bd.slave, scene.b_s)):
-        num, den = sp.fraction(sp.cancel(sp.together(damping - bound)))
-        product = as_fmpq_poly(sp.expand(num * den), C_SYM)
-        result = nonnegative_on(product, -1, 1)
-        if not result.holds:
-            value = sp.cancel((damping - bound).subs(C_SYM, result.witness))
-            return Outcome(Decision.DISPROVED,
-                           Evidence(Method.ROOT_ISOLATION, witness={"c": result.witness, "robot": robot},
-                                    facts={"margin_at_witness": value}),
-                           f"the {robot} damping is below its bound at c = {result.witness}")
-    return Outcome(Decision.PROVED, Evidence(Method.ROOT_ISOLATION, facts={"bounds": "both hold on [-1, 1]"}),
-                   "b_m and b_s exceed their bounds at every frequency (exact root isolation)")
+    return combine(passivity_conditions(scene), subject="the teleoperator", holds="passive by (32)")
 
 
 def error_coordinate_damping(scene: TeleoperatorScene) -> sp.Expr:

@@ -4,15 +4,18 @@ from __future__ import annotations
 
 import argparse
 import json
+import shutil
 import sys
+import time
 
 from hapticproof.audit import audit_paper
 from hapticproof.cli._common import write_text
+from hapticproof.cli._terminal import colour_verdict, progress_bar, summary_line, use_colour
 from hapticproof.registry import get_paper, papers
 
 __all__ = ["register"]
 
-FORMATS = ("table", "markdown", "json", "tex")
+FORMATS = ("table", "markdown", "json", "tex", "html")
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -30,8 +33,10 @@ def register(sub: argparse._SubParsersAction) -> None:
     parser.add_argument("--section", "-s", action="append", default=[], metavar="S",
                         help="audit only equations of section S and its subsections (repeatable; "
                         "e.g. -s 1 -s 2 -s 3.1 for the HVE paper's single-user part)")
-    parser.add_argument("--format", "-f", choices=FORMATS, default="table")
+    parser.add_argument("--format", "-f", choices=FORMATS, default="table",
+                        help="table (default), markdown, json, tex (a LaTeX document) or html (one self-contained page)")
     parser.add_argument("--output", "-o", metavar="FILE", help="write to FILE instead of stdout (- is stdout)")
+    parser.add_argument("--wide", action="store_true", help="table: full details instead of one shortened line each")
     parser.set_defaults(handler=run)
 
 
@@ -44,7 +49,14 @@ def run(args: argparse.Namespace) -> int:
         raise_usage("--equation needs exactly one PAPER")
     if args.equation and args.section:
         raise_usage("use --equation or --section, not both")
-    reports = [audit_paper(p, args.equation or _in_sections(p, args.section) or None) for p in selected]
+    selection = [args.equation or _in_sections(p, args.section) or None for p in selected]
+    total = sum(len(only) if only else len(p.equations) for p, only in zip(selected, selection))
+    bar, start, reports = progress_bar(sys.stderr, "audit"), time.perf_counter(), []
+    for paper, only in zip(selected, selection):
+        base = sum(len(r.results) for r in reports)
+        tick = (lambda k, _n, base=base: bar(base + k, total)) if bar else None
+        reports.append(audit_paper(paper, only, progress=tick))
+    seconds = time.perf_counter() - start
     if args.format == "json":
         if len(reports) == 1 and args.papers and not args.all:
             text = json.dumps(reports[0].to_json(), indent=2)
@@ -53,11 +65,16 @@ def run(args: argparse.Namespace) -> int:
     elif args.format == "tex":
         from hapticproof import latex as tex
 
-        sections = []
-        for report in reports:
-            sections.append((f"{report.paper}: {report.title}", ""))
-            sections += report.to_latex_sections()
-        text = tex.document("hapticproof audit", sections)
+        text = tex.audit_document(reports)
+    elif args.format == "html":
+        from hapticproof.html import report_html
+
+        text = report_html(reports)
+    elif args.format == "table":
+        terminal = sys.stdout.isatty() and not args.output
+        style = colour_verdict if use_colour(sys.stdout) and not args.output else None
+        width = shutil.get_terminal_size((120, 24)).columns if terminal else 120
+        text = "\n\n".join(r.to_table(width=width, wide=args.wide, style=style) for r in reports)
     else:
         text = "\n\n".join(r.dumps(args.format) for r in reports)
     if args.output:
@@ -66,6 +83,11 @@ def run(args: argparse.Namespace) -> int:
             print(f"wrote {path}", file=sys.stderr)
     else:
         print(text)
+    counts: dict[str, int] = {}
+    for report in reports:
+        for verdict, n in report.counts().items():
+            counts[verdict] = counts.get(verdict, 0) + n
+    print(summary_line(counts, use_colour(sys.stderr), len(reports), seconds), file=sys.stderr)
     return 0
 
 

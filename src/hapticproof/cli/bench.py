@@ -35,8 +35,15 @@ def run(args: argparse.Namespace) -> int:
     if args.repeat < 1:
         raise InputFormatError("--repeat must be at least 1")
     from hapticproof.bench import run as run_studies
+    from hapticproof.cli._terminal import progress_bar
 
-    run_studies(args.tasks, args.output, quick=args.quick, repeat=args.repeat,
-                log=lambda line: print(line, file=sys.stderr))
+    bar = progress_bar(sys.stderr, "bench")  # a terminal only
+
+    def log(line: str) -> None:
+        if bar is not None:
+            bar.clear()
+        print(line, file=sys.stderr)
+
+    run_studies(args.tasks, args.output, quick=args.quick, repeat=args.repeat, log=log, progress=bar)
     print(f"wrote {args.output}/<task>.json, margin.png, boundary.png", file=sys.stderr)
     return 0

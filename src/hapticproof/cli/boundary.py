@@ -19,40 +19,16 @@ from __future__ import annotations
 
 import argparse
 import sys
-import time
 
 from hapticproof.borderlines import printed_borderline
 import json
 
 from hapticproof.cli._common import add_param_option
+from hapticproof.cli._terminal import ProgressBar, progress_bar  # noqa: F401 - ProgressBar re-exported
 from hapticproof.errors import InputFormatError
 from hapticproof.maps import boundary_curve, grid, plot_curves
 
 __all__ = ["register", "handler", "ProgressBar"]
-
-
-class ProgressBar:
-    """A one-line text progress bar on a stream (no dependency).
-
-    >>> import io
-    >>> buf = io.StringIO()
-    >>> bar = ProgressBar(buf, width=10)
-    >>> bar(5, 10); bar(10, 10)
-    >>> buf.getvalue().splitlines()[-1].strip()
-    '[##########] 10/10'
-    """
-
-    def __init__(self, stream=sys.stderr, width: int = 30):
-        self.stream, self.width, self.start = stream, width, time.monotonic()
-
-    def __call__(self, done: int, total: int) -> None:
-        filled = int(self.width * done / max(total, 1))
-        bar = "#" * filled + "-" * (self.width - filled)
-        elapsed = time.monotonic() - self.start
-        end = "\n" if done >= total else ""
-        suffix = f" {elapsed:.1f}s" if self.stream is sys.stderr else ""
-        self.stream.write(f"\r[{bar}] {done}/{total}{suffix}{end}")
-        self.stream.flush()
 
 
 SYSTEMS = ("single-user", "multi-user", "teleoperator")
@@ -183,11 +159,11 @@ def handler(args: argparse.Namespace) -> int:
         return 0
     loops.scene(**{args.vary: 1.0, over_name: float(over_values[0])})  # fail early, clearly
     border = printed_borderline(loops, args.vary) if loops.is_paper_scene() else None
-    show = not args.no_progress and (sys.stderr.isatty() or len(over_values) >= 50)
+    bar = None if args.no_progress else progress_bar(sys.stderr, "boundary")  # a terminal only
     curve = boundary_curve(
         loops, args.vary, (over_name, over_values), printed_borderline=border,
         search=search, rtol=args.rtol, workers=args.workers,
-        progress=ProgressBar() if show else None,
+        progress=bar,
     )
     vary = args.vary
     to_stdout = "-" in (args.csv, args.json)

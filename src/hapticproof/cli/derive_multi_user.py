@@ -25,11 +25,14 @@ import sympy as sp
 from hapticproof import latex as tex
 from hapticproof.cli._common import add_output_option, add_scene_options, check_output, scene_from_args, write_output
 from hapticproof.cli.derive_single_user import add_design_options, design_answers
+from hapticproof.errors import InputFormatError
 from hapticproof.evidence import to_jsonable
 from hapticproof.multiuser import (
     MultiUserScene,
+    conditions,
     hermitian,
     inverse_transfer_matrix,
+    positive_real,
     principal_minors,
     residues,
     sufficient_condition,
@@ -55,7 +58,10 @@ def register(systems: argparse._SubParsersAction) -> None:
     add_scene_options(parser, "multi-user")
     add_design_options(parser)
     parser.add_argument("--latex", action="store_true", help="same as --format latex")
-    parser.add_argument("--format", choices=("text", "latex", "json"), default="text")
+    parser.add_argument("--format", choices=("text", "latex", "json"), default="text",
+                        help="text (default), latex (a complete document) or json")
+    parser.add_argument("--fragment", action="store_true",
+                        help="with --format latex: only the displays (amsmath), not a complete document")
     parser.add_argument("--minors", choices=("auto", "all", "none"), default="auto",
                         help="print the principal minors (auto: when m <= 3)")
     parser.add_argument("--verbose", action="store_true", help="print large expressions in full (text format)")
@@ -96,9 +102,10 @@ def derive(scene: MultiUserScene, minors: str = "auto") -> dict[str, Any]:
         "worst_case_method": wc.method,
         "worst_case_condition": wc.condition,
         "worst_c": wc.minimiser,
-        "verdict": wc.decision.value,
-        "reason": wc.outcome.reason,
-        "witness": wc.outcome.evidence.witness,
+        "conditions": conditions(scene),
+        "verdict": positive_real(scene).decision.value,
+        "reason": positive_real(scene).reason,
+        "witness": positive_real(scene).evidence.witness,
     }
     if show_minors:
         out["principal_minors"] = {tuple(i + 1 for i in k): mn.expr() for k, mn in principal_minors(scene).items()}
@@ -126,38 +133,69 @@ def _text(data: dict[str, Any], verbose: bool = False) -> str:
                  + (f"   at c = {data['worst_c']}" if data["worst_c"] is not None else ""))
     if "sufficient_condition" in data:
         lines.append(f"sufficient (any graph, Loewner): {sp.sstr(data['sufficient_condition'])}")
+    lines.append("conditions:")
+    width = max(len(c.name) for c in data["conditions"])
+    lines += [f"  {c.name.ljust(width)}  {c.decision.value:<9}  {c.outcome.reason}" for c in data["conditions"]]
     lines.append(f"verdict:           {data['verdict']}  ({data['reason']})")
+    if data["witness"] and data["verdict"] == "disproved":
+        lines.append("witness:           " + ", ".join(f"{k} = {v}" for k, v in data["witness"].items()))
     return "\n".join(lines)
 
 
-def _latex(data: dict[str, Any]) -> str:
-    parts = [
-        r"G^{-1}(z) = " + tex.to_latex(data["G_inverse"]),
-        r"R_0 = " + tex.to_latex(data["residue_at_1"]) if data["residue_at_1"] is not None else "",
-        r"G^{-1} + G^{-H} = " + tex.to_latex(data["hermitian_part"], cos_name=COS),
-    ]
+def _matrix_items(label: str, name: str, matrix: sp.Matrix, cos_name: str | None = None) -> list[tuple[str, str]]:
+    """A matrix as one display, or entry by entry (upper triangle when symmetric) when it
+    is too long to read as one."""
+    whole = tex.to_latex(matrix, cos_name=cos_name)
+    if len(whole) <= 600:
+        return [(label, f"{name} = " + whole)]
+    symmetric = matrix.is_symmetric()
+    return [(f"{label}, entry ({i + 1}, {j + 1})", f"{name}_{{{i + 1}{j + 1}}} = " + tex.to_latex(matrix[i, j], cos_name=cos_name))
+            for i in range(matrix.rows) for j in range(matrix.cols) if not symmetric or j >= i]
+
+
+def _latex_items(data: dict[str, Any]) -> list[tuple[str, str]]:
+    """``(label, display)`` of everything the command derives."""
+    items = _matrix_items("inverse transfer matrix", r"G^{-1}(z)", data["G_inverse"])
+    if data["residue_at_1"] is not None:
+        items += _matrix_items("residue matrix at z = 1", "R_0", data["residue_at_1"])
+    items += _matrix_items("Hermitian part on the unit circle", "M", data["hermitian_part"], COS)
     for k, v in data.get("principal_minors", {}).items():
-        parts.append(r"\Delta_{" + "".join(map(str, k)) + "} = " + tex.to_latex(v, cos_name=COS))
+        items.append((f"principal minor {k}", r"\Delta_{" + "".join(map(str, k)) + "} = " + tex.to_latex(v, cos_name=COS)))
     if data["worst_case_condition"] not in (None, sp.true, sp.false):
-        parts.append(tex.to_latex(data["worst_case_condition"]))
+        items.append((f"worst case over frequency ({data['worst_case_method']})", tex.to_latex(data["worst_case_condition"])))
     if "sufficient_condition" in data:
-        parts.append(tex.to_latex(data["sufficient_condition"]))
-    return "\n".join(p for p in parts if p)
+        items.append(("sufficient condition (any graph, Loewner order)", tex.to_latex(data["sufficient_condition"])))
+    return items
+
+
+def _latex(data: dict[str, Any], fragment: bool = False) -> str:
+    """A complete document (or, with ``fragment``, the amsmath displays alone)."""
+    items = _latex_items(data)
+    if fragment:
+        return tex.derivation_fragment(items)
+    intro = tex.escape_text(f"{data['users']}-user HVE, {data['approximation']} difference, delays {data['delays']}, "
+                            f"edges {data['edges']}.")
+    notes = [("verdict", f"{data['verdict']} ({data['reason']})"), ("residue condition", str(data["residue_condition"]))]
+    if data["witness"]:
+        notes.append(("witness", ", ".join(f"{k} = {v}" for k, v in to_jsonable(data["witness"]).items())))
+    return tex.derivation_document(f"hapticproof derive multi-user ({data['users']} users)", items, notes, intro=intro)
 
 
 def run(args: argparse.Namespace) -> int:
+    fmt = "latex" if args.latex else args.format
+    if args.fragment and fmt != "latex":
+        raise InputFormatError("--fragment needs --format latex")
     check_output(args.output, "--output")
     spec = scene_from_args(args, "multi-user")
     scene = spec.build()
     data = derive(scene, args.minors)
-    fmt = "latex" if args.latex else args.format
     extra, lines = design_answers(spec, args, args.delay_margin)
     if fmt == "json":
-        out = to_jsonable({k: v for k, v in data.items()})
+        out = to_jsonable({k: ([c.to_json() for c in v] if k == "conditions" else v) for k, v in data.items()})
         out.update(extra)
         text = json.dumps(out, indent=2)
     elif fmt == "latex":
-        text = _latex(data)
+        text = _latex(data, args.fragment)
     else:
         text = "\n".join([_text(data, args.verbose)] + lines)
     write_output(args.output, text)

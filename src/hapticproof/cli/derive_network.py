@@ -82,7 +82,10 @@ def register(systems: argparse._SubParsersAction) -> None:
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     add_scene_options(parser, "network")
-    parser.add_argument("--format", choices=("text", "json", "latex"), default="text")
+    parser.add_argument("--format", choices=("text", "json", "latex"), default="text",
+                        help="text (default), json or latex (a complete document)")
+    parser.add_argument("--fragment", action="store_true",
+                        help="with --format latex: only the displays (amsmath), not a complete document")
     parser.add_argument("--no-search", action="store_true", help="do not search destabilizing terminations")
     add_output_option(parser)
     parser.set_defaults(handler=run)
@@ -161,25 +164,35 @@ def _text(report: dict[str, Any]) -> str:
     return "\n".join(lines)
 
 
-def _latex(report: dict[str, Any]) -> str:
-    sections = [("Impedance matrix", tex.display(tex.to_latex(report["matrix"])))]
-    conds = report["symmetrization_conditions"]
-    body = "\n".join(tex.display(tex.to_latex(c["equation_in_s"])) for c in conds) or "All hold identically."
-    sections.append(("Symmetrization conditions (A, B)", body))
-    if "note" not in report:
+def _latex(report: dict[str, Any], fragment: bool = False) -> str:
+    """A complete document (or, with ``fragment``, the amsmath displays alone)."""
+    items = [("impedance matrix", "Z(s) = " + tex.to_latex(report["matrix"]))]
+    items += [(f"symmetrization condition {c['kind']} {tuple(c['indices'])}", tex.to_latex(c["equation_in_s"]))
+              for c in report["symmetrization_conditions"]]
+    sym = report.get("symmetrization", {})
+    if "Z_prime" in sym:
+        items.append(("reciprocal equivalent", "Z'(s) = " + tex.to_latex(sym["Z_prime"])))
+    if fragment:
+        return tex.derivation_fragment(items)
+    notes = []
+    if not report["symmetrization_conditions"]:
+        notes.append(("symmetrization conditions (A, B)", "all hold identically"))
+    if "note" in report:
+        notes.append(("note", report["note"]))
+    else:
         pr = report["positive_real"]
-        sections.append(("Positive realness", tex.escape_text(f"{pr['decision']}: {pr['reason']}")))
+        notes.append(("positive realness", f"{pr['decision']}: {pr['reason']}"))
         if "llewellyn" in report:
-            sections.append(("Llewellyn", tex.escape_text(report["llewellyn"]["reason"])))
-        sym = report.get("symmetrization", {})
-        if "Z_prime" in sym:
-            sections.append(("Reciprocal equivalent Z'", tex.display(tex.to_latex(sym["Z_prime"]))))
+            notes.append(("Llewellyn", report["llewellyn"]["reason"]))
         ab = report["absolute_stability"]
-        sections.append(("Absolute stability", tex.escape_text(f"{ab['decision']} ({ab['method']}): {ab['reason']}")))
-    return tex.document("n-port network analysis", sections)
+        notes.append(("absolute stability", f"{ab['decision']} ({ab['method']}): {ab['reason']}"))
+    intro = tex.escape_text(f"{report['size']} x {report['size']} impedance matrix, ports {report['ports']}.")
+    return tex.derivation_document("n-port network analysis", items, notes, intro=intro)
 
 
 def run(args: argparse.Namespace) -> int:
+    if args.fragment and args.format != "latex":
+        raise InputFormatError("--fragment needs --format latex")
     check_output(args.output, "--output")
     spec = scene_from_args(args, "network")
     Z = spec.build()
@@ -190,7 +203,7 @@ def run(args: argparse.Namespace) -> int:
     if args.format == "json":
         text = json.dumps(to_jsonable(report), indent=2)
     elif args.format == "latex":
-        text = _latex(report)
+        text = _latex(report, args.fragment)
     else:
         text = _text(report)
     write_output(args.output, text)

@@ -32,7 +32,10 @@ def register(systems: argparse._SubParsersAction) -> None:
     )
     add_scene_options(parser, "single-user")
     add_design_options(parser)
-    parser.add_argument("--format", choices=("text", "latex", "json"), default="text")
+    parser.add_argument("--format", choices=("text", "latex", "json"), default="text",
+                        help="text (default), latex (a complete document) or json")
+    parser.add_argument("--fragment", action="store_true",
+                        help="with --format latex: only the displays (amsmath), not a complete document")
     parser.add_argument("--verbose", action="store_true", help="print large expressions in full (text format)")
     parser.add_argument("--profile", action="store_true", help="print the time of each computed stage")
     add_output_option(parser)
@@ -72,6 +75,8 @@ def run(args: argparse.Namespace) -> int:
     from hapticproof.discretize import is_rational
     from hapticproof.summary import summarize_single_user
 
+    if args.fragment and args.format != "latex":
+        raise InputFormatError("--fragment needs --format latex")
     check_output(args.output, "--output")
     if getattr(args, "max_delay", 1) < 0:
         raise InputFormatError("--max-delay must be >= 0")
@@ -97,7 +102,7 @@ def run(args: argparse.Namespace) -> int:
         out.update(extra)
         text = json.dumps(out, indent=2)
     elif args.format == "latex":
-        text = summary.to_latex()
+        text = summary.dumps("latex", fragment=args.fragment)
         if lines:
             text += "\n" + "\n".join("% " + line for block in lines for line in block.splitlines())
     else:

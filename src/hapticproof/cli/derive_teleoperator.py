@@ -24,8 +24,9 @@ import sympy as sp
 from hapticproof import latex as tex
 from hapticproof.cli._common import add_output_option, add_scene_options, check_output, scene_from_args, write_output
 from hapticproof.cli.derive_single_user import add_design_options, design_answers
+from hapticproof.errors import InputFormatError
 from hapticproof.evidence import to_jsonable
-from hapticproof.teleoperator import bounds, error_coordinate_damping, passivity, worst_case
+from hapticproof.teleoperator import bounds, error_coordinate_damping, passivity, passivity_conditions, worst_case
 
 __all__ = ["register", "run"]
 
@@ -41,7 +42,10 @@ def register(systems: argparse._SubParsersAction) -> None:
     )
     add_scene_options(parser, "teleoperator")
     add_design_options(parser, margin=False)
-    parser.add_argument("--format", choices=("text", "latex", "json"), default="text")
+    parser.add_argument("--format", choices=("text", "latex", "json"), default="text",
+                        help="text (default), latex (a complete document) or json")
+    parser.add_argument("--fragment", action="store_true",
+                        help="with --format latex: only the displays (amsmath), not a complete document")
     parser.add_argument("--verbose", action="store_true", help="print large expressions in full (text format)")
     add_output_option(parser)
     parser.set_defaults(handler=run)
@@ -49,8 +53,10 @@ def register(systems: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from hapticproof.discretize import is_rational
-    from hapticproof.readable import brief, number
+    from hapticproof.readable import brief, number, shorten_numbers
 
+    if args.fragment and args.format != "latex":
+        raise InputFormatError("--fragment needs --format latex")
     check_output(args.output, "--output")
     spec = scene_from_args(args, "teleoperator")
     scene = spec.build()
@@ -59,7 +65,8 @@ def run(args: argparse.Namespace) -> int:
                      f"{spec.discretize} map): an exact decision needs rational coefficients")
         return 0
     bd, wc = bounds(scene), worst_case(scene)
-    decision = passivity(scene) if not scene.parameters else None
+    decision = passivity(scene)
+    conds = passivity_conditions(scene)
     extra, lines = design_answers(spec, args, False)
     if args.format == "json":
         out = {"controller": sp.sstr(scene.C), "alpha": sp.sstr(scene.alpha), "bound_master": sp.sstr(bd.master),
@@ -67,19 +74,34 @@ def run(args: argparse.Namespace) -> int:
                "sup_slave": to_jsonable(wc.sup_slave), "maximiser": to_jsonable(wc.maximiser),
                "condition": sp.sstr(wc.condition) if wc.condition is not None else None,
                "error_coordinate_damping": sp.sstr(error_coordinate_damping(scene)),
-               "decision": decision.to_json() if decision else None}
+               "conditions": [c.to_json() for c in conds],
+               "verdict": decision.decision.value, "reason": decision.reason,
+               "decision": decision.to_json()}
         if spec.discretize is not None:
             out["continuous_design"] = {"C_s": sp.sstr(spec.controller), "discretize": spec.discretize}
+        out = to_jsonable(out)
         out.update(extra)
         write_output(args.output, json.dumps(out, indent=2))
         return 0
     cos = r"\cos(\omega T)"
     if args.format == "latex":
-        rows = [r"C(z) = " + tex.to_latex(scene.C),
-                r"b_m > " + tex.to_latex(bd.master, cos_name=cos), r"b_s > " + tex.to_latex(bd.slave, cos_name=cos)]
+        items = [("controller", r"C(z) = " + tex.to_latex(scene.C)),
+                 ("master damping bound (c = cos wT)", r"b_m > " + tex.to_latex(bd.master, cos_name=cos)),
+                 ("slave damping bound", r"b_s > " + tex.to_latex(bd.slave, cos_name=cos))]
         if wc.condition is not None:
-            rows.append(tex.to_latex(wc.condition))
-        write_output(args.output, "\n".join(tex.display(line) for line in rows))
+            items.append(("worst case over frequency", tex.to_latex(wc.condition)))
+        items.append(("error-coordinate damping (less conservative)", r"b_e = " + tex.to_latex(error_coordinate_damping(scene))))
+        if args.fragment:
+            write_output(args.output, tex.derivation_fragment(items))
+            return 0
+        notes = []
+        if sp.sympify(wc.sup_master).is_number:
+            notes.append(("worst case", f"sup over c = {number(wc.sup_master)} (master), "
+                          f"{number(wc.sup_slave)} (slave)"
+                          + (f" at c = {number(wc.maximiser)}" if wc.maximiser is not None else "")))
+        notes.append(("decision", f"{decision.decision.value} ({decision.reason})"))
+        write_output(args.output, tex.derivation_document("hapticproof derive teleoperator", items, notes,
+                                                          intro=tex.escape_text(f"PEB teleoperator, alpha = {scene.alpha}.")))
         return 0
     v = args.verbose
     out_lines = []
@@ -96,12 +118,26 @@ def run(args: argparse.Namespace) -> int:
     else:
         out_lines.append(f"worst case: sup over c of the bounds = {number(wc.sup_master)} (master), "
                          f"{number(wc.sup_slave)} (slave){where}")
-    if wc.condition is not None and scene.parameters:
+    if wc.condition is not None and decision.decision.value == "symbolic":
         out_lines.append(f"passive if {brief(wc.condition, verbose=v)}")
     out_lines.append(f"error-coordinate damping (less conservative): {sp.sstr(error_coordinate_damping(scene))}")
-    if decision is not None:
-        out_lines.append(f"decision: {decision.decision.value} -- {decision.reason}")
-    elif scene.parameters:
-        out_lines.append(f"decision: symbolic (fix {', '.join(sorted(map(str, scene.parameters)))} for an exact decision)")
+    out_lines.append("conditions:")
+    width = max(len(c.name) for c in conds)
+    for cond in conds:
+        out_lines.append(f"  {cond.name.ljust(width)}  {cond.decision.value:<9}  {shorten_numbers(cond.outcome.reason, verbose=v)}")
+    out_lines.append(f"verdict: {decision.decision.value} ({shorten_numbers(decision.reason, verbose=v)})")
     write_output(args.output, "\n".join(out_lines + lines))
     return 0
+
+
+def _number(value) -> str:
+    """An exact number, a certified ball (as a decimal) or infinity, for the text output."""
+    if value is None:
+        return "?"
+    if value == sp.oo:
+        return "oo (unbounded: no finite damping suffices)"
+    if hasattr(value, "mid"):
+        return f"{float(value.mid()):.12g}"
+    if hasattr(value, "approx"):
+        return value.approx(12)
+    return sp.sstr(value)
