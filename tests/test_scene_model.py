@@ -325,3 +325,5 @@ def test_errors_are_hapticproof_errors():
         Scene("multi-user", users=2, delay=[1, 2, 3])
     with pytest.raises(HapticproofError):
         Scene("single-user", environment="K + s")
+    with pytest.raises(SceneError, match="did you mean 'positive'"):
+        Scene("single-user", environment="K + M/z", params={"M": "postive"})

@@ -281,6 +281,12 @@ def _param_value(name: str, value: Any, where: str) -> Any:
         except Exception:  # noqa: BLE001 - not a plain number: read it as an expression
             pass
         expr = read_expression(text, None, where=f"{where}{name}")
+        if expr.is_Symbol:
+            import difflib
+
+            close = difflib.get_close_matches(text, list(ASSUMPTIONS), n=1, cutoff=0.75)
+            if close:
+                raise SceneError(f"{where}{name}: {text!r} is not an assumption; did you mean {close[0]!r}?")
         return expr if not expr.is_Rational else sp.Rational(expr)
     raise SceneError(f"{where}{name}: cannot use {value!r} (a number, an expression or one of "
                      f"{', '.join(ASSUMPTIONS)})")
