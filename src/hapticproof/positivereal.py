@@ -443,7 +443,8 @@ def combine(conditions: list[Condition], subject: str = "G^-1", holds: str = "po
         elif decision == Decision.UNDECIDED:
             reason = f"{subject}: {first.name} undecided: {first.outcome.reason}"
         else:
-            reason = f"{subject} is {holds} iff " + "; ".join(f"{c.name}: {c.outcome.reason}" for c in failing)
+            # the conditions themselves are listed with the verdict: name them, do not repeat them
+            reason = f"{subject} is {holds} iff these conditions on the parameters hold: " + "; ".join(c.name for c in failing)
         return Outcome(decision, Evidence(first.outcome.evidence.method, witness=first.outcome.witness, facts=facts), reason,
                        minimiser=first.outcome.minimiser, minimum=first.outcome.minimum)
     herm = conditions[-1].outcome if conditions else None
