@@ -397,7 +397,7 @@ def worst_case(scene: SingleUserScene) -> WorstCase:
     if isinstance(form, ThetaForm):
         outcome = Outcome(
             Decision.SYMBOLIC,
-            Evidence(Method.INSTANCES, facts={"reason": "symbolic delay: use worst_case_instances"}),
+            Evidence(Method.STRUCTURAL, facts={"reason": "symbolic delay n: fix n, or ask for the delay margin (hapticproof.design)"}),
             "symbolic delay n: the worst case depends on n (fix the delay, or ask for the delay margin)",
         )
         return WorstCase(outcome, None)
