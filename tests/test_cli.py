@@ -47,7 +47,7 @@ def test_derive_proved_with_profile(capsys):
         (["audit", "hve", "--equation", "999"], "no equation"),
         (["audit", "hve", "--section", "9"], "no equation of hve in section(s) 9"),
         (["audit", "hve", "-s", "3.1", "-e", "20"], "not both"),
-        (["derive", "single-user", "--environment", "K +* z"], "cannot read"),
+        (["derive", "single-user", "--environment", "K +* z"], "unexpected '*'"),
     ],
 )
 def test_user_errors_are_one_line(capsys, argv, message):

@@ -301,14 +301,16 @@ class MultiUserScene:
         K: Any = None,
         B: Any = None,
         T: Any = None,
-        delay: int = 0,
+        delay: Any = 0,
         z_a: Any = 0,
         edges: Iterable[tuple[int, int]] | None = None,
         approximation: str = "forward",
     ) -> MultiUserScene:
-        """All users alike: one ``b``, ``K_0``, ``B_0``, ``z_a`` and delay, one ``K`` and ``B``
-        on every edge (complete graph by default); unspecified values are the symbols
-        :data:`UNIFORM_SYMBOLS`.
+        """All users alike: one ``b``, ``K_0``, ``B_0``, ``z_a``, one ``K`` and ``B`` on every
+        edge (complete graph by default); unspecified values are the symbols
+        :data:`UNIFORM_SYMBOLS`. ``delay`` is one delay or one per user: uniform parameters
+        with unequal delays are still one scene, but no longer decouple into modes (their
+        decision then needs numbers).
 
         >>> MultiUserScene.uniform(2, b=1, K0=2, B0=0, K=2, B=0, T="0.001").is_numeric
         True
@@ -320,7 +322,7 @@ class MultiUserScene:
         return cls(
             b=(pick(b, "b"),) * m, T=pick(T, "T"), K0=(pick(K0, "K_0"),) * m, B0=(pick(B0, "B_0"),) * m,
             edges=graph, K=(pick(K, "K"),) * len(graph), B=(pick(B, "B"),) * len(graph),
-            delays=(delay,) * m, z_a=(z_a,) * m, approximation=approximation,
+            delays=_delays(delay, m), z_a=(z_a,) * m, approximation=approximation,
         )
 
     @classmethod

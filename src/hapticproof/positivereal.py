@@ -398,7 +398,7 @@ def worst_case(scene: SingleUserScene) -> WorstCase:
     if isinstance(form, ThetaForm):
         outcome = Outcome(
             Decision.SYMBOLIC,
-            Evidence(Method.INSTANCES, facts={"reason": "symbolic delay: use worst_case_instances"}),
+            Evidence(Method.STRUCTURAL, facts={"reason": "symbolic delay n: fix n, or ask for the delay margin (hapticproof.design)"}),
             "symbolic delay n: the worst case depends on n (fix the delay, or ask for the delay margin)",
         )
         return WorstCase(outcome, None)
@@ -444,7 +444,8 @@ def combine(conditions: list[Condition], subject: str = "G^-1", holds: str = "po
         elif decision == Decision.UNDECIDED:
             reason = f"{subject}: {first.name} undecided: {first.outcome.reason}"
         else:
-            reason = f"{subject} is {holds} iff " + "; ".join(f"{c.name}: {c.outcome.reason}" for c in failing)
+            # the conditions themselves are listed with the verdict: name them, do not repeat them
+            reason = f"{subject} is {holds} iff these conditions on the parameters hold: " + "; ".join(c.name for c in failing)
         return Outcome(decision, Evidence(first.outcome.evidence.method, witness=first.outcome.witness, facts=facts), reason,
                        minimiser=first.outcome.minimiser, minimum=first.outcome.minimum)
     herm = conditions[-1].outcome if conditions else None

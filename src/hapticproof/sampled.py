@@ -304,14 +304,13 @@ def _parse_impedance(text: str, params: tuple[tuple[str, Any], ...]) -> Impedanc
             raise InputFormatError(
                 f"impedance {text!r}: unknown name {ident!r} (use s and --param names: {known})"
             )
+    from hapticproof.expr import read_expression   # the one reader of user expressions
+
     s = sp.Symbol("s")
-    namespace: dict[str, Any] = {"s": s}
-    for key, value in names.items():
-        namespace[key] = sp.Rational(to_fraction(value, key).numerator, to_fraction(value).denominator)
-    try:
-        expr = sp.sympify(text.replace("^", "**"), locals=namespace, rational=True)
-    except (sp.SympifyError, SyntaxError, TypeError, ZeroDivisionError) as err:
-        raise InputFormatError(f"impedance {text!r} is not a valid expression") from err
+    expr = read_expression(text, "s", where=f"impedance {text!r}")
+    expr = expr.xreplace({sym: sp.Rational(to_fraction(names[sym.name], sym.name).numerator,
+                                           to_fraction(names[sym.name]).denominator)
+                          for sym in expr.free_symbols if sym.name in names})
     if not isinstance(expr, sp.Expr) or expr.free_symbols - {s}:
         raise InputFormatError(f"impedance {text!r} must be a rational function of s")
     num, den = sp.fraction(sp.cancel(sp.together(expr)))

@@ -72,20 +72,22 @@ class SceneSummary:
             out["stages_seconds"] = self.stages
         return to_jsonable(out)
 
-    def to_text(self) -> str:
+    def to_text(self, verbose: bool = False) -> str:
+        from hapticproof.readable import brief, shorten_numbers
+
         lines = [
             f"system:          {self.system} ({self.approximation} difference, delay n = {self.delay})",
-            f"G^-1(z)          = {sp.sstr(self.G_inverse)}",
-            f"Re G^-1 (c = cos wT) = {sp.sstr(self.hermitian_part)}",
+            f"G^-1(z)          = {brief(self.G_inverse, verbose=verbose)}",
+            f"Re G^-1 (c = cos wT) = {brief(self.hermitian_part, verbose=verbose)}",
             "poles:           " + ", ".join(f"z = {p.value} ({p.location}{'' if p.multiplicity == 1 else f', x{p.multiplicity}' if p.multiplicity > 0 else ', multiplicity n+...'})" for p in self.poles),
             "residues:        " + (", ".join(f"Res(z = {r.pole}) = {sp.sstr(r.residue)} [{r.outcome.reason}]" for r in self.residues) or "none on |z| = 1"),
-            f"worst case:      {sp.sstr(self.worst_case) if self.worst_case not in (None, sp.true, sp.false) else _minimum_text(self)}",
+            f"worst case:      {brief(self.worst_case, verbose=verbose) if self.worst_case not in (None, sp.true, sp.false) else _minimum_text(self)}",
             "conditions:",
         ]
         width = max((len(c.name) for c in self.conditions), default=0)
         for cond in self.conditions:
-            lines.append(f"  {cond.name.ljust(width)}  {cond.decision.value:<9}  {cond.outcome.reason}")
-        lines.append(f"verdict:         {self.verdict}  ({self.reason})")
+            lines.append(f"  {cond.name.ljust(width)}  {cond.decision.value:<9}  {shorten_numbers(cond.outcome.reason, verbose=verbose)}")
+        lines.append(f"verdict:         {self.verdict}  ({shorten_numbers(self.reason, verbose=verbose)})")
         if self.witness:
             lines.append("witness:         " + ", ".join(f"{k} = {_show(v)}" for k, v in self.witness.items()))
         if self.stages:
@@ -129,13 +131,13 @@ class SceneSummary:
     def __repr__(self) -> str:  # short and free of timings (notebooks compare it)
         return f"SceneSummary({self.system}, {self.approximation}, delay {self.delay}: {self.verdict})"
 
-    def dumps(self, fmt: str, fragment: bool = False) -> str:
+    def dumps(self, fmt: str, fragment: bool = False, verbose: bool = False) -> str:
         """``json``, ``latex`` (a complete document; ``fragment``: one amsmath display) or text."""
         if fmt == "json":
             return json.dumps(self.to_json(), indent=2)
         if fmt == "latex":
             return tex.display(self.to_latex()) if fragment else self.latex_document()
-        return self.to_text()
+        return self.to_text(verbose=verbose)
 
 
 def _readable(expr: sp.Expr) -> sp.Expr:
@@ -154,6 +156,8 @@ def _show(value: Any) -> str:
 
 def _minimum_text(summary: SceneSummary) -> str:
     if summary.minimiser is None:
+        if isinstance(summary.delay, sp.Symbol):
+            return "depends on n (see the delay margin below)"
         return "see the conditions"
     where = summary.minimiser.approx(12) if hasattr(summary.minimiser, "approx") else summary.minimiser
     value = summary.minimum

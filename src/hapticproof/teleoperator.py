@@ -32,7 +32,6 @@ analysis for the symbolic PD controller (33).
 
 from __future__ import annotations
 
-import re
 from collections.abc import Mapping
 from dataclasses import dataclass, replace
 from functools import lru_cache
@@ -131,30 +130,23 @@ def discretize_pd(method: str, K: Any = TELE_SYMBOLS["K"], B: Any = TELE_SYMBOLS
     return sp.cancel(as_poly(num) * z ** (top - len(num) + 1) / (as_poly(den) * z ** (top - len(den) + 1)))
 
 
-_ALLOWED = re.compile(r"^[A-Za-z0-9_.+\-*/()^ \t]*$")
-
-
 def parse_controller(text: str, params: Mapping[str, Any] | None = None) -> sp.Expr:
-    """A user's controller ``C(z)`` from text such as ``"K + B*(z-1)/(T*z)"``.
+    """A user's controller ``C(z)`` from text such as ``"K + B*(z-1)/(T*z)"`` (read by
+    :func:`hapticproof.expr.read_expression`: exact decimals, any parameter names).
 
-    Names other than ``z`` must be given in ``params`` (exact values) or be one of the
-    teleoperator symbols (``K``, ``B``, ``T``, ``a``, ``alpha``...), which stay symbolic.
+    Names given in ``params`` get those exact values; the others stay symbolic (the teleoperator
+    symbols ``K``, ``B``, ``T``, ``a``, ``alpha``... with their signs).
 
     >>> parse_controller("K + B*(z - 1)/(T*z)", {"K": 2, "B": "0.01", "T": "0.001"})
     2 + 10*(z - 1)/z
     """
-    if not isinstance(text, str) or not text.strip() or not _ALLOWED.match(text):
-        raise InputFormatError(f"controller {text!r}: use numbers, z, parameter names, + - * / ^ and ()")
-    names = {"z": Z_SYM, **TELE_SYMBOLS}
-    values = {k: exact(v) for k, v in (params or {}).items()}
-    for ident in re.findall(r"[A-Za-z_][A-Za-z0-9_]*", text):
-        if ident not in names and ident not in values:
-            raise InputFormatError(f"controller {text!r}: unknown name {ident!r}")
-    try:
-        expr = sp.sympify(text.replace("^", "**"), locals={**names, **{k: sp.Symbol(k) for k in values}}, rational=True)
-    except (sp.SympifyError, SyntaxError, TypeError) as err:
-        raise InputFormatError(f"controller {text!r} is not a valid expression") from err
-    expr = expr.subs({sp.Symbol(k): v for k, v in values.items()})
+    from hapticproof.expr import read_expression
+
+    if not isinstance(text, str) or not text.strip():
+        raise InputFormatError(f"controller {text!r}: give C(z) as an expression in z")
+    expr = read_expression(text, "z", where="controller", symbols=TELE_SYMBOLS)
+    values = {sym: exact(params[sym.name]) for sym in expr.free_symbols if params and sym.name in params}
+    expr = expr.subs(values)
     if not isinstance(expr, sp.Expr) or not expr.is_rational_function(Z_SYM):
         raise InputFormatError(f"controller {text!r} must be a rational function of z")
     return expr
@@ -168,7 +160,8 @@ class TeleoperatorScene:
     ----------
     m_m, m_s, b_m, b_s : expr
         Masses and dampings (positive when numeric). The masses do not enter the passivity
-        bounds (they store energy losslessly) but the stability checks use them.
+        bounds (they store energy losslessly) and may be ``None``; the stability checks
+        (:meth:`to_sampled`) need them.
     T : expr
         Sampling period.
     C : expr
@@ -186,13 +179,17 @@ class TeleoperatorScene:
     alpha: Any = 1
 
     def __post_init__(self) -> None:
+        from hapticproof.expr import normalise_variables
+
         for name in ("m_m", "m_s", "b_m", "b_s", "T", "alpha"):
             value = getattr(self, name)
+            if value is None and name in ("m_m", "m_s"):
+                continue                      # masses are optional: they do not enter the bounds
             value = value if isinstance(value, sp.Basic) and not value.is_number else exact(value)
             object.__setattr__(self, name, value)
             if value.is_number and not value > 0:
                 raise SceneError(f"{name} must be positive, got {value}")
-        C = sp.sympify(self.C)
+        C = normalise_variables(self.C, "z", "C(z)")
         if not C.is_rational_function(Z_SYM):
             raise SceneError(f"C(z) must be a rational function of z, got {C}")
         num, den = sp.fraction(sp.cancel(sp.together(C)))
@@ -233,7 +230,8 @@ class TeleoperatorScene:
     def parameters(self) -> set[sp.Symbol]:
         out: set[sp.Symbol] = set()
         for value in (self.m_m, self.m_s, self.b_m, self.b_s, self.T, self.C, self.alpha):
-            out |= sp.sympify(value).free_symbols
+            if value is not None:
+                out |= sp.sympify(value).free_symbols
         return out - {Z_SYM}
 
     @property
@@ -252,7 +250,7 @@ class TeleoperatorScene:
             if key not in by_name:
                 raise SceneError(f"unknown parameter {key!r}; the scene has {sorted(by_name)}")
             mapping[by_name[key]] = exact(value)
-        sub = lambda v: sp.sympify(v).subs(mapping)  # noqa: E731
+        sub = lambda v: None if v is None else sp.sympify(v).subs(mapping)  # noqa: E731
         return replace(self, m_m=sub(self.m_m), m_s=sub(self.m_s), b_m=sub(self.b_m), b_s=sub(self.b_s),
                        T=sub(self.T), C=sub(self.C), alpha=sub(self.alpha))
 
@@ -262,6 +260,8 @@ class TeleoperatorScene:
 
         if self.parameters:
             raise SceneError(f"the scene has free parameters {sorted(map(str, self.parameters))}")
+        if self.m_m is None or self.m_s is None:
+            raise SceneError("the sampled-data loop needs the masses m_m and m_s")
         num, den = sp.fraction(sp.cancel(sp.together(self.C)))
         pn, pd = sp.Poly(num, Z_SYM), sp.Poly(den, Z_SYM)
         tf = DiscreteTF(tuple(pn.all_coeffs()), tuple(pd.all_coeffs()))

@@ -29,6 +29,9 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
         description="Regenerate, certify and audit stability and passivity conditions of "
         "sampled-data haptic and teleoperation systems.",
     )
+    from hapticproof import __version__
+
+    parser.add_argument("--version", action="version", version=f"hapticproof {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
     for name in (command,) if command in COMMANDS else COMMANDS:
         importlib.import_module(f"hapticproof.cli.{name}").register(sub)
@@ -37,6 +40,14 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
 
 def main(argv: Sequence[str] | None = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
+    try:
+        if argv and argv[0] in ("derive", "boundary") and "--scene" in " ".join(argv):
+            from hapticproof.cli.derive import complete_argv
+
+            argv = complete_argv(argv)
+    except HapticproofError as err:
+        print(f"hapticproof: error: {err}", file=sys.stderr)
+        return 2
     parser = build_parser(argv[0] if argv else None)
     args = parser.parse_args(argv)
     try:

@@ -35,7 +35,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "e.g. -s 1 -s 2 -s 3.1 for the HVE paper's single-user part)")
     parser.add_argument("--format", "-f", choices=FORMATS, default="table",
                         help="table (default), markdown, json, tex (a LaTeX document) or html (one self-contained page)")
-    parser.add_argument("--output", "-o", metavar="FILE", help="write to FILE instead of stdout")
+    parser.add_argument("--output", "-o", metavar="FILE", help="write to FILE instead of stdout (- is stdout)")
     parser.add_argument("--wide", action="store_true", help="table: full details instead of one shortened line each")
     parser.add_argument("--jobs", "-j", type=int, metavar="N",
                         help="worker processes (default: the machine's cores; 1: serial); the output is the same")
@@ -81,7 +81,8 @@ def run(args: argparse.Namespace) -> int:
         text = "\n\n".join(r.dumps(args.format) for r in reports)
     if args.output:
         path = write_text(args.output, text)
-        print(f"wrote {path}", file=sys.stderr)
+        if path is not None:  # "-" is standard output
+            print(f"wrote {path}", file=sys.stderr)
     else:
         print(text)
     counts: dict[str, int] = {}

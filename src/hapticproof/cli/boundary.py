@@ -8,7 +8,11 @@ Example::
 
 prints one line per grid point (``T  K_exact  K_printed  ratio``) and writes the CSV
 (columns ``T, K_exact, K_printed``; the printed column is empty where no printed condition
-applies), a JSON file with the full boundary records and a PNG plot.
+applies), a JSON file with the full boundary records and a PNG plot. The scene is the one of
+``derive`` (``--scene FILE`` or the same options: any environment, per-user couplings and delays,
+any controller), with the masses as parameters; without ``--over`` one boundary is computed at
+the scene's values. ``-`` as a CSV or JSON file is standard output (the table then goes to
+standard error); every output file is checked before the work starts.
 """
 
 from __future__ import annotations
@@ -17,38 +21,55 @@ import argparse
 import sys
 
 from hapticproof.borderlines import printed_borderline
-from hapticproof.cli._common import add_param_option, parse_params
-from hapticproof.cli._terminal import ProgressBar, progress_bar
+import json
+
+from hapticproof.cli._common import add_param_option
+from hapticproof.cli._terminal import ProgressBar, progress_bar  # noqa: F401 - ProgressBar re-exported
 from hapticproof.errors import InputFormatError
-from hapticproof.maps import SYSTEMS, SceneFamily, boundary_curve, grid, plot_curves
+from hapticproof.maps import boundary_curve, grid, plot_curves
 
 __all__ = ["register", "handler", "ProgressBar"]
 
 
+SYSTEMS = ("single-user", "multi-user", "teleoperator")
+
+
 def register(subparsers: argparse._SubParsersAction) -> None:
+    from hapticproof.discretize import METHODS
+
     parser = subparsers.add_parser(
         "boundary",
         help="exact sampled-data stability boundaries (spectral radius of the exact ZOH loop)",
-        description="Stability boundary of one parameter (--vary) along a sweep of another "
-        "(--over), next to the borderline of the paper's printed condition.",
+        description="Stability boundary of one parameter (--vary) of a scene -- the same scene as 'derive' "
+        "(options or --scene FILE), plus the device masses m (m_1.. or m_m, m_s) -- at the scene's values or "
+        "along a sweep of another parameter (--over), next to the borderline of the paper's printed "
+        "condition when the scene is the paper's own. The virtual damping B (B_0) is 0 unless given.",
     )
-    parser.add_argument("system", choices=SYSTEMS)
+    parser.add_argument("system", nargs="?", choices=SYSTEMS, help="the system (default: the scene file's)")
+    parser.add_argument("--scene", metavar="FILE", help="read the scene from a scene file (TOML)")
     add_param_option(parser)
+    parser.add_argument("--environment", "--H", dest="environment",
+                        help="single-user: the virtual environment H(z) (or H(s) with --discretize; default "
+                        "K + B*(z-1)/(T*z)); teleoperator: the slave's termination Z_e(s), 'free' or 'clamped'")
+    parser.add_argument("--controller", help="teleoperator: 'pd', 'filtered-pd', C(z) or C(s) with --discretize; "
+                        "single-user: a synonym of --environment")
+    parser.add_argument("--discretize", choices=METHODS, default=None, help="make a continuous design discrete")
     parser.add_argument("--operator", help="operator impedance Z_h(s), e.g. '-z_a + 1/s' "
                         "(teleoperator: master termination; 'clamped' allowed)")
-    parser.add_argument("--environment", help="teleoperator slave termination: an impedance "
-                        "in s or 'clamped' (default: free)")
-    parser.add_argument("--delay", type=int, default=0, help="delay in samples (t_d = n T)")
-    parser.add_argument("--users", type=int, default=2, help="multi-user: number of users")
-    parser.add_argument("--vary", required=True, help="parameter whose boundary is sought (K)")
-    parser.add_argument("--over", required=True, metavar="NAME=start:stop:count",
-                        help="sweep, e.g. T=0.001:0.02:20")
+    parser.add_argument("--delay", default=None, help="delay in samples (multi-user: one per user, n_1,...,n_m)")
+    parser.add_argument("--users", type=int, default=None, help="multi-user: number of users (default 2)")
+    parser.add_argument("--graph", default=None, help="multi-user: coupling graph (complete, path, star, ring, 1-2,2-3)")
+    parser.add_argument("--uniform", action="store_true", default=None,
+                        help="multi-user: one symbol per group (b, K_0, B_0, K, B); else per-user names")
+    parser.add_argument("--vary", required=True, help="parameter whose boundary is sought (e.g. K, B_0, K_i)")
+    parser.add_argument("--over", metavar="NAME=start:stop:count",
+                        help="sweep, e.g. T=0.001:0.02:20 (default: one boundary at the scene's values)")
     parser.add_argument("--search", metavar="lo:hi", help="search interval of --vary")
     parser.add_argument("--rtol", type=float, default=1e-10, help="relative tolerance")
     parser.add_argument("--workers", type=int, default=None, help="processes (default: auto)")
-    parser.add_argument("--plot", metavar="PNG")
-    parser.add_argument("--csv", metavar="CSV")
-    parser.add_argument("--json", metavar="JSON")
+    parser.add_argument("--plot", metavar="FILE", help="plot (.png, .pdf or .svg)")
+    parser.add_argument("--csv", metavar="FILE", help="CSV of the curve ('-': standard output)")
+    parser.add_argument("--json", metavar="FILE", help="JSON of the boundaries ('-': standard output)")
     parser.add_argument("--no-progress", action="store_true", help="no progress bar")
     parser.set_defaults(handler=handler)
 
@@ -66,29 +87,87 @@ def _search(text: str | None) -> tuple[float, float] | None:
     return lo, hi
 
 
+def _scene(args: argparse.Namespace):
+    from hapticproof.cli._common import param_items
+    from hapticproof.scene import Scene
+    from hapticproof.scenefile import read_scene
+
+    fields: dict = {}
+    params: dict = {}
+    system = args.system
+    if args.scene:
+        base = read_scene(args.scene)
+        if system is not None and base.system != system:
+            raise InputFormatError(f"{args.scene} describes a {base.system} scene, not {system}")
+        system = base.system
+        fields = {k: getattr(base, k) for k in ("approximation", "environment", "controller", "discretize", "delay",
+                                                 "users", "graph", "uniform", "active", "operator")}
+        params = dict(base.params)
+    if system is None:
+        raise InputFormatError("name the system (single-user, multi-user, teleoperator) or give --scene FILE")
+    if system not in SYSTEMS:
+        raise InputFormatError(f"stability boundaries apply to {', '.join(SYSTEMS)}, not {system}")
+    for name in ("environment", "controller", "discretize", "operator", "delay", "users", "graph", "uniform"):
+        value = getattr(args, name)
+        if value is not None:
+            fields[name] = value
+    params.update(param_items(args.param))
+    return Scene(system, **{k: v for k, v in fields.items() if v is not None}, params=params)
+
+
 def handler(args: argparse.Namespace) -> int:
-    params = parse_params(args.param)
-    over_name, over_values = grid(args.over)
-    if args.vary == over_name:
-        raise InputFormatError("--vary and --over must name different parameters")
-    if args.vary in params or over_name in params:
-        raise InputFormatError("--vary/--over parameters must not also be fixed with --param")
+    from hapticproof.cli._common import check_output, write_text
+    from hapticproof.maps import find_boundary
+    from hapticproof.stability import SceneLoops
+
+    # every output is checked before the work starts
+    check_output(args.plot, "--plot", (".png", ".pdf", ".svg"))
+    check_output(args.csv, "--csv")
+    check_output(args.json, "--json")
     if not (0 < args.rtol < 1):
         raise InputFormatError("--rtol must be in (0, 1)")
-    family = SceneFamily(
-        args.system, params, operator=args.operator, environment=args.environment,
-        delay=args.delay, users=args.users,
-    )
-    family.scene(**{args.vary: 1.0, over_name: float(over_values[0])})  # fail early, clearly
-    border = printed_borderline(family, args.vary)
+    search = _search(args.search)
+    spec = _scene(args)
+    given = {item.partition("=")[0].strip() for item in args.param}
+    over_name, over_values = grid(args.over) if args.over is not None else (None, None)
+    if args.vary == over_name:
+        raise InputFormatError("--vary and --over must name different parameters")
+    if args.vary in given or over_name in given:
+        raise InputFormatError("--vary/--over parameters must not also be fixed with --param")
+    # a value in the scene file is the design point: the boundary varies it
+    spec = spec.with_params({args.vary: None, **({over_name: None} if over_name else {})})
+    # the virtual damping is 0 unless given (as the papers' stability studies)
+    unset = {"B", "B_0"} & spec.names() - set(dict(spec.params)) - {args.vary, over_name}
+    if unset:
+        spec = spec.with_params({name: 0 for name in unset})
+    loops = SceneLoops(spec)
+    if args.over is None:
+        if args.csv or args.plot:
+            raise InputFormatError("--csv and --plot draw a curve: give --over NAME=start:stop:count")
+        loops.scene(**{args.vary: 1.0})        # fail early, clearly
+        bnd = find_boundary(loops, args.vary, search=search, rtol=args.rtol)
+        if bnd.value is None:
+            state = "stable" if bnd.stable_at_start else "unstable"
+            print(f"{args.vary}: no change of stability in [{bnd.search[0]:.6g}, {bnd.search[1]:.6g}] ({state} throughout)")
+        else:
+            more = f"; {len(bnd.crossings)} crossings: " + ", ".join(f"{c.value:.10g} ({c.direction})" for c in bnd.crossings) \
+                if bnd.multiple else ""
+            print(f"{args.vary}* = {bnd.value:.10g} +- {bnd.tolerance:.2g} ({bnd.direction}: spectral radius of the exact "
+                  f"ZOH loop crosses 1){more}")
+        if args.json:
+            write_text(args.json, json.dumps(bnd.to_json(), indent=1))
+        return 0
+    loops.scene(**{args.vary: 1.0, over_name: float(over_values[0])})  # fail early, clearly
+    border = printed_borderline(loops, args.vary) if loops.is_paper_scene() else None
     bar = None if args.no_progress else progress_bar(sys.stderr, "boundary")  # a terminal only
     curve = boundary_curve(
-        family, args.vary, (over_name, over_values), printed_borderline=border,
-        search=_search(args.search), rtol=args.rtol, workers=args.workers,
+        loops, args.vary, (over_name, over_values), printed_borderline=border,
+        search=search, rtol=args.rtol, workers=args.workers,
         progress=bar,
     )
     vary = args.vary
-    print(f"{over_name:>12} {vary + '_exact':>18} {vary + '_printed':>18} {'ratio':>9}  notes")
+    to_stdout = "-" in (args.csv, args.json)
+    lines = [f"{over_name:>12} {vary + '_exact':>18} {vary + '_printed':>18} {'ratio':>9}  notes"]
     for x, bnd, printed in zip(curve.grid, curve.boundaries, curve.printed):
         exact = "none" if bnd.value is None else f"{bnd.value:.10g}"
         pr = "" if printed is None else f"{printed:.10g}"
@@ -101,13 +180,14 @@ def handler(args: argparse.Namespace) -> int:
         if bnd.value is not None and bnd.direction == "stabilising":
             notes.append("stabilising")
         if bnd.value is None:
-            notes.append("stable" if bnd.stable_at_start else "unstable" + " throughout search")
-        print(f"{x:>12.6g} {exact:>18} {pr:>18} {ratio:>9}  {', '.join(notes)}")
+            notes.append(("stable" if bnd.stable_at_start else "unstable") + " throughout search")
+        lines.append(f"{x:>12.6g} {exact:>18} {pr:>18} {ratio:>9}  {', '.join(notes)}")
+    print("\n".join(lines), file=sys.stderr if to_stdout else sys.stdout)
     if args.csv:
-        curve.to_csv(args.csv)
+        write_text(args.csv, curve.to_csv())
     if args.json:
-        curve.to_json(args.json)
+        write_text(args.json, json.dumps(curve.to_json(), indent=1))
     if args.plot:
-        title = f"{args.system}: {vary}*({over_name})"
+        title = f"{spec.system}: {vary}*({over_name})"
         plot_curves([curve], args.plot, title=title, scale={"T": 1000} if over_name == "T" else None)
     return 0

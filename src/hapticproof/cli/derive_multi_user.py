@@ -9,7 +9,9 @@ Examples::
 
 Parameters are symbolic unless fixed with ``--param``; per-user names are ``b_1``, ``K_01``,
 ``B_01``, ``z_a1``, ``K_12``, ``B_12`` ...; the group names ``b``, ``K_0``, ``B_0``, ``K``, ``B``,
-``z_a`` set every member of the group (with ``--uniform`` they are the only names).
+``z_a`` set every member of the group (with ``--uniform`` they are the only names). ``--uniform``
+is about the symbols, not the delays: ``--uniform --delay 1,2,5`` is a scene with one symbol per
+group and unequal delays (no closed form; numbers give the exact decision).
 """
 
 from __future__ import annotations
@@ -21,7 +23,8 @@ from typing import Any
 import sympy as sp
 
 from hapticproof import latex as tex
-from hapticproof.cli._common import add_param_option, parse_params
+from hapticproof.cli._common import add_output_option, add_scene_options, check_output, scene_from_args, write_output
+from hapticproof.cli.derive_single_user import add_design_options, design_answers
 from hapticproof.errors import InputFormatError
 from hapticproof.evidence import to_jsonable
 from hapticproof.multiuser import (
@@ -35,7 +38,6 @@ from hapticproof.multiuser import (
     sufficient_condition,
     worst_case,
 )
-from hapticproof.scene import APPROXIMATIONS
 
 __all__ = ["register", "build_scene", "derive"]
 
@@ -49,15 +51,12 @@ def register(systems: argparse._SubParsersAction) -> None:
         help="m users coupled through a shared virtual environment (HVE paper, Section 3.2)",
         description="G^-1(z) as an m x m matrix, the residue matrix at z = 1, the Hermitian part M(c), its "
         "principal minors and the exact worst case over w (all principal minors / characteristic "
-        "coefficients, never leading minors alone).",
+        "coefficients, never leading minors alone). Parameters: per-user b_i, K_0i, B_0i, z_ai, K_ij, B_ij; "
+        "the group names b, K_0, B_0, K, B, z_a set every member (with --uniform they are the only names); "
+        "m / m_i (masses) enter only the stability boundary.",
     )
-    parser.add_argument("--users", type=int, default=2, help="number of users m (default 2)")
-    parser.add_argument("--delay", default="0", help="n = t_d/T for every user, or a comma list n_1,...,n_m")
-    parser.add_argument("--uniform", action="store_true", help="all users alike: symbols b, K_0, B_0, K, B, z_a")
-    parser.add_argument("--active", action="store_true", help="include the operators' shortage of passivity z_a")
-    parser.add_argument("--graph", default="complete", metavar="GRAPH",
-                        help="coupling graph: complete (default), path, star, ring, or edges like 1-2,2-3")
-    parser.add_argument("--approximation", choices=APPROXIMATIONS, default="forward")
+    add_scene_options(parser, "multi-user")
+    add_design_options(parser)
     parser.add_argument("--latex", action="store_true", help="same as --format latex")
     parser.add_argument("--format", choices=("text", "latex", "json"), default="text",
                         help="text (default), latex (a complete document) or json")
@@ -65,42 +64,9 @@ def register(systems: argparse._SubParsersAction) -> None:
                         help="with --format latex: only the displays (amsmath), not a complete document")
     parser.add_argument("--minors", choices=("auto", "all", "none"), default="auto",
                         help="print the principal minors (auto: when m <= 3)")
-    add_param_option(parser)
+    parser.add_argument("--verbose", action="store_true", help="print large expressions in full (text format)")
+    add_output_option(parser)
     parser.set_defaults(handler=run)
-
-
-def _edges(text: str, m: int) -> tuple[tuple[int, int], ...] | None:
-    text = text.strip().lower()
-    if text == "complete":
-        return None
-    if text == "path":
-        return tuple((i, i + 1) for i in range(m - 1))
-    if text == "star":
-        return tuple((0, i) for i in range(1, m))
-    if text == "ring":
-        return tuple(sorted({tuple(sorted((i, (i + 1) % m))) for i in range(m)} - {(0, 0)})) if m > 1 else ()
-    edges = []
-    for item in text.split(","):
-        try:
-            i, j = (int(v) for v in item.split("-"))
-        except ValueError:
-            raise InputFormatError(f"--graph: expected complete, path, star, ring or edges like 1-2,2-3; got {item!r}") from None
-        if not (1 <= i <= m and 1 <= j <= m) or i == j:
-            raise InputFormatError(f"--graph: edge {item!r} needs two different users in 1..{m}")
-        edges.append((i - 1, j - 1))
-    return tuple(edges)
-
-
-def _delays(text: str, m: int) -> Any:
-    try:
-        values = [int(v) for v in text.split(",")]
-    except ValueError:
-        raise InputFormatError(f"--delay: expected an integer or a comma list of integers, got {text!r}") from None
-    if len(values) == 1:
-        return values[0]
-    if len(values) != m:
-        raise InputFormatError(f"--delay: {len(values)} values for {m} users")
-    return values
 
 
 def build_scene(users: int, delay: str = "0", uniform: bool = False, active: bool = False, graph: str = "complete",
@@ -110,38 +76,10 @@ def build_scene(users: int, delay: str = "0", uniform: bool = False, active: boo
     >>> build_scene(2, uniform=True, params={"b": 1, "K_0": 2, "B_0": 0, "K": 2, "B": 0, "T": "1/100"}).is_numeric
     True
     """
-    if users < 1:
-        raise InputFormatError("--users must be a positive integer")
-    edges = _edges(graph, users)
-    delays = _delays(delay, users)
-    params = dict(params or {})
-    if uniform:
-        if not isinstance(delays, int):
-            raise InputFormatError("--uniform needs one delay for every user")
-        from hapticproof.multiuser import UNIFORM_SYMBOLS
+    from hapticproof.scene import Scene
 
-        scene = MultiUserScene.uniform(users, delay=delays, edges=edges, approximation=approximation,
-                                       z_a=UNIFORM_SYMBOLS["z_a"] if active else 0)
-        names = {s.name for s in scene.parameters}
-        unknown = set(params) - names
-        if unknown:
-            raise InputFormatError(f"unknown parameter(s) {sorted(unknown)}; this scene has {sorted(names)}")
-        return scene.with_values(params)
-    scene = MultiUserScene.symbolic(users, edges=edges, delays=delays, active=active, approximation=approximation)
-    values: dict[sp.Symbol, Any] = {}
-    members = {"b": scene.b, "K0": scene.K0, "B0": scene.B0, "z_a": scene.z_a, "K": scene.K, "B": scene.B}
-    by_name = {s.name: s for s in scene.parameters}
-    for name, value in params.items():
-        if name in GROUPS:
-            for s in members[GROUPS[name]]:
-                if isinstance(s, sp.Symbol):
-                    values[s] = value
-        elif name in by_name:
-            values[by_name[name]] = value
-        else:
-            raise InputFormatError(f"unknown parameter {name!r}; use {', '.join(sorted(GROUPS))}, T or per-user names "
-                                   f"such as {', '.join(sorted(by_name)[:4])}")
-    return scene.with_values(values)
+    return Scene("multi-user", users=users, delay=delay, uniform=uniform, active=active, graph=graph,
+                 approximation=approximation, params=params or {}).build()
 
 
 def derive(scene: MultiUserScene, minors: str = "auto") -> dict[str, Any]:
@@ -176,19 +114,21 @@ def derive(scene: MultiUserScene, minors: str = "auto") -> dict[str, Any]:
     return out
 
 
-def _text(data: dict[str, Any]) -> str:
+def _text(data: dict[str, Any], verbose: bool = False) -> str:
+    from hapticproof.readable import brief
+
     lines = [
         f"system:            {data['users']}-user HVE ({data['approximation']} difference, delays {data['delays']}, "
         f"edges {data['edges']})",
         "G^-1(z):",
-        *(f"  row {i + 1}: {sp.sstr(list(row))}" for i, row in enumerate(data["G_inverse"].tolist())),
+        *(f"  row {i + 1}: {brief(list(row), verbose=verbose)}" for i, row in enumerate(data["G_inverse"].tolist())),
         f"residue at z = 1:  {sp.sstr(data['residue_at_1'])}  [{data['residue_condition']}]",
         f"M(c) = G^-1 + G^-H on |z| = 1 (c = cos wT{'' if data['hermitian_is_real'] else ', s_theta = sin wT'}):",
-        *(f"  row {i + 1}: {sp.sstr(list(row))}" for i, row in enumerate(data["hermitian_part"].tolist())),
+        *(f"  row {i + 1}: {brief(list(row), verbose=verbose)}" for i, row in enumerate(data["hermitian_part"].tolist())),
     ]
     if "principal_minors" in data:
         lines.append("principal minors (all of them):")
-        lines += [f"  {k}: {sp.sstr(v)}" for k, v in data["principal_minors"].items()]
+        lines += [f"  {k}: {brief(v, verbose=verbose)}" for k, v in data["principal_minors"].items()]
     lines.append(f"worst case ({data['worst_case_method']}): {sp.sstr(data['worst_case_condition'])}"
                  + (f"   at c = {data['worst_c']}" if data["worst_c"] is not None else ""))
     if "sufficient_condition" in data:
@@ -245,14 +185,18 @@ def run(args: argparse.Namespace) -> int:
     fmt = "latex" if args.latex else args.format
     if args.fragment and fmt != "latex":
         raise InputFormatError("--fragment needs --format latex")
-    scene = build_scene(args.users, args.delay, args.uniform, args.active, args.graph, args.approximation,
-                        parse_params(args.param))
+    check_output(args.output, "--output")
+    spec = scene_from_args(args, "multi-user")
+    scene = spec.build()
     data = derive(scene, args.minors)
+    extra, lines = design_answers(spec, args, args.delay_margin)
     if fmt == "json":
-        print(json.dumps(to_jsonable({k: ([c.to_json() for c in v] if k == "conditions" else v) for k, v in data.items()}),
-                         indent=2))
+        out = to_jsonable({k: ([c.to_json() for c in v] if k == "conditions" else v) for k, v in data.items()})
+        out.update(extra)
+        text = json.dumps(out, indent=2)
     elif fmt == "latex":
-        print(_latex(data, args.fragment))
+        text = _latex(data, args.fragment)
     else:
-        print(_text(data))
+        text = "\n".join([_text(data, args.verbose)] + lines)
+    write_output(args.output, text)
     return 0

@@ -14,8 +14,10 @@ JSON (``.json``)::
 
     {"matrix": [["9/(s+3)", "-1/(s+1)"], ["-1/(s+1)", "1/(s+3)"]], "ports": [1, 1]}
 
-(a plain list of rows is accepted too). Entries may use named parameters (letters, digits,
-underscores), fixed with ``--param NAME=VALUE``; with free parameters only the symmetrization
+(a plain list of rows is accepted too). Entries are rational expressions in ``s`` (``*`` for
+products, exact decimals, no functions: ``sin(s)`` or a ``z`` is an error) and named parameters,
+fixed with ``--param NAME=VALUE``; a scene file (``--scene``, ``system = "network"``) may hold
+the matrix itself or name the file; with free parameters only the symmetrization
 conditions are derived (symbolically). ``--ports 3,3`` groups the ports (a 2-port with 3-DOF
 ports terminated by full 3x3 impedances); the default is scalar ports.
 
@@ -30,91 +32,46 @@ from __future__ import annotations
 
 import argparse
 import json
-import re
 from pathlib import Path
 from typing import Any
 
 import sympy as sp
-from sympy.parsing.sympy_parser import (
-    convert_xor,
-    implicit_multiplication_application,
-    parse_expr,
-    standard_transformations,
-)
 
 from hapticproof import latex as tex
-from hapticproof.cli._common import add_param_option, parse_params
+from hapticproof.cli._common import add_output_option, add_scene_options, check_output, scene_from_args, write_output
 from hapticproof.errors import InputFormatError
 from hapticproof.evidence import Decision, to_jsonable
 from hapticproof.networks import absolute_stability, llewellyn, port_blocks, positive_real, symmetrization_conditions
 from hapticproof.rationalmatrix import RationalMatrix, pole_report
-from hapticproof.symbols import s
+from hapticproof.symbols import s  # noqa: F401 - the variable of the matrix entries
 
 __all__ = ["register", "run", "read_matrix", "parse_entry"]
 
-_ENTRY = re.compile(r"^[0-9A-Za-z_+\-*/^(). ]+$")
-_NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
-_TRANSFORMS = standard_transformations + (implicit_multiplication_application, convert_xor)
-
-
 def parse_entry(text: str, where: str = "") -> sp.Expr:
-    """One matrix entry: a rational expression in ``s`` and named parameters (nothing else).
+    """One matrix entry: a rational expression in ``s`` and named parameters (the one reader,
+    :func:`hapticproof.expr.read_expression`: exact decimals, ``*`` for products, no functions).
 
-    >>> parse_entry("9/(s+3)"), parse_entry("2s^2 + k")
+    >>> parse_entry("9/(s+3)"), parse_entry("2*s^2 + k")
     (9/(s + 3), k + 2*s**2)
+    >>> parse_entry("sin(s)", "z.txt:1, entry 1")
+    Traceback (most recent call last):
+    ...
+    hapticproof.expr.ExpressionError: z.txt:1, entry 1: unknown function 'sin' at position 0 in 'sin(s)' (a rational expression has numbers, names, + - * / ^ and parentheses)
     """
-    text = text.strip()
-    if not text or not _ENTRY.match(text):
-        raise InputFormatError(f"{where}: {text!r} is not a rational expression in s")
-    names = set(_NAME.findall(text))
-    if any(n.startswith("_") for n in names):
-        raise InputFormatError(f"{where}: names may not start with '_': {text!r}")
-    local = {n: sp.Symbol(n, real=True) for n in names if n != "s"}
-    local["s"] = s
-    try:
-        expr = parse_expr(text, local_dict=local, global_dict={"Integer": sp.Integer, "Rational": sp.Rational,
-                                                                "Float": sp.Float, "Symbol": sp.Symbol},
-                          transformations=_TRANSFORMS)
-    except Exception as err:  # noqa: BLE001 - any parse failure is the user's input
-        raise InputFormatError(f"{where}: cannot read {text!r} ({err.__class__.__name__})") from None
-    expr = sp.nsimplify(expr, rational=True)
-    if not isinstance(expr, sp.Expr) or not expr.is_rational_function(s):
-        raise InputFormatError(f"{where}: {text!r} is not a rational function of s")
-    return expr
+    from hapticproof.expr import read_expression
+
+    return read_expression(str(text), "s", where=where)
 
 
 def read_matrix(path: str | Path) -> tuple[sp.Matrix, tuple[int, ...] | None]:
     """Read the documented text or JSON matrix format; returns ``(Z, ports or None)``."""
-    path = Path(path)
-    try:
-        content = path.read_text(encoding="utf-8")
-    except OSError as err:
-        raise InputFormatError(f"cannot read {path}: {err.strerror}") from None
-    ports = None
-    if path.suffix.lower() == ".json":
-        try:
-            data = json.loads(content)
-        except json.JSONDecodeError as err:
-            raise InputFormatError(f"{path}: invalid JSON ({err.msg} at line {err.lineno})") from None
-        if isinstance(data, dict):
-            rows, ports = data.get("matrix"), data.get("ports")
-        else:
-            rows = data
-        if not isinstance(rows, list) or not all(isinstance(r, list) for r in rows):
-            raise InputFormatError(f"{path}: expected a list of rows (or {{'matrix': [...]}})")
-        table = [[parse_entry(str(e), f"{path}: row {i + 1}, column {j + 1}") for j, e in enumerate(r)] for i, r in enumerate(rows)]
-    else:
-        table = []
-        for number, line in enumerate(content.splitlines(), 1):
-            line = line.split("#", 1)[0].strip()
-            if line:
-                table.append([parse_entry(e, f"{path}:{number}, entry {k + 1}") for k, e in enumerate(line.split(","))])
-    if not table:
-        raise InputFormatError(f"{path}: no matrix rows")
-    n = len(table)
-    if any(len(r) != n for r in table):
+    from hapticproof.scenefile import read_matrix as read_entries
+
+    rows, ports = read_entries(path)
+    table = [[parse_entry(e, f"{path}: row {i + 1}, entry {j + 1}") for j, e in enumerate(r)] for i, r in enumerate(rows)]
+    if any(len(r) != len(table) for r in table):
         raise InputFormatError(f"{path}: the matrix must be square (found rows of lengths {[len(r) for r in table]})")
-    return sp.Matrix(table), (tuple(int(p) for p in ports) if ports else None)
+    return sp.Matrix(table), ports
 
 
 def register(systems: argparse._SubParsersAction) -> None:
@@ -124,27 +81,14 @@ def register(systems: argparse._SubParsersAction) -> None:
         description=__doc__.split("\n\n", 1)[1],
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
-    parser.add_argument("--matrix", required=True, metavar="FILE", help="impedance matrix file (text or .json)")
-    parser.add_argument("--ports", metavar="SIZES", help="port sizes, e.g. 3,3 (default: scalar ports)")
+    add_scene_options(parser, "network")
     parser.add_argument("--format", choices=("text", "json", "latex"), default="text",
                         help="text (default), json or latex (a complete document)")
     parser.add_argument("--fragment", action="store_true",
                         help="with --format latex: only the displays (amsmath), not a complete document")
     parser.add_argument("--no-search", action="store_true", help="do not search destabilizing terminations")
-    add_param_option(parser)
+    add_output_option(parser)
     parser.set_defaults(handler=run)
-
-
-def _ports(text: str | None, from_file, n: int) -> tuple[int, ...] | None:
-    if text:
-        try:
-            ports = tuple(int(p) for p in text.split(","))
-        except ValueError:
-            raise InputFormatError(f"--ports expects sizes like 3,3, got {text!r}") from None
-    else:
-        ports = from_file
-    port_blocks(n, ports)
-    return ports
 
 
 def analyse(Z: sp.Matrix, ports: tuple[int, ...] | None, search: bool = True) -> dict[str, Any]:
@@ -249,20 +193,18 @@ def _latex(report: dict[str, Any], fragment: bool = False) -> str:
 def run(args: argparse.Namespace) -> int:
     if args.fragment and args.format != "latex":
         raise InputFormatError("--fragment needs --format latex")
-    Z, file_ports = read_matrix(args.matrix)
-    params = parse_params(args.param)
-    if params:
-        names = {str(x): x for x in Z.free_symbols}
-        unknown = sorted(set(params) - set(names))
-        if unknown:
-            raise InputFormatError(f"unknown parameter(s) {unknown}; the matrix has {sorted(set(names) - {'s'})}")
-        Z = Z.subs({names[k]: v for k, v in params.items()})
-    ports = _ports(args.ports, file_ports, Z.rows)
+    check_output(args.output, "--output")
+    spec = scene_from_args(args, "network")
+    Z = spec.build()
+    ports = spec.ports
+    if ports is not None:
+        port_blocks(Z.rows, ports)
     report = analyse(Z, ports, search=not args.no_search)
     if args.format == "json":
-        print(json.dumps(to_jsonable(report), indent=2))
+        text = json.dumps(to_jsonable(report), indent=2)
     elif args.format == "latex":
-        print(_latex(report, args.fragment))
+        text = _latex(report, args.fragment)
     else:
-        print(_text(report))
+        text = _text(report)
+    write_output(args.output, text)
     return 0

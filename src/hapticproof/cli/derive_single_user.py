@@ -1,79 +1,111 @@
-"""``hapticproof derive single-user``: the exact conditions of a 1-DOF haptic scene."""
+"""``hapticproof derive single-user``: the exact conditions of a 1-DOF haptic scene.
+
+Examples::
+
+    hapticproof derive single-user --environment 'K + B*(z-1)/(T*z) + M*(z-1)**2/(T**2*z**2)' \\
+        --param K=2 --param B=0.01 --param M=0.5 --param T=0.001 --param b=0.9 --delay-margin --range K
+    hapticproof derive single-user --controller 'K + B*s' --discretize tustin --param T=0.001
+    hapticproof derive --scene examples/filtered_wall.toml --range K
+"""
 
 from __future__ import annotations
 
 import argparse
+import json
 
 import sympy as sp
 
-from hapticproof.cli._common import add_param_option, parse_params
+from hapticproof.cli._common import add_output_option, add_scene_options, check_output, scene_from_args, write_output
 from hapticproof.errors import InputFormatError
-from hapticproof.scene import APPROXIMATIONS, SYMBOLS, SingleUserScene
-from hapticproof.summary import summarize_single_user
-from hapticproof.symbols import z
 
-__all__ = ["register"]
+__all__ = ["register", "run", "add_design_options", "design_answers"]
 
 
 def register(systems: argparse._SubParsersAction) -> None:
     parser = systems.add_parser(
         "single-user",
         help="1-DOF device on a discrete environment (HVE paper, Fig. 4)",
-        description="G^-1(z), poles, residues, the exact Hermitian part as a function of c = cos(wT) "
-        "and the worst case over w. Parameters (b, K, B, T, z_a) are symbolic unless fixed with "
-        "--param; when all are numbers the verdict is decided exactly (root isolation).",
+        description="G^-1(z), poles, residues, the exact Hermitian part as a function of c = cos(wT), the "
+        "worst case over w and the whole positive-realness decision (exact when every parameter is a number). "
+        "Any parameter names; decimals are exact. --delay-margin and --range NAME answer the designer's "
+        "questions exactly.",
     )
-    parser.add_argument("--approximation", choices=APPROXIMATIONS, default="forward")
-    parser.add_argument("--delay", default="0", help="integer n = t_d/T, or 'n' for a symbolic delay (default 0)")
-    parser.add_argument("--environment", metavar="H(z)",
-                        help="custom real-rational H(z) in z and the parameter names (default: K + B*(z-1)/(T*z))")
-    parser.add_argument("--active", action="store_true", help="include the operator's shortage of passivity z_a")
+    add_scene_options(parser, "single-user")
+    add_design_options(parser)
     parser.add_argument("--format", choices=("text", "latex", "json"), default="text",
                         help="text (default), latex (a complete document) or json")
     parser.add_argument("--fragment", action="store_true",
                         help="with --format latex: only the displays (amsmath), not a complete document")
+    parser.add_argument("--verbose", action="store_true", help="print large expressions in full (text format)")
     parser.add_argument("--profile", action="store_true", help="print the time of each computed stage")
-    add_param_option(parser)
+    add_output_option(parser)
     parser.set_defaults(handler=run)
 
 
-def _environment(text: str | None, T: sp.Expr) -> sp.Expr | None:
-    if text is None:
-        return None
-    names = {name: symbol for name, symbol in SYMBOLS.items()}
-    names["z"] = z
-    try:
-        expr = sp.parse_expr(text, local_dict=names, global_dict={"__builtins__": {}, "Integer": sp.Integer,
-                                                                  "Rational": sp.Rational, "Float": sp.Float, "Symbol": sp.Symbol})
-    except Exception as err:  # noqa: BLE001 - any parse failure is the user's input
-        raise InputFormatError(f"--environment: cannot read {text!r} as an expression in z") from err
-    unknown = expr.free_symbols - set(names.values())
-    if unknown:
-        raise InputFormatError(f"--environment: unknown names {sorted(map(str, unknown))}; use z and b, K, B, T, z_a")
-    return expr
+def add_design_options(parser: argparse.ArgumentParser, margin: bool = True) -> None:
+    if margin:
+        parser.add_argument("--delay-margin", action="store_true",
+                            help="the largest N such that the scene is passive for every delay n = 0..N (exact; "
+                            "numeric parameters; with --delay n it is computed unasked)")
+        parser.add_argument("--max-delay", type=int, default=2000, metavar="N",
+                            help="search the delay margin up to N when no bound ends the search (default 2000)")
+    parser.add_argument("--range", action="append", default=[], metavar="NAME",
+                        help="the exact passive range of parameter NAME with the others fixed (e.g. K: K_max; "
+                        "b: b_min); repeatable")
+
+
+def design_answers(scene, args: argparse.Namespace, margin_wanted: bool) -> tuple[dict, list[str]]:
+    """The designer's answers asked for on the command line, as JSON data and text lines."""
+    from hapticproof.design import delay_margin, passive_range
+
+    data: dict = {}
+    lines: list[str] = []
+    if margin_wanted:
+        margin = delay_margin(scene, max_delay=getattr(args, "max_delay", 2000))
+        data["delay_margin"] = margin.to_json()
+        lines.append(margin.to_text())
+    for name in args.range:
+        rng = passive_range(scene, name)
+        data.setdefault("passive_ranges", {})[name] = rng.to_json()
+        lines.append(rng.to_text())
+    return data, lines
 
 
 def run(args: argparse.Namespace) -> int:
+    from hapticproof.discretize import is_rational
+    from hapticproof.summary import summarize_single_user
+
     if args.fragment and args.format != "latex":
         raise InputFormatError("--fragment needs --format latex")
-    params = parse_params(args.param)
-    unknown = set(params) - {"b", "K", "B", "T", "z_a", "t_d"}
-    if unknown:
-        raise InputFormatError(f"unknown parameter(s) {sorted(unknown)}; single-user scenes have b, K, B, T, z_a, t_d")
-    delay: object = SYMBOLS["n"] if args.delay.strip() == "n" else args.delay.strip()
-    if "t_d" in params:
-        delay = params.pop("t_d")
-        t_d_given = True
+    check_output(args.output, "--output")
+    if getattr(args, "max_delay", 1) < 0:
+        raise InputFormatError("--max-delay must be >= 0")
+    scene = scene_from_args(args, "single-user")
+    model = scene.build()
+    head: list[str] = []
+    if scene.discretize is not None:
+        head.append(f"H(s) = {sp.sstr(scene.environment)}  ->  {scene.discretize}: H(z) = {sp.sstr(model.H)}")
+    if not is_rational(model.H):
+        head.append("H(z) has transcendental coefficients (e^{pT} of the exact " + str(scene.discretize) +
+                    " map): an exact decision needs rational coefficients; use forward, backward or tustin, or "
+                    "give the discrete H(z) with rounded poles")
+        write_output(args.output, "\n".join(head))
+        return 0
+    numeric_but_delay = model.delay.is_Symbol and not (model.parameters - {model.delay})
+    summary = summarize_single_user(model, with_profile=args.profile)
+    extra, lines = design_answers(scene, args, args.delay_margin or numeric_but_delay)
+    if args.format == "json":
+        out = summary.to_json()
+        if scene.discretize is not None:
+            out["continuous_design"] = {"H_s": sp.sstr(scene.environment), "discretize": scene.discretize,
+                                        "H_z": sp.sstr(model.H)}
+        out.update(extra)
+        text = json.dumps(out, indent=2)
+    elif args.format == "latex":
+        text = summary.dumps("latex", fragment=args.fragment)
+        if lines:
+            text += "\n" + "\n".join("% " + line for block in lines for line in block.splitlines())
     else:
-        t_d_given = False
-    base = SingleUserScene.virtual_wall(
-        approximation=args.approximation,
-        z_a=SYMBOLS["z_a"] if args.active else 0,
-        **({"t_d": delay, "T": params.get("T")} if t_d_given else {"delay": delay}),
-    )
-    H = _environment(args.environment, base.T)
-    if H is not None:
-        base = SingleUserScene(b=base.b, T=base.T, H=H, approximation=base.approximation, delay=base.delay, z_a=base.z_a)
-    scene = base.with_values({k: v for k, v in params.items() if k != "T" or not t_d_given})
-    print(summarize_single_user(scene, with_profile=args.profile).dumps(args.format, fragment=args.fragment))
+        text = "\n".join(head + [summary.to_text(verbose=args.verbose)] + lines)
+    write_output(args.output, text)
     return 0

@@ -10,6 +10,8 @@ Examples::
     hapticproof derive teleoperator --controller filtered-pd --param a=1/2
     hapticproof derive teleoperator --controller "K/(1 - 0.5/z)" --param K=1 --param T=0.001 \\
         --param b_m=0.02 --param b_s=0.02
+    hapticproof derive teleoperator --controller 'K_p + K_i/s' --discretize tustin --param K_i=2 \\
+        --param T=0.001 --param b_m=0.02 --param b_s=0.02 --range K_p
 """
 
 from __future__ import annotations
@@ -20,72 +22,52 @@ import json
 import sympy as sp
 
 from hapticproof import latex as tex
-from hapticproof.cli._common import add_param_option, parse_params
+from hapticproof.cli._common import add_output_option, add_scene_options, check_output, scene_from_args, write_output
+from hapticproof.cli.derive_single_user import add_design_options, design_answers
 from hapticproof.errors import InputFormatError
 from hapticproof.evidence import to_jsonable
-from hapticproof.teleoperator import (
-    TELE_SYMBOLS,
-    TeleoperatorScene,
-    bounds,
-    error_coordinate_damping,
-    filtered_pd_controller,
-    parse_controller,
-    passivity,
-    passivity_conditions,
-    pd_controller,
-    worst_case,
-)
+from hapticproof.teleoperator import bounds, error_coordinate_damping, passivity, passivity_conditions, worst_case
 
 __all__ = ["register", "run"]
-
-PARAMETERS = ("K", "B", "T", "a", "alpha", "b_m", "b_s", "m_m", "m_s")
-
 
 def register(systems: argparse._SubParsersAction) -> None:
     parser = systems.add_parser(
         "teleoperator",
         help="sampled-data position-error-based teleoperator (teleoperator paper, Fig. 2)",
         description="Per-robot damping bounds of eq. (32) (eq. (29) at alpha = 1) as exact functions of "
-        "c = cos(wT), their worst case over w, and the exact passivity decision when every parameter is fixed. "
-        "Controllers: 'pd' (eq. 33, default), 'filtered-pd' (derivative low-pass with pole a), or any "
-        "rational C(z) in z and the names " + ", ".join(PARAMETERS) + ".",
+        "c = cos(wT), their worst case over w, and the exact passivity decision when the controller, T, "
+        "alpha, b_m and b_s are numbers (the masses m_m, m_s do not enter the bound: they are needed only "
+        "for the stability boundary). Controllers: 'pd' (eq. 33, default), 'filtered-pd' (derivative "
+        "low-pass with pole a), any rational C(z), or C(s) with --discretize; any parameter names.",
     )
-    parser.add_argument("--controller", default="pd", metavar="C(z)",
-                        help="'pd', 'filtered-pd' or an expression in z (default: pd)")
+    add_scene_options(parser, "teleoperator")
+    add_design_options(parser, margin=False)
     parser.add_argument("--format", choices=("text", "latex", "json"), default="text",
                         help="text (default), latex (a complete document) or json")
     parser.add_argument("--fragment", action="store_true",
                         help="with --format latex: only the displays (amsmath), not a complete document")
-    add_param_option(parser)
+    parser.add_argument("--verbose", action="store_true", help="print large expressions in full (text format)")
+    add_output_option(parser)
     parser.set_defaults(handler=run)
 
 
-def _controller(text: str, params: dict) -> sp.Expr:
-    T = params.get("T", TELE_SYMBOLS["T"])
-    if text == "pd":
-        return pd_controller(params.get("K", TELE_SYMBOLS["K"]), params.get("B", TELE_SYMBOLS["B"]), T)
-    if text == "filtered-pd":
-        return filtered_pd_controller(params.get("K", TELE_SYMBOLS["K"]), params.get("B", TELE_SYMBOLS["B"]), T,
-                                      params.get("a", TELE_SYMBOLS["a"]))
-    return parse_controller(text, {k: v for k, v in params.items() if k in ("K", "B", "T", "a")})
-
-
 def run(args: argparse.Namespace) -> int:
+    from hapticproof.discretize import is_rational
+    from hapticproof.readable import brief, number, shorten_numbers
+
     if args.fragment and args.format != "latex":
         raise InputFormatError("--fragment needs --format latex")
-    params = parse_params(args.param)
-    unknown = set(params) - set(PARAMETERS)
-    if unknown:
-        raise InputFormatError(f"unknown parameter(s) {sorted(unknown)}; the teleoperator has {', '.join(PARAMETERS)}")
-    sym = TELE_SYMBOLS
-    scene = TeleoperatorScene(
-        params.get("m_m", sym["m_m"]), params.get("m_s", sym["m_s"]), params.get("b_m", sym["b_m"]),
-        params.get("b_s", sym["b_s"]), params.get("T", sym["T"]), _controller(args.controller, params),
-        params.get("alpha", 1),
-    )
+    check_output(args.output, "--output")
+    spec = scene_from_args(args, "teleoperator")
+    scene = spec.build()
+    if not is_rational(scene.C):
+        write_output(args.output, f"C(z) = {sp.sstr(scene.C)}\nC(z) has transcendental coefficients (e^(pT) of the exact "
+                     f"{spec.discretize} map): an exact decision needs rational coefficients")
+        return 0
     bd, wc = bounds(scene), worst_case(scene)
     decision = passivity(scene)
     conds = passivity_conditions(scene)
+    extra, lines = design_answers(spec, args, False)
     if args.format == "json":
         out = {"controller": sp.sstr(scene.C), "alpha": sp.sstr(scene.alpha), "bound_master": sp.sstr(bd.master),
                "bound_slave": sp.sstr(bd.slave), "sup_master": to_jsonable(wc.sup_master),
@@ -95,8 +77,11 @@ def run(args: argparse.Namespace) -> int:
                "conditions": [c.to_json() for c in conds],
                "verdict": decision.decision.value, "reason": decision.reason,
                "decision": decision.to_json()}
+        if spec.discretize is not None:
+            out["continuous_design"] = {"C_s": sp.sstr(spec.controller), "discretize": spec.discretize}
         out = to_jsonable(out)
-        print(json.dumps(out, indent=2))
+        out.update(extra)
+        write_output(args.output, json.dumps(out, indent=2))
         return 0
     cos = r"\cos(\omega T)"
     if args.format == "latex":
@@ -107,31 +92,41 @@ def run(args: argparse.Namespace) -> int:
             items.append(("worst case over frequency", tex.to_latex(wc.condition)))
         items.append(("error-coordinate damping (less conservative)", r"b_e = " + tex.to_latex(error_coordinate_damping(scene))))
         if args.fragment:
-            print(tex.derivation_fragment(items))
+            write_output(args.output, tex.derivation_fragment(items))
             return 0
         notes = []
         if sp.sympify(wc.sup_master).is_number:
-            notes.append(("worst case", f"sup over c = {to_jsonable(wc.sup_master)} (master), "
-                          f"{to_jsonable(wc.sup_slave)} (slave)"
-                          + (f" at c = {to_jsonable(wc.maximiser)}" if wc.maximiser is not None else "")))
-        if decision is not None:
-            notes.append(("decision", f"{decision.decision.value} ({decision.reason})"))
-        print(tex.derivation_document("hapticproof derive teleoperator", items, notes,
-                                      intro=tex.escape_text(f"PEB teleoperator, alpha = {scene.alpha}.")))
+            notes.append(("worst case", f"sup over c = {number(wc.sup_master)} (master), "
+                          f"{number(wc.sup_slave)} (slave)"
+                          + (f" at c = {number(wc.maximiser)}" if wc.maximiser is not None else "")))
+        notes.append(("decision", f"{decision.decision.value} ({decision.reason})"))
+        write_output(args.output, tex.derivation_document("hapticproof derive teleoperator", items, notes,
+                                                          intro=tex.escape_text(f"PEB teleoperator, alpha = {scene.alpha}.")))
         return 0
-    print(f"controller C(z) = {sp.sstr(scene.C)}, alpha = {scene.alpha}")
-    print(f"b_m > {sp.sstr(sp.factor(bd.master))}    (c = cos wT)")
-    print(f"b_s > {sp.sstr(sp.factor(bd.slave))}")
-    where = f" at c = {_number(wc.maximiser)}" if wc.maximiser is not None else ""
-    print(f"worst case: sup over c of the bounds = {_number(wc.sup_master)} (master), {_number(wc.sup_slave)} (slave){where}")
+    v = args.verbose
+    out_lines = []
+    if spec.discretize is not None:
+        out_lines.append(f"C(s) = {sp.sstr(spec.controller)}  ->  {spec.discretize}")
+    out_lines += [f"controller C(z) = {brief(scene.C, verbose=v)}, alpha = {scene.alpha}",
+                  f"b_m > {brief(sp.factor(bd.master), verbose=v)}    (c = cos wT)",
+                  f"b_s > {brief(sp.factor(bd.slave), verbose=v)}"]
+    where = f" at c = {number(wc.maximiser) if not hasattr(wc.maximiser, 'approx') else wc.maximiser.approx(12)}" \
+        if wc.maximiser is not None else ""
+    if wc.sup_master is sp.oo or wc.sup_master == sp.oo:
+        out_lines.append("worst case: the bounds are unbounded (C(z) has a pole on the unit circle): no finite damping "
+                         "makes the teleoperator passive")
+    else:
+        out_lines.append(f"worst case: sup over c of the bounds = {number(wc.sup_master)} (master), "
+                         f"{number(wc.sup_slave)} (slave){where}")
     if wc.condition is not None and decision.decision.value == "symbolic":
-        print(f"passive if {sp.sstr(wc.condition)}")
-    print(f"error-coordinate damping (less conservative): {sp.sstr(error_coordinate_damping(scene))}")
-    print("conditions:")
+        out_lines.append(f"passive if {brief(wc.condition, verbose=v)}")
+    out_lines.append(f"error-coordinate damping (less conservative): {sp.sstr(error_coordinate_damping(scene))}")
+    out_lines.append("conditions:")
     width = max(len(c.name) for c in conds)
     for cond in conds:
-        print(f"  {cond.name.ljust(width)}  {cond.decision.value:<9}  {cond.outcome.reason}")
-    print(f"verdict: {decision.decision.value} ({decision.reason})")
+        out_lines.append(f"  {cond.name.ljust(width)}  {cond.decision.value:<9}  {shorten_numbers(cond.outcome.reason, verbose=v)}")
+    out_lines.append(f"verdict: {decision.decision.value} ({shorten_numbers(decision.reason, verbose=v)})")
+    write_output(args.output, "\n".join(out_lines + lines))
     return 0
 
 

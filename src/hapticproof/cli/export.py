@@ -49,7 +49,8 @@ def run(args: argparse.Namespace) -> int:
     for report in reports:
         for verdict, n in report.counts().items():
             counts[verdict] = counts.get(verdict, 0) + n
-    print(f"wrote {path}", file=sys.stderr)
+    if path is not None:  # "-" is standard output
+        print(f"wrote {path}", file=sys.stderr)
     print(summary_line(counts, use_colour(sys.stderr), len(reports), time.perf_counter() - start), file=sys.stderr)
     return 0
 

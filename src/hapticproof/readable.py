@@ -1,0 +1,98 @@
+"""Readable text for large exact objects: a one-line summary instead of a 300 KB polynomial.
+
+Text output shows an expression in full when it is short, and otherwise says what it is
+(variable, degrees, number of terms); JSON output and ``--verbose`` keep everything. Numbers
+print as numbers: exact rationals as ``p/q``, certified balls as decimals, ``oo`` as
+"unbounded" -- never as the raw dictionaries of the JSON form.
+
+>>> from hapticproof.symbols import z
+>>> brief(sum(z**k for k in range(400)) / (z - 1), limit=80)
+'rational function of z: numerator degree 399 (400 terms), denominator degree 1 (2 terms) [full text: --verbose or --format json]'
+>>> number(sp.oo), number(sp.Rational(3, 7)), number(sp.sqrt(2))
+('unbounded (oo)', '3/7', 'sqrt(2) ~ 1.41421356237310')
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import flint
+import sympy as sp
+
+__all__ = ["brief", "number", "shorten_numbers", "LIMIT"]
+
+#: Characters up to which an expression is printed in full in text output.
+LIMIT = 400
+
+_VARIABLES = ("z", "c", "s", "x", "theta")
+
+
+def _degree_terms(expr: sp.Expr, var: sp.Symbol | None) -> tuple[int | None, int]:
+    terms = sp.Add.make_args(sp.expand(expr) if len(sp.Add.make_args(expr)) == 1 and expr.is_Mul else expr)
+    if var is None:
+        return None, len(terms)
+    degree = 0
+    for term in terms:
+        powers = term.as_powers_dict()
+        exp = sp.sympify(powers.get(var, 0))
+        if exp.is_Integer:
+            degree = max(degree, int(exp))
+    return degree, len(terms)
+
+
+def brief(expr: Any, limit: int = LIMIT, verbose: bool = False) -> str:
+    """``sstr(expr)`` when at most ``limit`` characters (or ``verbose``), else a summary."""
+    text = sp.sstr(expr)
+    if verbose or len(text) <= limit:
+        return text
+    if isinstance(expr, (list, tuple)):
+        return f"{len(expr)} entries, {len(text)} characters [full text: --verbose or --format json]"
+    expr = sp.sympify(expr)
+    names = {s.name: s for s in getattr(expr, "free_symbols", set())}
+    var = next((names[v] for v in _VARIABLES if v in names), None)
+    if isinstance(expr, sp.MatrixBase):
+        return f"{expr.rows}x{expr.cols} matrix ({len(text)} characters) [full text: --verbose or --format json]"
+    num, den = sp.fraction(expr) if isinstance(expr, sp.Expr) else (expr, sp.Integer(1))
+    of = f" of {var}" if var is not None else ""
+    dn, tn = _degree_terms(num, var)
+    if den == 1:
+        degree = f" degree {dn}," if dn is not None else ""
+        return f"polynomial{of}:{degree} {tn} terms [full text: --verbose or --format json]"
+    dd, td = _degree_terms(den, var)
+    shown = (lambda d, t: f"degree {d} ({t} terms)" if d is not None else f"{t} terms")  # noqa: E731
+    return (f"rational function{of}: numerator {shown(dn, tn)}, denominator {shown(dd, td)} "
+            "[full text: --verbose or --format json]")
+
+
+def number(value: Any, digits: int = 15) -> str:
+    """A number for text output: exact rationals exactly, other exact numbers with a decimal,
+    arb balls as decimals, infinity in words."""
+    if value is None:
+        return "none"
+    if isinstance(value, flint.arb):
+        return value.str(digits, radius=False)
+    if isinstance(value, (int, float)):
+        return str(value)
+    value = sp.sympify(value)
+    if value in (sp.oo, sp.zoo):
+        return "unbounded (oo)"
+    if value == -sp.oo:
+        return "-oo"
+    if value.is_Rational:
+        return str(value)
+    if value.is_number:
+        return f"{sp.sstr(value)} ~ {sp.N(value, digits)}"
+    return sp.sstr(value)
+
+
+def shorten_numbers(text: str, digits: int = 40, verbose: bool = False) -> str:
+    """Integers of more than ``digits`` digits in a sentence abbreviated (exact data stays in JSON).
+
+    >>> shorten_numbers("Re G^-1(c) = -" + "7" * 60 + "/3 < 0")
+    'Re G^-1(c) = -<60-digit integer>/3 < 0'
+    """
+    import re
+
+    if verbose:
+        return text
+    return re.sub(r"\d{%d,}" % digits, lambda m: f"<{len(m.group(0))}-digit integer>", text)
