@@ -4,10 +4,13 @@ Runs ``hapticproof audit PAPER --format json`` in fresh processes (cold: imports
 included), repeats, and reports medians; the per-equation times come from the JSON's
 ``seconds``. Writes ``benchmarks/results/audit.json`` and a bar plot of the slowest equations.
 
-    python benchmarks/bench_audit.py [--papers hve-single-user hve ...] [--repeat 3]
+    python benchmarks/bench_audit.py [--papers all hve-single-user hve ...] [--jobs 1 2] [--repeat 3]
 
-``hve-single-user`` is the HVE paper's Sections 1-3.1 (``hapticproof audit hve -s 1 -s 2 -s 3.1``;
-goal: under 5 s cold on one core); any other name is a paper id (the whole paper).
+``all`` is the whole audit (``hapticproof audit --all``; goal: 12 s cold on this 2-core machine
+with ``--jobs 2``); ``hve-single-user`` is the HVE paper's Sections 1-3.1 (``hapticproof audit
+hve -s 1 -s 2 -s 3.1``; goal: under 5 s cold on one core); any other name is a paper id (the whole
+paper). ``--jobs 1`` runs pinned to one core (``taskset -c 0``), ``--jobs N`` (N > 1) on all cores
+with N worker processes (``hapticproof audit --jobs N``).
 """
 
 from __future__ import annotations
@@ -26,19 +29,22 @@ RESULTS = Path(__file__).resolve().parent / "results"
 TARGETS = {"hve-single-user": ("hve", ["1", "2", "3.1"])}
 
 
-def cold_run(target: str | None, single_core: bool = True) -> tuple[float, dict]:
+def cold_run(target: str | None, single_core: bool = True, jobs: int = 1) -> tuple[float, dict]:
     env = dict(os.environ)
     env.pop("PYTHONDONTWRITEBYTECODE", None)   # a fresh process with Python's bytecode cache, as users run it
-    if single_core:
-        env.update(OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1", MKL_NUM_THREADS="1")
-    paper, sections = TARGETS.get(target, (target, []))
-    cmd = [sys.executable, "-m", "hapticproof", "audit", "--format", "json"] + ([paper] if paper else ["--all"])
+    env.update(OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1", MKL_NUM_THREADS="1")
+    paper, sections = TARGETS.get(target, (None if target == "all" else target, []))
+    cmd = [sys.executable, "-m", "hapticproof", "audit", "--format", "json", "--jobs", str(jobs)]
+    cmd += [paper] if paper else ["--all"]
     cmd += [arg for section in sections for arg in ("--section", section)]
-    if single_core and sys.platform.startswith("linux"):
+    if single_core and jobs == 1 and sys.platform.startswith("linux"):
         cmd = ["taskset", "-c", "0"] + cmd
     start = time.perf_counter()
     out = subprocess.run(cmd, capture_output=True, text=True, env=env, check=True).stdout
-    return time.perf_counter() - start, json.loads(out)
+    data = json.loads(out)
+    if "papers" in data:       # several papers: one flat list of equations
+        data = {"equations": [dict(eq, id=f"{p['paper']}:{eq['id']}") for p in data["papers"] for eq in p["equations"]]}
+    return time.perf_counter() - start, data
 
 
 def derivation_times(repeat: int) -> dict[str, float]:
@@ -74,28 +80,35 @@ def derivation_times(repeat: int) -> dict[str, float]:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__)
-    parser.add_argument("--papers", nargs="*", default=["hve-single-user", "hve"])
+    parser.add_argument("--papers", nargs="*", default=["all", "hve-single-user", "hve"])
+    parser.add_argument("--jobs", type=int, nargs="+", default=[1, len(os.sched_getaffinity(0))],
+                        help="worker processes to measure (1: pinned to one core)")
     parser.add_argument("--repeat", type=int, default=3)
     args = parser.parse_args()
     RESULTS.mkdir(parents=True, exist_ok=True)
-    report: dict = {"machine": {"cpus": os.cpu_count(), "python": sys.version.split()[0]}, "papers": {}}
+    report: dict = {"machine": {"cpus": os.cpu_count(), "python": sys.version.split()[0],
+                                "load_average": os.getloadavg()}, "papers": {}}
     for paper in args.papers:
-        walls, per_equation = [], {}
-        for _ in range(args.repeat):
-            wall, data = cold_run(paper)
-            walls.append(wall)
-            for eq in data["equations"]:
-                per_equation.setdefault(eq["id"], []).append(eq["seconds"])
-        medians = {k: statistics.median(v) for k, v in per_equation.items()}
-        report["papers"][paper] = {
-            "cold_wall_seconds_median": statistics.median(walls),
-            "cold_wall_seconds": walls,
-            "equations": len(medians),
-            "slowest": sorted(medians.items(), key=lambda kv: -kv[1])[:10],
-        }
-        print(f"{paper}: cold wall median {statistics.median(walls):.2f} s over {args.repeat} runs; "
-              f"{len(medians)} equations; slowest: "
-              + ", ".join(f"{k} {v:.2f}s" for k, v in report["papers"][paper]["slowest"][:5]))
+        for jobs in sorted(set(args.jobs)):
+            walls, per_equation = [], {}
+            for _ in range(args.repeat):
+                wall, data = cold_run(paper, jobs=jobs)
+                walls.append(wall)
+                for eq in data["equations"]:
+                    per_equation.setdefault(eq["id"], []).append(eq["seconds"])
+            medians = {k: statistics.median(v) for k, v in per_equation.items()}
+            key = paper if jobs == 1 else f"{paper} --jobs {jobs}"
+            report["papers"][key] = {
+                "jobs": jobs,
+                "cold_wall_seconds_median": statistics.median(walls),
+                "cold_wall_seconds": walls,
+                "equations": len(medians),
+                "sum_of_equation_seconds": sum(medians.values()),
+                "slowest": sorted(medians.items(), key=lambda kv: -kv[1])[:10],
+            }
+            print(f"{key}: cold wall median {statistics.median(walls):.2f} s over {args.repeat} runs; "
+                  f"{len(medians)} equations ({sum(medians.values()):.1f} s of derivations); slowest: "
+                  + ", ".join(f"{k} {v:.2f}s" for k, v in report["papers"][key]["slowest"][:5]))
     report["derivations_seconds_median"] = derivation_times(args.repeat)
     for name, t in report["derivations_seconds_median"].items():
         print(f"derivation {name}: {t * 1000:.1f} ms")

@@ -13,7 +13,9 @@ measures errors against an independent reference (exact arithmetic, certified ba
 * :func:`audit_study` -- cold-process wall time of the whole audit and the slowest equations;
 * :func:`stress_study` -- float paths against exact results at extreme parameters;
 * :func:`lazy_study` -- each bundled scene's lazy pipeline (what a request needs) against the
-  full pipeline (every stage forced).
+  full pipeline (every stage forced);
+* the tasks ``peers``, ``delays`` and ``maps`` run :mod:`hapticproof.studies` (python-control
+  side by side, delays up to 10 000 samples, exact design-space maps).
 
 >>> rows = margin_study(cases=["single-user n=0"], float_points=[100], mp_points=[], repeat=1)
 >>> sorted({r["method"] for r in rows})
@@ -190,15 +192,15 @@ def boundary_study(quick: bool = False, repeat: int = 3) -> list[dict[str, Any]]
 # ---------------------------------------------------------------------------------------------
 
 
-def audit_study(repeat: int = 3, single_core: bool = True) -> dict[str, Any]:
-    """Cold-process wall time of ``hapticproof audit --all`` (medians) and the ten slowest
-    equations (median per-equation seconds)."""
+def audit_study(repeat: int = 3, single_core: bool = True, jobs: int = 1) -> dict[str, Any]:
+    """Cold-process wall time of ``hapticproof audit --all --jobs N`` (medians) and the ten
+    slowest equations (median per-equation seconds); ``jobs = 1`` pinned to one core."""
     env = dict(os.environ, OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1", MKL_NUM_THREADS="1")
     # cold = a fresh process, as a user runs it: Python's bytecode cache is allowed (some
     # sandboxes set PYTHONDONTWRITEBYTECODE, which recompiles every module on every run)
     env.pop("PYTHONDONTWRITEBYTECODE", None)
-    cmd = [sys.executable, "-m", "hapticproof", "audit", "--all", "--format", "json"]
-    if single_core and sys.platform.startswith("linux") and _has("taskset"):
+    cmd = [sys.executable, "-m", "hapticproof", "audit", "--all", "--format", "json", "--jobs", str(jobs)]
+    if single_core and jobs == 1 and sys.platform.startswith("linux") and _has("taskset"):
         cmd = ["taskset", "-c", "0"] + cmd
     walls: list[float] = []
     per_equation: dict[str, list[float]] = {}
@@ -214,7 +216,8 @@ def audit_study(repeat: int = 3, single_core: bool = True) -> dict[str, Any]:
         "cold_wall_seconds_median": statistics.median(walls),
         "cold_wall_seconds": walls,
         "equations": len(medians),
-        "single_core": single_core,
+        "single_core": single_core and jobs == 1,
+        "jobs": jobs,
         "slowest": sorted(medians.items(), key=lambda kv: -kv[1])[:10],
         "total_equation_seconds": sum(medians.values()),
     }
@@ -440,8 +443,38 @@ def run(tasks: Iterable[str], outdir: str | Path, quick: bool = False, repeat: i
                     f"in {r['seconds'] * 1e3:.2f} ms")
         elif task == "audit":
             data = audit_study(repeat=1 if quick else repeat)
-            log(f"  cold wall (median) {data['cold_wall_seconds_median']:.1f} s for {data['equations']} equations; slowest: "
-                + ", ".join(f"{k} {v:.2f}s" for k, v in data["slowest"][:5]))
+            log(f"  cold wall (median, one core) {data['cold_wall_seconds_median']:.1f} s for {data['equations']} "
+                "equations; slowest: " + ", ".join(f"{k} {v:.2f}s" for k, v in data["slowest"][:5]))
+            from hapticproof.auditpool import default_jobs
+
+            if default_jobs() > 1:
+                data["parallel"] = audit_study(repeat=1 if quick else repeat, jobs=default_jobs())
+                log(f"  cold wall (median, --jobs {default_jobs()}) {data['parallel']['cold_wall_seconds_median']:.1f} s")
+        elif task == "peers":
+            from hapticproof.studies import peer_study, plot_peers
+
+            data = peer_study(delays=(0, 3, 10), rels=(1e-2, 1e-9) if quick else (1e-2, 1e-6, 1e-9),
+                              repeat=3 if quick else max(repeat, 15), log=log)
+            if data["rows"]:
+                plot_peers(data, outdir / "peers.png")
+            for name, s in data["summary"].items():
+                if isinstance(s, dict):
+                    log(f"  {name}: median {s['median_seconds'] * 1e3:.2f} ms, wrong verdicts {s['wrong_verdicts']} of {s['of']}")
+            if "peer_note" in data["summary"]:
+                log("  " + data["summary"]["peer_note"])
+        elif task == "delays":
+            from hapticproof.studies import delay_study, margin_search_study, plot_delays
+
+            data = delay_study(delays=(10, 100, 1000) if quick else (10, 100, 1000, 3000, 10_000),
+                               repeat=1 if quick else repeat, log=log)
+            data["margin_search"] = margin_search_study(delays=(10, 100) if quick else (10, 100, 1000),
+                                                        repeat=1 if quick else repeat, log=log)
+            plot_delays(data, outdir / "delays.png")
+        elif task == "maps":
+            from hapticproof.studies import map_study
+
+            data = map_study(size=40 if quick else 316, delays=(3,) if quick else (0, 3, 10), dask=not quick,
+                             stability_size=20 if quick else 100, plot=outdir / "map_passivity.png", log=log)
         elif task == "stress":
             data = stress_study("small" if quick else "large")
             log(f"  {data['cases']} cases; worst relative error {data['worst_relative_error']}; "

@@ -12,6 +12,8 @@ from its JSON alone, importing nothing of the kernel, with other methods:
   at ``s0 = j w``; a proof's c-form is compared with ``Re F`` at rational points of the circle;
 * **psd** certificates -- every coefficient's sign certificate; at a witness the exact matrix
   ``G(z0) + G(z0)^H`` from the transfer matrix and **all its principal minors**;
+* **chebyshev-sign** certificates (long delays) -- converted to the monomial basis by the
+  three-term recurrence and checked as sign certificates, up to the degree limit;
 * **roots** certificates -- the bilinear map ``z = (1 + s)/(1 - s)`` and a **Routh-Hurwitz**
   array (after removing the imaginary-axis roots found as real roots of
   ``gcd(Re R(jw), Im R(jw))``), instead of complex root isolation.
@@ -279,7 +281,7 @@ def _check_transfer_sign(cert: dict, transfer: dict) -> list[str]:
         value = _eval_transfer(transfer, point)
         if not value.re < 0:
             raise _Fail(f"Re F = {value.re} is not negative at the witness")
-        notes.append(f"Re F(witness) = {value.re} < 0 evaluated from the transfer function")
+        notes.append(f"Re F(witness) = {float(value.re):.6g} < 0 evaluated exactly from the transfer function")
         return notes
     if "numerator" not in cert:
         return notes
@@ -575,8 +577,38 @@ def _check_constant_psd(cert: dict) -> list[str]:
     return [f"{m}x{m} matrix: E_k = {', '.join(str(e) for e in E[:4])}{'...' if m > 4 else ''} (Faddeev-LeVerrier)"]
 
 
+
+def _chebyshev_monomial(coeffs: list) -> flint.fmpq_poly:
+    """``sum_k a_k T_k(c)`` in the monomial basis (the recurrence ``T_{k+1} = 2c T_k - T_{k-1}``)."""
+    c = flint.fmpq_poly([0, 1])
+    t0, t1 = flint.fmpq_poly([1]), c
+    out = flint.fmpq_poly([])
+    for k, a in enumerate(_q(v) for v in coeffs):
+        if k >= 2:
+            t0, t1 = t1, 2 * c * t1 - t0
+        out += _fq(a) * (t0 if k == 0 else t1)
+    return out
+
+
+def _as_sign_certificate(cert: dict) -> dict:
+    """A Chebyshev-basis sign certificate (long delays) as a monomial sign certificate: the
+    same claim about ``num(c) den(c)``, converted here (up to the degree limit)."""
+    degree = len(cert["numerator"]) + len(cert["denominator"]) - 2
+    if degree > _max_degree():
+        raise _Skip(f"degree {degree} above the checker's limit {_max_degree()} (HAPTICPROOF_CHECK_MAX_DEGREE)")
+    num, den = _chebyshev_monomial(cert["numerator"]), _chebyshev_monomial(cert["denominator"])
+    out = {k: v for k, v in cert.items() if k not in ("numerator", "denominator", "basis", "cover")}
+    out.update(certificate="sign", polynomial=[str(a) for a in (num * den).coeffs()],
+               numerator=[str(a) for a in num.coeffs()], denominator=[str(a) for a in den.coeffs()])
+    return out
+
+
+def _check_chebyshev(cert: dict) -> list[str]:
+    return _check_sign(_as_sign_certificate(cert)) + ["converted from the Chebyshev basis"]
+
+
 _CHECKS = {"sign": _check_sign, "psd": _check_psd, "roots": _check_roots, "residue": _check_residue,
-           "constant-psd": _check_constant_psd}
+           "constant-psd": _check_constant_psd, "chebyshev-sign": _check_chebyshev}
 
 
 def check_certificate(cert: dict) -> CheckResult:
@@ -589,6 +621,8 @@ def check_certificate(cert: dict) -> CheckResult:
         notes = check(cert)
         if kind == "sign" and "transfer" in cert:
             notes += _check_transfer_sign(cert, cert["transfer"])
+        if kind == "chebyshev-sign" and "transfer" in cert:
+            notes += _check_transfer_sign(_as_sign_certificate(cert), cert["transfer"])
     except _Skip as skip:
         return CheckResult(True, f"not re-verified: {skip}", verified=False)
     except _Fail as fail:

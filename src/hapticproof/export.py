@@ -14,11 +14,43 @@ True
 from __future__ import annotations
 
 from collections.abc import Callable, Iterable
+from typing import Any
 
 from hapticproof import latex as tex
-from hapticproof.audit import AuditReport, Paper, audit_paper
+from hapticproof.audit import AuditReport, EquationResult, Paper, audit_paper
+from hapticproof.evidence import Evidence, Verdict
 
-__all__ = ["export_document", "conditions_table"]
+__all__ = ["export_document", "conditions_table", "reports_from_json"]
+
+
+def reports_from_json(data: Any, papers: Iterable[Paper] = ()) -> list[AuditReport]:
+    """Audit reports read back from ``hapticproof audit --format json`` output (one paper or
+    ``{"papers": [...]}``): everything the export shows, without deriving it again. The
+    registered ``papers`` supply what the JSON does not carry (each equation's section and
+    assumptions).
+
+    >>> r = reports_from_json({"paper": "demo", "title": "Demo", "equations": [{"id": "1", "kind": "claim",
+    ...     "printed": "1 + 1 = 2", "derived": None, "verdict": "confirmed", "detail": "arithmetic",
+    ...     "corrected": None, "evidence": {"method": "canonical-form"}, "seconds": 0.0}]})
+    >>> r[0].results[0].verdict.value
+    'confirmed'
+    """
+    registered = {p.id: p for p in papers}
+    out = []
+    for p in data["papers"] if "papers" in data else [data]:
+        known = registered[p["paper"]].equations if p["paper"] in registered else {}
+        results = tuple(
+            EquationResult(id=e["id"], kind=e["kind"], printed=e["printed"], derived=e.get("derived"),
+                           verdict=Verdict(e["verdict"]), detail=e["detail"], corrected=e.get("corrected"),
+                           evidence=Evidence(e["evidence"]["method"], witness=e["evidence"].get("witness"),
+                                             instances=e["evidence"].get("instances"),
+                                             facts=e["evidence"].get("facts", {})),
+                           seconds=e.get("seconds", 0.0),
+                           section=known[e["id"]].section if e["id"] in known else "",
+                           assumptions=known[e["id"]].assumptions if e["id"] in known else "")
+            for e in p["equations"])
+        out.append(AuditReport(p["paper"], p.get("title", ""), results))
+    return out
 
 
 def conditions_table(papers: Iterable[Paper]) -> str:

@@ -47,6 +47,7 @@ __all__ = [
     "Condition",
     "combine",
     "conditions",
+    "pole_conditions",
     "transfer_polynomials",
     "Pole",
     "Residue",
@@ -476,6 +477,18 @@ def conditions(scene: SingleUserScene) -> list[Condition]:
 
 def _numeric_conditions(scene: SingleUserScene) -> list[Condition]:
     P, Q = transfer_polynomials(scene)
+    return pole_conditions(P, Q) + [Condition(HERMITIAN, worst_case(scene).outcome)]
+
+
+def pole_conditions(P: flint.fmpq_poly, Q: flint.fmpq_poly) -> list[Condition]:
+    """The pole and residue conditions of Definition 2 for ``G^{-1} = P/Q`` (coprime, numeric):
+    poles in the closed disk, unit-circle poles simple, ``Res/z0 >= 0`` (shared with the numeric
+    fast path, :mod:`hapticproof.fastpath`).
+
+    >>> z = flint.fmpq_poly([0, 1])
+    >>> [c.decision.value for c in pole_conditions(z + 1, z - 1)]          # 1 + 2/(z - 1)
+    ['proved', 'proved', 'proved']
+    """
     roots = locate_roots(Q, "disk")
     facts = {"certificate": roots}
     if roots.outside:
@@ -507,9 +520,7 @@ def _numeric_conditions(scene: SingleUserScene) -> list[Condition]:
                           "not examined: the unit-circle poles are not simple (no residue condition applies)")
     else:
         residue = Outcome(Decision.PROVED, Evidence(Method.CANONICAL_FORM), "no poles on the unit circle")
-    herm = worst_case(scene).outcome
-    return [Condition(POLES_IN_DISK, pole_out), Condition(POLES_SIMPLE, simple), Condition(RESIDUES, residue),
-            Condition(HERMITIAN, herm)]
+    return [Condition(POLES_IN_DISK, pole_out), Condition(POLES_SIMPLE, simple), Condition(RESIDUES, residue)]
 
 
 def _symbolic_conditions(scene: SingleUserScene) -> list[Condition]:

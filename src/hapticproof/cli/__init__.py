@@ -1,4 +1,4 @@
-"""Command-line interface: ``hapticproof audit | derive | export | boundary | bench``.
+"""Command-line interface: ``hapticproof audit | derive | export | boundary | map | bench``.
 
 Each subcommand lives in its own module of this package and exposes ``register(subparsers)``,
 which adds its parser and sets ``handler`` to a function ``handler(args) -> int``.
@@ -18,7 +18,7 @@ from hapticproof.errors import HapticproofError
 __all__ = ["main", "build_parser"]
 
 #: Subcommand modules, in the order they appear in ``--help``.
-COMMANDS = ("audit", "derive", "check", "export", "boundary", "bench")
+COMMANDS = ("audit", "derive", "check", "export", "boundary", "map", "bench")
 
 
 def build_parser(command: str | None = None) -> argparse.ArgumentParser:

@@ -8,7 +8,7 @@ import shutil
 import sys
 import time
 
-from hapticproof.audit import audit_paper
+from hapticproof.auditpool import audit_reports
 from hapticproof.cli._common import write_text
 from hapticproof.cli._terminal import colour_verdict, progress_bar, summary_line, use_colour
 from hapticproof.registry import get_paper, papers
@@ -37,6 +37,8 @@ def register(sub: argparse._SubParsersAction) -> None:
                         help="table (default), markdown, json, tex (a LaTeX document) or html (one self-contained page)")
     parser.add_argument("--output", "-o", metavar="FILE", help="write to FILE instead of stdout (- is stdout)")
     parser.add_argument("--wide", action="store_true", help="table: full details instead of one shortened line each")
+    parser.add_argument("--jobs", "-j", type=int, metavar="N",
+                        help="worker processes (default: the machine's cores; 1: serial); the output is the same")
     parser.set_defaults(handler=run)
 
 
@@ -49,13 +51,13 @@ def run(args: argparse.Namespace) -> int:
         raise_usage("--equation needs exactly one PAPER")
     if args.equation and args.section:
         raise_usage("use --equation or --section, not both")
+    if args.jobs is not None and args.jobs < 1:
+        raise_usage("--jobs must be at least 1")
     selection = [args.equation or _in_sections(p, args.section) or None for p in selected]
     total = sum(len(only) if only else len(p.equations) for p, only in zip(selected, selection))
-    bar, start, reports = progress_bar(sys.stderr, "audit"), time.perf_counter(), []
-    for paper, only in zip(selected, selection):
-        base = sum(len(r.results) for r in reports)
-        tick = (lambda k, _n, base=base: bar(base + k, total)) if bar else None
-        reports.append(audit_paper(paper, only, progress=tick))
+    bar, start = progress_bar(sys.stderr, "audit"), time.perf_counter()
+    reports = audit_reports(selected, {p.id: only for p, only in zip(selected, selection)}, jobs=args.jobs,
+                            progress=(lambda k, _n: bar(k, total)) if bar else None)
     seconds = time.perf_counter() - start
     if args.format == "json":
         if len(reports) == 1 and args.papers and not args.all:

@@ -9,7 +9,7 @@ from hapticproof.errors import InputFormatError
 
 __all__ = ["register"]
 
-TASKS = ("margin", "boundary", "stress", "audit", "lazy")
+TASKS = ("margin", "boundary", "stress", "audit", "lazy", "peers", "delays", "maps")
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -17,7 +17,8 @@ def register(sub: argparse._SubParsersAction) -> None:
         "bench",
         help="benchmark run time against error (JSON + PNG)",
         description="Side-by-side studies: passivity margin (float grids, mpmath grids, exact), "
-        "stability boundary (simulation, spectral, exact), cold audit time, lazy vs full pipeline. "
+        "stability boundary (simulation, spectral, exact), cold audit time (one core and --jobs), lazy vs "
+        "full pipeline, whole decisions against python-control (peers), long delays, exact maps. "
         "Writes <task>.json and PNG plots into the output directory.",
     )
     parser.add_argument("--tasks", nargs="+", default=list(TASKS), metavar="TASK",
@@ -45,5 +46,5 @@ def run(args: argparse.Namespace) -> int:
         print(line, file=sys.stderr)
 
     run_studies(args.tasks, args.output, quick=args.quick, repeat=args.repeat, log=log, progress=bar)
-    print(f"wrote {args.output}/<task>.json, margin.png, boundary.png", file=sys.stderr)
+    print(f"wrote {args.output}/<task>.json and PNG plots", file=sys.stderr)
     return 0

@@ -6,10 +6,10 @@ import argparse
 import sys
 import time
 
-from hapticproof.audit import audit_paper
 from hapticproof.cli._common import write_text
 from hapticproof.cli._terminal import progress_bar, summary_line, use_colour
-from hapticproof.export import export_document
+from hapticproof.errors import InputFormatError
+from hapticproof.export import export_document, reports_from_json
 from hapticproof.registry import get_paper, papers
 
 __all__ = ["register"]
@@ -24,16 +24,26 @@ def register(sub: argparse._SubParsersAction) -> None:
     )
     parser.add_argument("papers", nargs="*", metavar="PAPER", help="paper ids; default: all")
     parser.add_argument("--output", "-o", metavar="FILE", default="hapticproof-conditions.tex")
+    parser.add_argument("--from-audit", metavar="AUDIT.json",
+                        help="reuse a saved 'hapticproof audit --format json' instead of deriving again")
+    parser.add_argument("--jobs", "-j", type=int, metavar="N",
+                        help="worker processes for the derivations (default: the machine's cores)")
     parser.set_defaults(handler=run)
 
 
 def run(args: argparse.Namespace) -> int:
     selected = [get_paper(p) for p in args.papers] if args.papers else list(papers().values())
-    total = sum(len(p.equations) for p in selected)
-    bar, start, reports = progress_bar(sys.stderr, "export"), time.perf_counter(), []
-    for paper in selected:
-        base = sum(len(r.results) for r in reports)
-        reports.append(audit_paper(paper, progress=(lambda k, _n, base=base: bar(base + k, total)) if bar else None))
+    if args.jobs is not None and args.jobs < 1:
+        raise InputFormatError("--jobs must be at least 1")
+    start = time.perf_counter()
+    if args.from_audit:
+        reports = _saved(args.from_audit, selected)
+    else:
+        from hapticproof.auditpool import audit_reports
+
+        total = sum(len(p.equations) for p in selected)
+        bar = progress_bar(sys.stderr, "export")
+        reports = audit_reports(selected, jobs=args.jobs, progress=(lambda k, _n: bar(k, total)) if bar else None)
     path = write_text(args.output, export_document(selected, reports=reports))
     counts: dict[str, int] = {}
     for report in reports:
@@ -43,3 +53,16 @@ def run(args: argparse.Namespace) -> int:
         print(f"wrote {path}", file=sys.stderr)
     print(summary_line(counts, use_colour(sys.stderr), len(reports), time.perf_counter() - start), file=sys.stderr)
     return 0
+
+
+def _saved(path: str, selected: list) -> list:
+    import json
+
+    try:
+        reports = {r.paper: r for r in reports_from_json(json.loads(open(path, encoding="utf-8").read()), selected)}
+    except (OSError, ValueError, KeyError, TypeError) as err:
+        raise InputFormatError(f"--from-audit {path}: not a saved audit ({type(err).__name__}: {err})") from None
+    missing = [p.id for p in selected if p.id not in reports]
+    if missing:
+        raise InputFormatError(f"--from-audit {path} has no audit of {', '.join(missing)}")
+    return [reports[p.id] for p in selected]
