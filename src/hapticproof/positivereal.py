@@ -49,6 +49,7 @@ __all__ = [
     "conditions",
     "pole_conditions",
     "transfer_polynomials",
+    "numeric_scene",
     "Pole",
     "Residue",
     "WorstCase",
@@ -311,19 +312,18 @@ def transfer_polynomials(scene: SingleUserScene) -> tuple[flint.fmpq_poly, flint
     >>> P, Q                                                  # 1 + 2/(z - 1)
     (x + 1, x + (-1))
     """
-    if not scene.is_numeric:
-        raise ValueError("transfer_polynomials needs numeric parameters")
-    Pe, Qe = numerator_denominator(environment_path(scene))
-    pe = flint.fmpq_poly([as_fmpq(Pe.domain.to_sympy(a)) for a in Pe.all_coeffs()[::-1]])
-    qe = flint.fmpq_poly([as_fmpq(Qe.domain.to_sympy(a)) for a in Qe.all_coeffs()[::-1]])
-    shift = flint.fmpq_poly([0] * int(scene.delay) + [1])
-    Q = shift * qe
-    P = as_fmpq(scene.b - scene.z_a) * Q + pe
-    g = P.gcd(Q) if not P.is_zero() else Q
-    if g.degree() > 0:
-        P, Q = P / g, Q / g
-    lead = Q.coeffs()[-1]
-    return P / lead, Q / lead
+    from hapticproof.fastpath import transfer
+
+    return transfer(numeric_scene(scene))
+
+
+@stage("numeric_scene")
+def numeric_scene(scene: SingleUserScene) -> Any:
+    """The scene as a :class:`hapticproof.fastpath.NumericScene` (exact fractions, no SymPy
+    after this one reading of ``H``): numeric scenes are decided on the fast path."""
+    from hapticproof.fastpath import NumericScene
+
+    return NumericScene.from_scene(scene)
 
 
 @stage("poles")
@@ -393,7 +393,13 @@ def hermitian(scene: SingleUserScene) -> CRational | ThetaForm:
 @stage("worst_case")
 def worst_case(scene: SingleUserScene) -> WorstCase:
     """Worst case over frequency of ``Re G^{-1}``: exact decision when numeric, endpoint
-    analysis when symbolic (integer delay), instances of the theta-form otherwise."""
+    analysis when symbolic (integer delay), instances of the theta-form otherwise. Numeric
+    scenes are decided on the fast path (:mod:`hapticproof.fastpath`: no c-form expression)."""
+    if scene.is_numeric:
+        from hapticproof.fastpath import hermitian_outcome
+
+        out = hermitian_outcome(numeric_scene(scene), polynomials=transfer_polynomials(scene))
+        return WorstCase(out, sp.true if out.decision == Decision.PROVED else sp.false, out.minimiser, out.minimum)
     form = hermitian(scene)
     if isinstance(form, ThetaForm):
         outcome = Outcome(
@@ -402,8 +408,6 @@ def worst_case(scene: SingleUserScene) -> WorstCase:
             "symbolic delay n: the worst case depends on n (fix the delay, or ask for the delay margin)",
         )
         return WorstCase(outcome, None)
-    if scene.is_numeric:
-        return decide_hermitian(form, transfer_polynomials(scene))
     return symbolic_minimum(form.expr())
 
 

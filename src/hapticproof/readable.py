@@ -40,18 +40,46 @@ def _degree_terms(expr: sp.Expr, var: sp.Symbol | None) -> tuple[int | None, int
     return degree, len(terms)
 
 
+def _flint_brief(num: Any, den: Any, var: str) -> str:
+    terms = lambda p: sum(1 for a in p.coeffs() if a != 0)  # noqa: E731
+    if den.degree() == 0:
+        return f"polynomial of {var}: degree {num.degree()}, {terms(num)} terms [full text: --verbose or --format json]"
+    return (f"rational function of {var}: numerator degree {num.degree()} ({terms(num)} terms), denominator degree "
+            f"{den.degree()} ({terms(den)} terms) [full text: --verbose or --format json]")
+
+
 def brief(expr: Any, limit: int = LIMIT, verbose: bool = False) -> str:
-    """``sstr(expr)`` when at most ``limit`` characters (or ``verbose``), else a summary."""
+    """``sstr(expr)`` when at most ``limit`` characters (or ``verbose``), else a summary.
+
+    A numeric c-form (``num``/``den`` flint polynomials) is summarised from its coefficients,
+    and an expression with far more terms than fit is summarised without printing it first."""
+    if hasattr(expr, "num") and isinstance(getattr(expr, "num", None), flint.fmpq_poly):
+        if verbose or max(expr.num.degree(), expr.den.degree()) <= 12:
+            from hapticproof.summary import _text
+
+            text = _text(expr)
+            if verbose or len(text) <= limit:
+                return text
+        return _flint_brief(expr.num, expr.den, str(getattr(expr, "var", "c")))
+    if not verbose and isinstance(expr, sp.Expr):
+        num, den = sp.fraction(expr)
+        if len(sp.Add.make_args(num)) + len(sp.Add.make_args(den)) > limit // 4:
+            return _summary(expr, None)
     text = sp.sstr(expr)
     if verbose or len(text) <= limit:
         return text
     if isinstance(expr, (list, tuple)):
         return f"{len(expr)} entries, {len(text)} characters [full text: --verbose or --format json]"
+    return _summary(expr, text)
+
+
+def _summary(expr: Any, text: str | None) -> str:
     expr = sp.sympify(expr)
     names = {s.name: s for s in getattr(expr, "free_symbols", set())}
     var = next((names[v] for v in _VARIABLES if v in names), None)
     if isinstance(expr, sp.MatrixBase):
-        return f"{expr.rows}x{expr.cols} matrix ({len(text)} characters) [full text: --verbose or --format json]"
+        size = f" ({len(text)} characters)" if text is not None else ""
+        return f"{expr.rows}x{expr.cols} matrix{size} [full text: --verbose or --format json]"
     num, den = sp.fraction(expr) if isinstance(expr, sp.Expr) else (expr, sp.Integer(1))
     of = f" of {var}" if var is not None else ""
     dn, tn = _degree_terms(num, var)

@@ -24,7 +24,7 @@ from hapticproof.lazy import profile
 from hapticproof.models import inverse_transfer
 from hapticproof.positivereal import Condition, conditions, hermitian, poles, positive_real, residues, worst_case
 from hapticproof.scene import SingleUserScene
-from hapticproof.unitcircle import ThetaForm
+from hapticproof.unitcircle import CRational, ThetaForm
 
 __all__ = ["SceneSummary", "summarize_single_user"]
 
@@ -57,7 +57,7 @@ class SceneSummary:
             "approximation": self.approximation,
             "delay": self.delay,
             "G_inverse": sp.sstr(self.G_inverse),
-            "hermitian_part": sp.sstr(self.hermitian_part),
+            "hermitian_part": _text(self.hermitian_part),
             "poles": [{"z": p.value, "multiplicity": p.multiplicity, "location": p.location} for p in self.poles],
             "residues": [{"z": r.pole, "residue": r.residue, "condition": r.outcome.decision.value} for r in self.residues],
             "worst_case": sp.sstr(self.worst_case) if self.worst_case is not None else None,
@@ -100,7 +100,7 @@ class SceneSummary:
         rows = [
             ("inverse transfer function", r"G^{-1}(z)", "= " + tex.to_latex(self.G_inverse)),
             ("Hermitian part on the unit circle", r"\Re\, G^{-1}(e^{j\omega T})",
-             "= " + (tex.to_latex(herm, cos_name=COS) if not isinstance(herm, str) else herm)),
+             "= " + (tex.to_latex(_as_expr(herm), cos_name=COS) if not isinstance(herm, str) else herm)),
         ]
         for r in self.residues:
             rows.append(("residue on the unit circle", r"\operatorname{Res}_{z=" + tex.to_latex(r.pole) + r"} G^{-1}",
@@ -140,6 +140,28 @@ class SceneSummary:
         return self.to_text(verbose=verbose)
 
 
+def _text(value: Any) -> str:
+    """Full text of an expression; a numeric c-form is written from its flint coefficients."""
+    if isinstance(value, CRational) and value.is_numeric:
+        num = _poly_text(value.num, str(value.var))
+        return num if value.den.degree() == 0 and value.den.coeffs()[0] == 1 else f"({num})/({_poly_text(value.den, str(value.var))})"
+    return sp.sstr(value)
+
+
+def _poly_text(p: Any, var: str) -> str:
+    terms = []
+    for k, a in enumerate(p.coeffs()):
+        if a == 0:
+            continue
+        coeff = str(a.p) if a.q == 1 else f"{a.p}/{a.q}"
+        terms.append(coeff if k == 0 else f"{coeff}*{var}" + (f"**{k}" if k > 1 else ""))
+    return " + ".join(reversed(terms)).replace("+ -", "- ") or "0"
+
+
+def _as_expr(value: Any) -> Any:
+    return value.expr() if isinstance(value, CRational) else value
+
+
 def _readable(expr: sp.Expr) -> sp.Expr:
     """A polynomial expanded, a rational function as one fraction (not a sum of fractions)."""
     num, den = sp.fraction(sp.cancel(sp.together(expr)))
@@ -173,7 +195,9 @@ def summarize_single_user(scene: SingleUserScene, with_profile: bool = False) ->
         theta = sp.Symbol("theta")
         herm = form.expr(theta)
     else:
-        herm = form.expr() if form.is_numeric else _readable(form.expr())
+        # numeric forms stay flint polynomials: a degree-1000 c-form is never built in SymPy
+        # just to be summarised (readable.brief and _text read them directly)
+        herm = form if form.is_numeric else _readable(form.expr())
     wc = worst_case(scene)
     verdict = positive_real(scene)
     witness = dict(verdict.witness) if (verdict.witness and verdict.decision == Decision.DISPROVED) else None

@@ -176,9 +176,8 @@ class CRational:
 
 
 def _flint_to_expr(p: flint.fmpq_poly, var: sp.Symbol) -> sp.Expr:
-    return sum(
-        (sp.Rational(int(a.p), int(a.q)) * var**i for i, a in enumerate(p.coeffs())), sp.Integer(0)
-    )
+    # one Add of all terms: adding them one by one re-sorts the sum each time (quadratic)
+    return sp.Add(*[sp.Rational(int(a.p), int(a.q)) * var**i for i, a in enumerate(p.coeffs()) if a != 0])
 
 
 def _poly_to_flint(p: sp.Poly) -> flint.fmpq_poly:
