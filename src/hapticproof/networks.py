@@ -15,19 +15,17 @@ checker :mod:`hapticproof.checker` re-verifies), like :func:`hapticproof.positiv
 * :func:`llewellyn` -- Llewellyn's absolute-stability criterion of a 2-port, exact, with the
   frequency where the stability factor ``eta = (2 Re z11 Re z22 - Re z12 z21)/|z12 z21|`` is
   smallest.
-* :func:`symmetrization_conditions` -- Youla's conditions as exact equations in the parameters
-  and ``s`` (any n, symbolic entries): A (``z_ij z_jk z_ki = z_ji z_kj z_ik``) and B (diagonal
-  port blocks symmetric).
-* :func:`symmetrize` -- the reciprocal ``Z'`` of eq. (14): ``Z' = D Z D^-1`` with ``D`` constant
-  on every port block (``D`` may depend on ``s``), so that ``det(Z' + T) = det(Z + T)`` for
-  every block termination ``T``; the freedom is one sign per port, not per DOF. A reciprocal
-  ``Z`` is its own symmetrization. The identity of every principal and block-compatible minor
-  is verified exactly.
+* :func:`symmetrization_conditions`, :func:`symmetrize` (:mod:`hapticproof.youla`) -- Youla's
+  conditions A and B, and the reciprocal ``Z'`` of eq. (14): ``Z' = D Z D^-1`` with ``D``
+  constant on every port block, so that ``det(Z' + T) = det(Z + T)`` for every block
+  termination ``T`` (one free sign per port, not per DOF; a reciprocal ``Z`` is its own
+  symmetrization); :func:`zprime_positive_real` decides Definition 3 for ``Z'``.
 * :func:`absolute_stability` -- the verdict: a positive-real ``Z`` is absolutely stable (decided
   first, for any port grouping); Llewellyn for scalar 2-ports; positive realness of ``Z'``
-  (Youla 1959 + 1960) for symmetrizable networks; otherwise a search, with a deadline, for
-  passive terminations that put a zero of ``det(Z + T)`` in ``Re s > 0``, verified exactly
-  (:mod:`hapticproof.terminations`), or an honest ``undecided``.
+  (Youla 1959 + 1960) for symmetrizable networks; a potentially unstable port or pair of ports;
+  otherwise a search, with a deadline, for passive terminations that put a zero of
+  ``det(Z + T)`` in ``Re s > 0``, verified exactly (:mod:`hapticproof.terminations`), or an
+  honest ``undecided`` that says what was tried.
 
 All PSD decisions use the characteristic coefficients (every principal minor), never the
 leading minors alone.
@@ -45,14 +43,13 @@ from __future__ import annotations
 import itertools
 import math
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any
 
 import flint
 import sympy as sp
 
 from hapticproof import kernel
-from hapticproof.certify import canonical_fraction
 from hapticproof.errors import InputFormatError
 from hapticproof.evidence import Decision, Evidence, Method, Outcome
 from hapticproof.positivereal import Condition, combine
@@ -72,7 +69,14 @@ from hapticproof.rationalmatrix import (
     pole_report,
 )
 from hapticproof.realroots import as_fmpq, to_rational
-from hapticproof.symbols import s as S_SYM
+from hapticproof.youla import (
+    Symmetrization,
+    SymmetrizationCondition,
+    as_rational_matrix,
+    port_blocks,
+    symmetrization_conditions,
+    symmetrize,
+)
 from hapticproof.terminations import (
     InstabilityCertificate,
     TerminationSearch,
@@ -115,30 +119,6 @@ RESIDUES = "residue matrices Hermitian PSD"
 HERMITIAN = "Hermitian part PSD for every w"
 
 
-def as_rational_matrix(Z: Any, s: sp.Symbol = S_SYM) -> RationalMatrix:
-    """Accept a :class:`RationalMatrix` or anything ``sympy.Matrix`` accepts (numbers only)."""
-    if isinstance(Z, RationalMatrix):
-        return Z
-    return RationalMatrix.from_sympy(Z, s)
-
-
-def port_blocks(n: int, ports: Sequence[int] | None) -> tuple[tuple[int, ...], ...]:
-    """Index blocks of the ports: ``port_blocks(6, (3, 3)) == ((0, 1, 2), (3, 4, 5))``.
-
-    >>> port_blocks(3, None)
-    ((0,), (1,), (2,))
-    """
-    if ports is None:
-        return tuple((i,) for i in range(n))
-    if any(int(p) <= 0 for p in ports) or sum(ports) != n:
-        raise InputFormatError(f"port sizes {tuple(ports)} do not add up to the matrix size {n}")
-    out, start = [], 0
-    for p in ports:
-        out.append(tuple(range(start, start + int(p))))
-        start += int(p)
-    return tuple(out)
-
-
 # ---------------------------------------------------------------------------------------------
 # residues
 # ---------------------------------------------------------------------------------------------
@@ -162,7 +142,8 @@ def residue_matrix(Z: RationalMatrix, pole: str | tuple[str, Any]) -> Any:
     coefficient of ``s``), or at ``s = j sqrt(a)`` (``('pair', a)``, returned as the pair
     ``(B, A)`` of rational matrices with residue ``B/2 - j A/(2 sqrt(a))``).
 
-    >>> Z = RationalMatrix.from_sympy(sp.Matrix([[2/S_SYM + 1, 1/S_SYM], [1/S_SYM, S_SYM]]))
+    >>> from hapticproof.symbols import s
+    >>> Z = RationalMatrix.from_sympy(sp.Matrix([[2/s + 1, 1/s], [1/s, s]]))
     >>> residue_matrix(Z, 'zero'), residue_matrix(Z, 'infinity')
     (Matrix([
     [2, 1],
@@ -244,12 +225,66 @@ def _pole_conditions(report: PoleReport, subject: str = "Z") -> list[Condition]:
     axis = [p.label() for p, _ in report.axis] + (["s = oo"] if report.improper == 1 else [])
     if multiple:
         label, order = multiple[0]
-        simple = Outcome(Decision.DISPROVED, Evidence(Method.ROOT_ISOLATION, witness={"pole": label, "order": order}, facts=facts),
+        where = next((_pole_frequency(p) for p, m in report.axis if m > 1), math.inf)
+        simple = Outcome(Decision.DISPROVED, Evidence(Method.ROOT_ISOLATION, witness={"pole": label, "order": order,
+                                                                                      "pole_frequency": where}, facts=facts),
                          f"the imaginary-axis pole {label} has order {order} > 1")
     else:
         simple = Outcome(Decision.PROVED, Evidence(Method.ROOT_ISOLATION, facts={**facts, "axis_poles": axis}),
                          f"simple poles at {', '.join(axis)}" if axis else "no imaginary-axis poles, proper")
     return [Condition(POLES, poles), Condition(AXIS_SIMPLE, simple)]
+
+
+def _pole_frequency(pole: AxisPole) -> float:
+    """Where an imaginary-axis pole sits (``w``; ``inf`` for the pole at infinity)."""
+    return {"zero": 0.0, "infinity": math.inf}.get(pole.kind, math.sqrt(float(pole.a)) if pole.kind == "pair" else math.nan)
+
+
+def _failure_frequencies(conditions: Sequence[Condition]) -> list[float]:
+    """Frequencies ``w`` where a condition fails (hints for a termination search): the witness
+    frequency of a Hermitian-part or real-part condition, the frequency of an imaginary-axis pole
+    whose residue fails (``inf`` at infinity)."""
+    out = []
+    for cond in conditions:
+        witness = cond.outcome.witness or {}
+        if cond.decision != Decision.DISPROVED:
+            continue
+        if "omega" in witness:
+            out.append(float(witness["omega"]))
+            out += _inside_stretch(cond.outcome, witness)
+        elif "pole_frequency" in witness and not math.isnan(witness["pole_frequency"]):
+            out.append(float(witness["pole_frequency"]))
+    return out
+
+
+def _inside_stretch(outcome: Outcome, witness: Mapping[str, Any]) -> list[float]:
+    """Frequencies inside the stretch of ``x = w**2`` around the witness where the failing
+    polynomial is negative (its ends are the neighbouring real roots): a witness at ``w = 0``
+    says little about how far the stretch reaches (issue 10: up to ``w = 0.01`` only)."""
+    from hapticproof.realroots import real_roots
+
+    certificate = outcome.evidence.facts.get("certificate")
+    if certificate is None:
+        certs = [c for c in outcome.evidence.facts.values() if hasattr(c, "polynomial") and not getattr(c, "holds", True)]
+        certificate = certs[0] if certs else None
+    if certificate is None:
+        return []
+    if hasattr(certificate, "coefficients"):          # a PSD certificate: its failing coefficient
+        failing = [c for c in certificate.coefficients if not c.holds]
+        if not failing:
+            return []
+        certificate = failing[0]
+    p = certificate.polynomial
+    if p.is_zero() or p.degree() < 1:
+        return []
+    x0 = float(as_fmpq(witness["x"]))
+    ends = [float(r.lo + r.hi) / 2 for r in real_roots(kernel.squarefree_part(p), 0, None)]
+    above = min((e for e in ends if e > x0), default=None)
+    below = max((e for e in ends if e < x0), default=0.0)
+    if above is None:
+        return [math.sqrt(max(x0, below) + 1.0) * 2]
+    low, high = math.sqrt(below), math.sqrt(above)
+    return [high / 2, high / 10] if low == 0 else [math.sqrt(low * high)]
 
 
 def _residue_outcome(Z: RationalMatrix, report: PoleReport, signs: Sequence[int] | None = None,
@@ -290,7 +325,8 @@ def _residue_outcome(Z: RationalMatrix, report: PoleReport, signs: Sequence[int]
             return Outcome(Decision.UNDECIDED, Evidence(Method.CANONICAL_FORM, facts={"pole": pole.label()}),
                            f"residues at the irrational imaginary-axis poles ({pole.label()}) are not implemented")
         if out.decision != Decision.PROVED:
-            return out
+            witness = {"pole": pole.label(), "pole_frequency": _pole_frequency(pole), **(out.witness or {})}
+            return Outcome(out.decision, Evidence(out.evidence.method, witness=witness, facts=out.evidence.facts), out.reason)
         outcomes.append((pole.label(), out))
     if skipped:
         return Outcome(Decision.UNDECIDED, Evidence(Method.CANONICAL_FORM, facts={"not_simple": skipped}),
@@ -343,12 +379,7 @@ class PositiveRealResult:
 
     def frequencies(self) -> list[float]:
         """Frequencies ``w`` where a condition fails (hints for a termination search)."""
-        out = []
-        for cond in self.conditions:
-            witness = cond.outcome.witness or {}
-            if cond.decision == Decision.DISPROVED and "omega" in witness:
-                out.append(float(witness["omega"]))
-        return out
+        return _failure_frequencies(self.conditions)
 
     def to_json(self) -> dict[str, Any]:
         return {"decision": self.decision.value, "reason": self.reason,
@@ -440,12 +471,7 @@ class LlewellynResult:
 
     def frequencies(self) -> list[float]:
         """Frequencies ``w`` where a condition fails (hints for a termination search)."""
-        out = []
-        for cond in self.conditions:
-            witness = cond.outcome.witness or {}
-            if cond.decision == Decision.DISPROVED and "omega" in witness:
-                out.append(float(witness["omega"]))
-        return out
+        return _failure_frequencies(self.conditions)
 
     def to_json(self) -> dict[str, Any]:
         return {"decision": self.decision.value, "reason": self.reason,
@@ -537,424 +563,6 @@ def llewellyn(Z: Any) -> LlewellynResult:
             where = "w = 0" if tightest.argmin == 0 else ("w -> oo" if tightest.argmin == sp.oo else f"x = w^2 ~ {tightest.argmin_float():.6g}")
             reason += f" (stability factor smallest at {where})"
     return LlewellynResult(whole.decision, reason, tuple(conditions), tightest, eta_min, whole)
-
-
-# ---------------------------------------------------------------------------------------------
-# symmetrization conditions (symbolic, any n)
-# ---------------------------------------------------------------------------------------------
-
-
-@dataclass(frozen=True)
-class SymmetrizationCondition:
-    """One of Youla's symmetrization conditions as ``expr = 0`` for all ``s``.
-
-    ``kind`` is ``'B'`` (``z_ij = z_ji`` inside a port block) or ``'A'`` (the triple products;
-    ``reduced`` when a factor ``z_ij = z_ji`` known from B was cancelled, leaving
-    ``z_jk z_ki - z_kj z_ik``). ``expr`` is the numerator polynomial in ``s`` and the parameters.
-    """
-
-    kind: str
-    indices: tuple[int, ...]
-    expr: sp.Expr
-    reduced: bool = False
-
-    def at_frequency(self, omega: sp.Symbol) -> sp.Expr:
-        """The condition on the imaginary axis: ``expr`` with ``s = j omega``, expanded."""
-        return sp.expand(self.expr.subs(S_SYM, sp.I * omega))
-
-    def coefficients(self) -> list[sp.Expr]:
-        """The equations in the parameters alone (coefficients of the powers of ``s``)."""
-        return [c for c in sp.Poly(self.expr, S_SYM).all_coeffs() if c != 0]
-
-
-def _num_den(expr: sp.Expr) -> tuple[sp.Expr, sp.Expr]:
-    num, den = canonical_fraction(expr)
-    return sp.expand(num), sp.expand(den)
-
-
-def symmetrization_conditions(
-    Z: Any, ports: Sequence[int] | None = None, reduce: bool = True, s: sp.Symbol = S_SYM
-) -> list[SymmetrizationCondition]:
-    """Youla's symmetrization conditions of an n-port as exact equations (symbolic entries allowed).
-
-    A: ``z_ij z_jk z_ki = z_ji z_kj z_ik`` for all triples; B: every diagonal port block is
-    symmetric. With ``reduce``, a triple containing a pair that B makes symmetric
-    (``z_ij = z_ji``, assumed nonzero) is divided by it. Conditions that hold identically are
-    omitted. The case study of the 3-DOF bilateral paper gives 6 B-conditions (26)-(31) and
-    18 reduced A-conditions, of which (32)-(37) are a spanning subset.
-
-    >>> from hapticproof.symbols import s
-    >>> a, b = sp.symbols('a b')
-    >>> [(c.kind, c.indices, c.expr) for c in symmetrization_conditions(sp.Matrix([[1, a], [b, 1]]), ports=(2,))]
-    [('B', (0, 1), -a + b)]
-    """
-    M = sp.Matrix(Z)
-    n = M.rows
-    blocks = port_blocks(n, ports)
-    nd = {(i, j): _num_den(M[i, j]) for i in range(n) for j in range(n)}
-    out: list[SymmetrizationCondition] = []
-    symmetric_pairs = set()
-    for blk in blocks:
-        for i, j in itertools.combinations(blk, 2):
-            (ni, di), (nj, dj) = nd[(i, j)], nd[(j, i)]
-            expr = sp.expand(nj * di - ni * dj)
-            symmetric_pairs.add((i, j))
-            if expr != 0:
-                out.append(SymmetrizationCondition("B", (i, j), expr))
-    for i, j, k in itertools.combinations(range(n), 3):
-        pairs = [(i, j), (j, k), (i, k)]
-        # A: z_ij z_jk z_ki - z_ji z_kj z_ik ; reduce by a B-symmetric pair
-        cancel = next((p for p in pairs if p in symmetric_pairs and M[p[0], p[1]] != 0), None) if reduce else None
-        if cancel is None:
-            fwd = [(i, j), (j, k), (k, i)]
-            bwd = [(j, i), (k, j), (i, k)]
-        else:
-            a, b = cancel
-            c = ({i, j, k} - {a, b}).pop()
-            # z_ab z_bc z_ca = z_ba z_cb z_ac  with z_ab = z_ba  ->  z_bc z_ca = z_cb z_ac
-            fwd = [(b, c), (c, a)]
-            bwd = [(c, b), (a, c)]
-        lhs_n, lhs_d = sp.Integer(1), sp.Integer(1)
-        rhs_n, rhs_d = sp.Integer(1), sp.Integer(1)
-        for p in fwd:
-            lhs_n, lhs_d = lhs_n * nd[p][0], lhs_d * nd[p][1]
-        for p in bwd:
-            rhs_n, rhs_d = rhs_n * nd[p][0], rhs_d * nd[p][1]
-        expr = sp.expand(lhs_n * rhs_d - rhs_n * lhs_d)
-        if expr != 0:
-            out.append(SymmetrizationCondition("A", (i, j, k), expr, reduced=cancel is not None))
-    return out
-
-
-# ---------------------------------------------------------------------------------------------
-# Youla symmetrization (numeric, exact)
-# ---------------------------------------------------------------------------------------------
-
-
-def _square_decomposition(p: RationalFunction) -> tuple[flint.fmpq, RationalFunction] | None:
-    """``p = c q**2`` with ``c`` rational and ``q`` rational (numerator and denominator with
-    positive leading coefficients), or None when the square-free part is not constant."""
-    def split(poly: flint.fmpq_poly) -> tuple[flint.fmpq, flint.fmpq_poly] | None:
-        content, factors = poly.numer().factor_squarefree()
-        root = flint.fmpq_poly([1])
-        for f, mult in factors:
-            if mult % 2:
-                return None
-            root *= flint.fmpq_poly(f) ** (mult // 2)
-        rest = poly / (root * root)
-        if rest.degree() != 0:  # pragma: no cover - guaranteed by the factorization
-            return None
-        c = rest.coeffs()[0]
-        if root.coeffs()[-1] < 0:
-            root = -root
-        return c, root
-
-    top = split(p.num)
-    bottom = split(p.den)
-    if top is None or bottom is None:
-        return None
-    (cn, qn), (cd, qd) = top, bottom
-    return cn / cd, RationalFunction.make(qn, qd)
-
-
-def _rational_sqrt(q: flint.fmpq) -> flint.fmpq | None:
-    if q < 0:
-        return None
-    num, den = int(q.p), int(q.q)
-    rn, rd = math.isqrt(num), math.isqrt(den)
-    if rn * rn == num and rd * rd == den:
-        return flint.fmpq(rn, rd)
-    return None
-
-
-
-
-def _count_block_pairs(blocks: Sequence[Sequence[int]]) -> int:
-    total = 1
-    for blk in blocks:
-        total *= sum(math.comb(len(blk), k) ** 2 for k in range(len(blk) + 1))
-    return total - 1
-
-
-def _block_pairs(blocks: Sequence[Sequence[int]]):
-    """Row/column index sets with the same number of indices in every block (nonempty)."""
-    per_block = []
-    for blk in blocks:
-        options = []
-        for k in range(len(blk) + 1):
-            subsets = list(itertools.combinations(blk, k))
-            options.append([(a, b) for a in subsets for b in subsets])
-        per_block.append([pair for opt in options for pair in opt])
-    for combo in itertools.product(*per_block):
-        rows = tuple(i for a, _ in combo for i in a)
-        cols = tuple(j for _, b in combo for j in b)
-        if rows:
-            yield rows, cols
-
-
-def _verify_minors(Zr: RationalMatrix, rhat: RationalMatrix, u: Sequence[flint.fmpq], blocks) -> tuple[str, Evidence] | None:
-    """Check det Rhat[I, J] * j^(#neg I + #neg J) == det Z[I, J] * sqrt(prod_I |u| prod_J |u|)."""
-    scalar = all(len(b) == 1 for b in blocks)
-    pairs = ((S, S) for k in range(1, len(u) + 1) for S in itertools.combinations(range(len(u)), k)) if scalar else _block_pairs(blocks)
-    for rows, cols in pairs:
-        left = rhat.minor(rows, cols)
-        right = Zr.minor(rows, cols)
-        negs = sum(u[i] < 0 for i in rows) + sum(u[j] < 0 for j in cols)
-        weight = flint.fmpq(1)
-        for i in rows:
-            weight *= abs(u[i])
-        for j in cols:
-            weight *= abs(u[j])
-        root = _rational_sqrt(weight)
-        if negs % 2 or root is None:
-            ok = left.is_zero() and right.is_zero()
-        else:
-            sign = -1 if (negs // 2) % 2 else 1
-            ok = left.scale(sign) == right.scale(root)
-        if not ok:
-            what = "principal minor" if rows == cols else "block-compatible minor"
-            return (f"the {what} on rows {list(rows)}, columns {list(cols)} of Z' differs from that of Z",
-                    Evidence(Method.CANONICAL_FORM, witness={"rows": list(rows), "cols": list(cols)},
-                             facts={"Z": right.expr()}))
-    return None
-
-
-
-
-@dataclass(frozen=True)
-class Symmetrization:
-    """Youla's reciprocal equivalent ``Z'`` of an n-port, or why there is none.
-
-    When ``symmetrizable`` is PROVED, ``Z' = D Z D^-1`` (up to entries forced to zero by a
-    unilateral coupling) with ``D = diag(delta_k I)`` constant on every port block and
-    ``delta_k**2 = C_k Q_k(s)**2`` (``C_k`` rational, ``Q_k`` rational in ``s``; ``block_scales``).
-    Inside a block ``Z'`` equals ``Z``; across blocks ``Z'_ij = (delta_k/delta_l) z_ij``, whose
-    square is ``z_ij z_ji``. ``scales`` are the rationals ``u_i = C_k`` of each index: the
-    congruent matrix ``K = E Z' E``, ``E = diag(sqrt|u_i|)``, is ``J Rhat J`` with a *rational*
-    symmetric ``Rhat`` (``J_ii = j`` where ``u_i < 0``): PR of ``Z'`` is decided on ``Rhat``.
-    ``gamma``, ``c``, ``q`` describe ``Z'_ij = gamma_ij sqrt(c_ij) q_ij(s)`` (eq. (14)).
-    ``evidence`` records the exact check that every principal minor of ``Z'`` equals the one of
-    ``Z`` (and, for grouped ports, every block-compatible minor).
-    """
-
-    symmetrizable: Decision
-    reason: str
-    evidence: Evidence
-    gamma: Mapping[tuple[int, int], int] = field(default_factory=dict)
-    c: Mapping[tuple[int, int], Any] = field(default_factory=dict)
-    q: Mapping[tuple[int, int], RationalFunction] = field(default_factory=dict)
-    scales: tuple[Any, ...] = ()
-    rhat: RationalMatrix | None = None
-    diagonal: tuple[RationalFunction, ...] = ()
-    blocks: tuple[tuple[int, ...], ...] = ()
-    block_scales: tuple[tuple[Any, RationalFunction], ...] = ()
-    original: RationalMatrix | None = None
-
-    @property
-    def signs(self) -> tuple[int, ...]:
-        return tuple(1 if u > 0 else -1 for u in self.scales)
-
-    def zprime(self, s: sp.Symbol = S_SYM) -> sp.Matrix:
-        """``Z'`` as an exact SymPy matrix (square roots of rational constants kept exact)."""
-        if self.symmetrizable != Decision.PROVED:
-            raise ValueError("no symmetrization")
-        Z = self.original
-        n = Z.shape[0]
-        block_of = {i: k for k, blk in enumerate(self.blocks) for i in blk}
-        delta = [sp.sqrt(to_rational(as_fmpq(C))) * Q.expr(s) for C, Q in self.block_scales]
-        out = sp.zeros(n, n)
-        for i in range(n):
-            for j in range(n):
-                k, l = block_of[i], block_of[j]
-                if k == l:
-                    out[i, j] = Z[i, j].expr(s)
-                elif not (Z[i, j] * Z[j, i]).is_zero():
-                    out[i, j] = sp.cancel(delta[k] / delta[l] * Z[i, j].expr(s))
-        return out
-
-
-def _not_symmetrizable(decision: Decision, reason: str, witness: Mapping[str, Any] | None = None,
-                       facts: Mapping[str, Any] | None = None) -> Symmetrization:
-    return Symmetrization(decision, reason, Evidence(Method.CANONICAL_FORM, witness=dict(witness) if witness else None,
-                                                     facts=dict(facts or {})))
-
-
-def symmetrize(Z: Any, ports: Sequence[int] | None = None) -> Symmetrization:
-    """Construct Youla's reciprocal ``Z'`` (eq. (14) of the 3-DOF bilateral paper) exactly.
-
-    The similarity must respect the port blocks: ``det(D Z D^-1 + T) = det(Z + T)`` for every
-    block-diagonal termination ``T`` only when ``D`` is constant on each block (a diagonal ``D``
-    with different entries in one block maps a passive ``T_k`` to ``D_k^-1 T_k D_k``, which need
-    not be passive). So inside a block ``Z' = Z`` (B: symmetric blocks), and across the blocks
-    ``k, l`` every coupled pair must have the same ratio ``z_ji/z_ij = (delta_k/delta_l)**2``.
-    The free signs are one per block (a spanning forest of the block graph), not one per DOF;
-    every other block pair closes a cycle whose ratios must multiply to 1 (Youla's cycle
-    conditions; for triangles condition A). A reciprocal ``Z`` is its own symmetrization.
-    Finally all principal (and block-compatible) minors of ``Z'`` and ``Z`` are compared.
-
-    >>> from hapticproof.symbols import s
-    >>> Y = symmetrize(sp.Matrix([[2, 4], [1, 3]]))           # z12 z21 = 4
-    >>> Y.symmetrizable.value, Y.zprime()
-    ('proved', Matrix([
-    [2, 2],
-    [2, 3]]))
-    >>> Zg = sp.diag(sp.Matrix([[2, -1], [-1, 2]]), 2 * sp.eye(2))   # issue 10: reciprocal, grouped ports
-    >>> symmetrize(Zg, (2, 2)).zprime() == Zg
-    True
-    """
-    Zr = as_rational_matrix(Z)
-    n = Zr.shape[0]
-    blocks = port_blocks(n, ports)
-    block_of = {i: k for k, blk in enumerate(blocks) for i in blk}
-    K = len(blocks)
-    for blk in blocks:
-        for i, j in itertools.combinations(blk, 2):
-            if Zr[i, j] != Zr[j, i]:
-                return _not_symmetrizable(Decision.DISPROVED, f"condition B fails: z[{i + 1},{j + 1}] != z[{j + 1},{i + 1}] in a port block",
-                                          {"pair": [i + 1, j + 1]})
-    for i, j, k in itertools.combinations(range(n), 3):
-        fwd = Zr[i, j] * Zr[j, k] * Zr[k, i]
-        bwd = Zr[j, i] * Zr[k, j] * Zr[i, k]
-        if fwd != bwd:
-            return _not_symmetrizable(Decision.DISPROVED, f"condition A fails for (i, j, k) = ({i + 1}, {j + 1}, {k + 1})",
-                                      {"triple": [i + 1, j + 1, k + 1]}, {"difference": (fwd - bwd).expr()})
-    one = RationalFunction.constant(1)
-    # the ratio z_ji/z_ij = (delta_k/delta_l)^2 of every coupled block pair k < l
-    ratios: dict[tuple[int, int], tuple[RationalFunction, tuple[int, int]]] = {}
-    for i, j in itertools.combinations(range(n), 2):
-        k, l = block_of[i], block_of[j]
-        if k == l or Zr[i, j].is_zero() or Zr[j, i].is_zero():
-            continue
-        ratio = Zr[j, i] / Zr[i, j]
-        if (k, l) not in ratios:
-            ratios[(k, l)] = (ratio, (i, j))
-        elif ratios[(k, l)][0] != ratio:
-            a, b = ratios[(k, l)][1]
-            return _not_symmetrizable(
-                Decision.DISPROVED,
-                f"the coupling ratios z[{j + 1},{i + 1}]/z[{i + 1},{j + 1}] and z[{b + 1},{a + 1}]/z[{a + 1},{b + 1}] between "
-                f"ports {k + 1} and {l + 1} differ: no similarity constant on the port blocks symmetrizes Z "
-                "(the block-compatible 2x2 minors could not all agree)",
-                {"pairs": [[i + 1, j + 1], [a + 1, b + 1]]}, {"ratios": [ratio.expr(), ratios[(k, l)][0].expr()]})
-    split: dict[tuple[int, int], tuple[flint.fmpq, RationalFunction]] = {}
-    for key, (ratio, (i, j)) in ratios.items():
-        dec = _square_decomposition(ratio)
-        if dec is None:
-            return _not_symmetrizable(Decision.UNDECIDED,
-                                      f"z[{j + 1},{i + 1}]/z[{i + 1},{j + 1}] is not a constant times a square: Z' is irrational",
-                                      {"pair": [i + 1, j + 1]}, {"ratio": ratio.expr()})
-        split[key] = dec
-    # spanning forest of the block graph: delta_root^2 = 1, delta_l^2 = delta_k^2 / ratio_kl
-    adjacency: dict[int, list[int]] = {k: [] for k in range(K)}
-    for k, l in ratios:
-        adjacency[k].append(l)
-        adjacency[l].append(k)
-    C: dict[int, flint.fmpq] = {}
-    Q: dict[int, RationalFunction] = {}
-    parent: dict[int, int | None] = {}
-    depth: dict[int, int] = {}
-    tree = set()
-    for root in range(K):
-        if root in C:
-            continue
-        C[root], Q[root], parent[root], depth[root] = flint.fmpq(1), one, None, 0
-        queue = [root]
-        while queue:
-            a = queue.pop(0)
-            for b in sorted(adjacency[a]):
-                if b in C:
-                    continue
-                c_ab, q_ab = split[(min(a, b), max(a, b))]
-                if a < b:        # ratio_ab = delta_a^2/delta_b^2
-                    C[b], Q[b] = C[a] / c_ab, Q[a] / q_ab
-                else:            # ratio_ba = delta_b^2/delta_a^2
-                    C[b], Q[b] = C[a] * c_ab, Q[a] * q_ab
-                parent[b], depth[b] = a, depth[a] + 1
-                tree.add((min(a, b), max(a, b)))
-                queue.append(b)
-
-    def square(k: int) -> RationalFunction:
-        return (Q[k] * Q[k]).scale(C[k])
-
-    for (k, l) in sorted(set(ratios) - tree):
-        if square(k) / square(l) != ratios[(k, l)][0]:
-            cycle = _cycle_path(parent, depth, l, k) + [l]
-            return _not_symmetrizable(
-                Decision.DISPROVED,
-                f"Youla's cycle condition fails on the cycle of ports {[c + 1 for c in cycle]}: the coupling ratios "
-                "z_ji/z_ij do not multiply to 1 around it",
-                {"cycle": [c + 1 for c in cycle]})
-    rows = []
-    for i in range(n):
-        row = []
-        for j in range(n):
-            k, l = block_of[i], block_of[j]
-            if k == l:
-                row.append(Zr[i, j].scale(C[k]))
-            elif Zr[i, j].is_zero() or Zr[j, i].is_zero():
-                row.append(_ZERO_RF)
-            else:
-                value = (Q[k] / Q[l] * Zr[i, j]).scale(C[k])
-                row.append(-value if C[k] * C[l] < 0 else value)
-        rows.append(tuple(row))
-    rhat = RationalMatrix(tuple(rows))
-    if not rhat.is_symmetric():  # pragma: no cover - guaranteed by the ratio and cycle checks
-        raise ArithmeticError("the Youla matrix is not symmetric")
-    u = [C[block_of[i]] for i in range(n)]
-    gamma, c_pair, q_pair = _eq14_signs(Zr, blocks, block_of, C, Q)
-    result_kwargs = dict(gamma=gamma, c={key: to_rational(v) for key, v in c_pair.items()}, q=q_pair,
-                         scales=tuple(to_rational(v) for v in u), rhat=rhat, diagonal=tuple(Zr[i, i] for i in range(n)),
-                         blocks=blocks, block_scales=tuple((to_rational(C[k]), Q[k]) for k in range(K)), original=Zr)
-    check = _verify_minors(Zr, rhat, u, blocks)
-    if check is not None:
-        return Symmetrization(Decision.DISPROVED, check[0], check[1], **result_kwargs)
-    facts = {"principal_minors_checked": 2**n - 1, "block_scales": [[to_rational(C[k]), Q[k].expr()] for k in range(K)],
-             "gamma": {f"{i + 1},{j + 1}": g for (i, j), g in sorted(gamma.items())}}
-    grouped = any(len(b) > 1 for b in blocks)
-    if grouped:
-        facts["block_compatible_minors_checked"] = _count_block_pairs(blocks)
-    what = "Z is reciprocal: Z' = Z" if Zr.is_symmetric() else "Z' = D Z D^-1 (D constant on the port blocks) is reciprocal"
-    return Symmetrization(Decision.PROVED,
-                          what + " and has the same principal minors as Z"
-                          + (" (and the same block-compatible minors: det(Z + T) = det(Z' + T) for block terminations)"
-                             if grouped else ""),
-                          Evidence(Method.CANONICAL_FORM, facts=facts), **result_kwargs)
-
-
-def _eq14_signs(Zr: RationalMatrix, blocks, block_of, C, Q) -> tuple[dict, dict, dict]:
-    """The signs ``gamma_ij`` of eq. (14), ``Z'_ij = gamma_ij sqrt(c_ij) q_ij`` with
-    ``z_ij z_ji = c_ij q_ij**2`` (``q_ij`` with positive leading coefficients)."""
-    gamma, c_pair, q_pair = {}, {}, {}
-    n = Zr.shape[0]
-    for i, j in itertools.combinations(range(n), 2):
-        product = Zr[i, j] * Zr[j, i]
-        if product.is_zero():
-            continue
-        dec = _square_decomposition(product)
-        if dec is None:  # pragma: no cover - the ratio decomposed, so does the product
-            continue
-        c_ij, q_ij = dec
-        k, l = block_of[i], block_of[j]
-        # Z'_ij / q_ij = (delta_k/delta_l) z_ij / q_ij: a constant lam times sqrt(C_k)/sqrt(C_l)
-        lam = (Zr[i, j] / q_ij) if k == l else (Q[k] / Q[l] * Zr[i, j] / q_ij)
-        value = to_rational(lam.num.coeffs()[0] / lam.den.coeffs()[0]) if lam.num.degree() == 0 else sp.nan
-        if k != l:
-            value = value * sp.sqrt(to_rational(C[k])) / sp.sqrt(to_rational(C[l]))
-        sign = sp.nsimplify(sp.simplify(value / sp.sqrt(to_rational(c_ij))))
-        gamma[(i, j)] = 1 if sign == 1 else -1
-        c_pair[(i, j)], q_pair[(i, j)] = c_ij, q_ij
-    return gamma, c_pair, q_pair
-
-
-def _cycle_path(parent: Mapping[int, int | None], depth: Mapping[int, int], a: int, b: int) -> list[int]:
-    """Tree path from ``a`` to ``b`` (list of vertices)."""
-    left, right = [a], [b]
-    while left[-1] != right[-1]:
-        if depth[left[-1]] >= depth[right[-1]]:
-            left.append(parent[left[-1]])
-        else:
-            right.append(parent[right[-1]])
-    return left + right[-2::-1]
 
 
 def _signed_hermitian_minors(rhat: RationalMatrix, signs: Sequence[int]) -> HermitianMinors:
@@ -1097,6 +705,7 @@ class StabilityVerdict:
     certificate: InstabilityCertificate | None = None
     zprime: PositiveRealResult | None = None
     search: TerminationSearch | None = None
+    subnetwork: tuple[tuple[int, ...], Any] | None = None
 
     def to_json(self) -> dict[str, Any]:
         out: dict[str, Any] = {"decision": self.decision.value, "method": self.method, "reason": self.reason,
@@ -1109,6 +718,9 @@ class StabilityVerdict:
             out["symmetrization"] = {"decision": self.symmetrization.symmetrizable.value, "reason": self.symmetrization.reason}
         if self.zprime is not None:
             out["zprime_positive_real"] = self.zprime.to_json()
+        if self.subnetwork is not None:
+            ports, result = self.subnetwork
+            out["subnetwork"] = {"ports": [k + 1 for k in ports], **result.to_json()}
         if self.certificate is not None:
             out["certificate"] = self.certificate.to_json()
         if self.search is not None:
@@ -1124,6 +736,26 @@ def _hints(*results: Any) -> list[float]:
     return out
 
 
+def _unstable_subnetwork(Z: RationalMatrix, blocks) -> tuple[tuple[int, ...], Any] | None:
+    """A port, or (scalar ports) a pair of ports, whose subnetwork alone -- the other ports held
+    at zero velocity, the limit of large resistive terminations -- is potentially unstable: a
+    port block that is not positive real, or a 2-port that fails Llewellyn's criterion. Such a
+    subnetwork makes the whole network potentially unstable (its RHP zero of ``det(Z_SS + T_S)``
+    persists for large enough resistors on the other ports, by Hurwitz's theorem)."""
+    if len(blocks) < 2:
+        return None
+    for k, blk in enumerate(blocks):
+        result = positive_real(Z.submatrix(blk))
+        if result.decision == Decision.DISPROVED:
+            return (k,), result
+    if all(len(blk) == 1 for blk in blocks) and len(blocks) > 2:
+        for i, j in itertools.combinations(range(len(blocks)), 2):
+            result = llewellyn(Z.submatrix((blocks[i][0], blocks[j][0])))
+            if result.decision == Decision.DISPROVED:
+                return (i, j), result
+    return None
+
+
 def absolute_stability(Z: Any, ports: Sequence[int] | None = None, search: bool = True, seed: int = 0,
                        deadline: float = 10.0) -> StabilityVerdict:
     """Absolute stability of an n-port with impedance matrix ``Z`` (exact where possible).
@@ -1137,6 +769,9 @@ def absolute_stability(Z: Any, ports: Sequence[int] | None = None, search: bool 
     * scalar 2-ports: Llewellyn's criterion (:func:`llewellyn`), necessary and sufficient;
     * symmetrizable networks (Youla): absolutely stable iff ``Z'`` is positive real
       (Youla 1959, Lemma 7; identical minors, Lemma 8);
+    * otherwise: a port (or, with scalar ports, a pair of ports) whose subnetwork alone is
+      potentially unstable -- not positive real, or failing Llewellyn's criterion -- makes the
+      network potentially unstable (the other ports held by large resistors);
     * otherwise: a search for destabilizing terminations that ends by ``deadline`` seconds
       (:func:`hapticproof.terminations.search_terminations`): potentially unstable with a
       verified certificate, or ``undecided after N s`` with what was tried.
@@ -1155,10 +790,12 @@ def absolute_stability(Z: Any, ports: Sequence[int] | None = None, search: bool 
     n = Zr.shape[0]
     blocks = port_blocks(n, ports)
 
-    def find(*results: Any, open_circuit: bool = False) -> TerminationSearch | None:
+    def find(*results: Any, open_circuit: bool = False, sym: Symmetrization | None = None,
+             prefer: Sequence[Sequence[int]] = ()) -> TerminationSearch | None:
         if not search:
             return None
-        return search_terminations(Zr, ports, hints=_hints(*results), seed=seed, deadline=deadline, clamp_all=open_circuit)
+        return search_terminations(Zr, ports, hints=_hints(*results), seed=seed, deadline=deadline, clamp_all=open_circuit,
+                                   similarity=sym.similarity_at if sym is not None else None, prefer=prefer)
 
     pr = positive_real(Zr)
     poles = pr.poles
@@ -1181,13 +818,25 @@ def absolute_stability(Z: Any, ports: Sequence[int] | None = None, search: bool 
     if sym.symmetrizable == Decision.PROVED:
         zpr = zprime_positive_real(sym)
         if zpr.decision != Decision.UNDECIDED:
-            found = find(zpr, pr) if zpr.decision == Decision.DISPROVED else None
+            found = find(zpr, pr, sym=sym) if zpr.decision == Decision.DISPROVED else None
             reason = ("Z' is positive real: absolutely stable (Youla)" if zpr.decision == Decision.PROVED
                       else f"potentially unstable (Youla): {zpr.reason}")
             return StabilityVerdict(zpr.decision, "Youla symmetrization", reason, zpr.evidence, symmetrization=sym,
                                     positive_real=pr, zprime=zpr, certificate=found.certificate if found else None, search=found)
     why = (f"positive realness of Z' undecided ({zpr.reason})" if zpr is not None
            else f"not symmetrizable ({sym.reason})")
+    sub = _unstable_subnetwork(Zr, blocks)
+    if sub is not None:
+        subset, result = sub
+        found = find(result, pr, prefer=[subset])
+        names = ", ".join(str(k + 1) for k in subset)
+        what = "is not positive real" if len(subset) == 1 else "fails Llewellyn's criterion"
+        return StabilityVerdict(
+            Decision.DISPROVED, "subnetwork",
+            f"{why}; the subnetwork of port{'s' if len(subset) > 1 else ''} {names} alone {what} ({result.reason}): with the "
+            "other ports held by large resistors the network is potentially unstable",
+            result.evidence, symmetrization=sym, positive_real=pr, zprime=zpr, subnetwork=sub,
+            certificate=found.certificate if found else None, search=found)
     found = find(pr)
     if found is not None and found.certificate is not None:
         cert = found.certificate

@@ -40,11 +40,12 @@ True
 
 from __future__ import annotations
 
+import importlib
 import itertools
 import math
 import time
-from collections.abc import Iterable, Iterator, Sequence
-from dataclasses import dataclass, field
+from collections.abc import Callable, Iterable, Iterator, Sequence
+from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any
 
@@ -53,7 +54,7 @@ import numpy as np
 import sympy as sp
 
 from hapticproof.kernel import RootCertificate, locate_roots, poly_json
-from hapticproof.rationalmatrix import RationalFunction, RationalMatrix
+from hapticproof.rationalmatrix import RationalMatrix
 from hapticproof.symbols import s as S_SYM
 
 __all__ = [
@@ -138,7 +139,7 @@ def _as_matrix(Z: Any) -> RationalMatrix:
 
 
 def _blocks(n: int, ports: Sequence[int] | None) -> tuple[tuple[int, ...], ...]:
-    from hapticproof.networks import port_blocks
+    from hapticproof.youla import port_blocks
 
     return port_blocks(n, ports)
 
@@ -259,9 +260,11 @@ def _powers(forms: list[np.ndarray], v: np.ndarray) -> np.ndarray:
     return np.array([np.vdot(v, F @ v).real for F in forms])
 
 
-def _dual_vector(forms: list[np.ndarray]) -> np.ndarray | None:
-    """The eigenvector at ``max over port weights lambda of lambda_min(sum lambda_k H_k)`` when
-    that maximum is negative (for two ports it then delivers power out of both)."""
+def _dual(forms: list[np.ndarray]) -> tuple[float, np.ndarray]:
+    """``max over port weights lambda (simplex) of lambda_min(sum lambda_k H_k)`` (concave; a
+    lower estimate) and the eigenvector there. A value >= 0 proves that no velocity makes every
+    port deliver power (``sum lambda_k p_k >= 0``); for two ports a negative maximum gives such a
+    velocity. Equal weights (the Hermitian part of the subnetwork) are tried first."""
     import scipy.optimize as so
 
     K = len(forms)
@@ -274,15 +277,17 @@ def _dual_vector(forms: list[np.ndarray]) -> np.ndarray | None:
         return np.linalg.eigvalsh(sum(w * F for w, F in zip(weights(theta), forms)))[0]
 
     theta = np.zeros(K - 1)
-    if K == 2:
-        res = so.minimize_scalar(lambda t: -g(np.array([t])), bounds=(-30, 30), method="bounded", options={"xatol": 1e-10})
-        theta = np.array([res.x])
-    elif K > 2:
-        res = so.minimize(lambda th: -g(th), theta, method="Nelder-Mead", options={"maxiter": 200 * K})
-        theta = res.x
+    if K > 1 and g(theta) < 0:
+        if K == 2:
+            res = so.minimize_scalar(lambda t: -g(np.array([t])), bounds=(-30, 30), method="bounded", options={"xatol": 1e-9})
+            theta = np.array([res.x])
+        else:
+            res = so.minimize(lambda th: -g(th), theta, method="Nelder-Mead",
+                              options={"maxiter": 30 * K, "xatol": 1e-4, "fatol": 1e-10})
+            theta = res.x if -res.fun > g(theta) else theta
     H = sum(w * F for w, F in zip(weights(theta), forms))
     values, vectors = np.linalg.eigh(H)
-    return vectors[:, 0] if values[0] < 0 else None
+    return float(values[0]), vectors[:, 0]
 
 
 def _polish(forms: list[np.ndarray], v: np.ndarray, real: bool, scale: float) -> np.ndarray:
@@ -312,7 +317,7 @@ def _polish(forms: list[np.ndarray], v: np.ndarray, real: bool, scale: float) ->
 
     start = v.real.copy() if real else np.concatenate([v.real, v.imag])
     try:
-        res = so.minimize(objective, start, jac=True, method="BFGS", options={"maxiter": 60, "gtol": 1e-10})
+        res = so.minimize(objective, start, jac=True, method="BFGS", options={"maxiter": 15, "gtol": 1e-10})
         best = res.x if res.fun <= objective(start)[0] else start
     except (ValueError, np.linalg.LinAlgError):  # pragma: no cover - defensive
         best = start
@@ -320,23 +325,31 @@ def _polish(forms: list[np.ndarray], v: np.ndarray, real: bool, scale: float) ->
     return out / np.linalg.norm(out)
 
 
-def _candidates(M: np.ndarray, blocks, rng: np.random.Generator, restarts: int, real: bool) -> Iterator[tuple[str, np.ndarray]]:
-    """Candidate velocities, most structured first."""
+def _candidates(M: np.ndarray, blocks, rng: np.random.Generator, restarts: int, real: bool,
+                dual_vector: np.ndarray | None, similarity: np.ndarray | None) -> Iterator[tuple[str, np.ndarray]]:
+    """Candidate velocities, most structured first: real eigenvectors of the symmetric part of
+    ``Re M`` with negative eigenvalues (every port of a reciprocal network then delivers power
+    ``lambda |v_k|^2 < 0``), the same for Youla's ``D M D^-1`` (``similarity`` = the diagonal of
+    ``D(s0)``), eigenvectors of the Hermitian part, the dual optimum, seeded random starts."""
     n = M.shape[0]
     X = M.real
     values, vectors = np.linalg.eigh((X + X.T) / 2)
     for k in range(n):
         if values[k] < 0:
             yield "real eigenvector", vectors[:, k].astype(complex)
+    if similarity is not None and not real:
+        Y = (similarity[:, None] * M / similarity[None, :]).real
+        values, vectors = np.linalg.eigh((Y + Y.T) / 2)
+        for k in range(n):
+            if values[k] < 0:
+                yield "Youla eigenvector", vectors[:, k] / similarity
     if not real:
         values, vectors = np.linalg.eigh((M + M.conj().T) / 2)
         for k in range(n):
             if values[k] < 0:
                 yield "Hermitian eigenvector", vectors[:, k]
-        if len(blocks) > 1:
-            v = _dual_vector(_block_forms(M, blocks))
-            if v is not None:
-                yield "dual optimum", v
+    if dual_vector is not None:
+        yield "dual optimum", dual_vector
     for _ in range(restarts):
         v = rng.normal(size=n) + (0 if real else 1j * rng.normal(size=n))
         yield "random start", v.astype(complex)
@@ -528,21 +541,28 @@ def _grid(Z: RationalMatrix, frequencies: Iterable[float] | None) -> list[float]
 
 
 def _trial_points(hints: Sequence[float], grid: Sequence[float]) -> list[complex]:
-    """Design points ``s0``: near the hint frequencies first, then the grid (complex, then real)."""
+    """Design points ``s0``: near the hint frequencies first (``0``: small real points; ``inf``:
+    large ones, for a failing residue at infinity), then the grid (complex, then real)."""
     points: list[complex] = []
 
     def add(p: complex) -> None:
         if p not in points:
             points.append(p)
 
-    fracs = (0.2, 0.05, 0.01)
+    fracs = (0.05, 0.2, 0.01)
     for w in hints:
+        if math.isinf(w):
+            for g in (10 * grid[-1], 100 * grid[-1], 1000 * grid[-1]):
+                add(complex(_round_sig(g), 0.0))
+                add(complex(_round_sig(0.2 * g, 3), _round_sig(g)))
+            continue
         w = _round_sig(float(w), 3)
         if w > 0:
             for frac in fracs:
                 add(complex(_round_sig(frac * w, 3), w))
             for f in (0.8, 1.25):
                 add(complex(_round_sig(0.05 * w * f, 3), _round_sig(w * f, 3)))
+            add(complex(_round_sig(0.5 * w, 3), 0.0))
         else:
             for g in grid[: max(3, len(grid) // 2)]:
                 add(complex(g, 0.0))
@@ -623,6 +643,8 @@ def search_terminations(
     deadline: float = 10.0,
     max_subsets: int = 8,
     clamp_all: bool = False,
+    similarity: Callable[[complex], np.ndarray] | None = None,
+    prefer: Sequence[Sequence[int]] = (),
 ) -> TerminationSearch:
     """Search passive terminations making the coupled network unstable, verify them exactly, and
     stop by ``deadline`` seconds. Returns the report; its ``certificate`` is None when nothing
@@ -630,19 +652,26 @@ def search_terminations(
 
     ``hints`` are frequencies where an exact decision failed (the witnesses of positive realness,
     Llewellyn or Youla): the search starts there. ``clamp_all`` first tries large resistors on
-    every port (for entries with right-half-plane poles).
+    every port (for entries with right-half-plane poles). ``similarity(s0)`` (optional) is the
+    diagonal of Youla's ``D(s0)`` with ``Z' = D Z D^-1`` reciprocal: real eigenvectors of
+    ``Re Z'(s0)`` then give velocities for ``Z``. A port subset is skipped at ``s0`` when some
+    positive combination of its port-power forms is PSD (then no velocity makes all of them
+    deliver power). ``prefer`` lists port subsets (0-based port numbers) to try first, e.g. a
+    subnetwork known to be potentially unstable. Time spent importing SciPy does not count
+    against the deadline.
 
     >>> import sympy as sp
     >>> out = search_terminations(sp.Matrix([[1, 3], [3, 1]]))
     >>> out.certificate is not None, out.certificate.terminations_positive_real
     (True, True)
     """
+    importlib.import_module("scipy.optimize")       # imported before the clock starts
+
     start = time.monotonic()
     Zr = _as_matrix(Z)
     n = Zr.shape[0]
     blocks = _blocks(n, ports)
     K = len(blocks)
-    rng = np.random.default_rng(seed)
     points_tried: list[complex] = []
     subsets_tried: list[tuple[int, ...]] = []
     strategies_used: list[str] = []
@@ -674,10 +703,11 @@ def search_terminations(
             if cert is not None:
                 return report(cert, False)
     grid = _grid(Zr, frequencies)
-    subsets = _subsets(K, max_subsets)
+    subsets = [tuple(sorted(p)) for p in prefer]
+    subsets += [sub for sub in _subsets(K, max_subsets) if sub not in subsets]
     constant = all(e.num.degree() <= 0 and e.den.degree() <= 0 for row in Zr.rows for e in row)
     resonators = (0.5,) if constant else (0.0, 0.5)
-    for s0 in _trial_points(list(hints), grid):
+    for point, s0 in enumerate(_trial_points(list(hints), grid)):
         if out_of_time():
             return report(None, False)
         M = Zr.numpy_at(s0)
@@ -686,17 +716,26 @@ def search_terminations(
         points_tried.append(s0)
         clamp = _clamp(M)
         real = s0.imag == 0
-        for subset in subsets:
+        for number, subset in enumerate(subsets):
             if out_of_time():
                 return report(None, False)
+            rng = np.random.default_rng([seed, point, number])     # independent of what was skipped before
             if subset not in subsets_tried:
                 subsets_tried.append(subset)
             idx = [i for k in subset for i in blocks[k]]
             sub_blocks = _renumber([blocks[k] for k in subset])
             Msub = M[np.ix_(idx, idx)]
             scale = max(1e-300, float(np.abs(Msub).max()))
+            bound, dual_vector = _dual(_block_forms(Msub, sub_blocks))
+            if bound >= -1e-9 * scale:
+                continue                       # no velocity makes every port of the subset deliver power
+            similar = None
+            if similarity is not None:
+                D = similarity(s0)
+                similar = D[idx] if D is not None and np.all(np.isfinite(D)) and np.all(D != 0) else None
             designs = 0
-            for origin, v in _candidates(Msub, sub_blocks, rng, restarts, real):
+            seen: list[np.ndarray] = []
+            for origin, v in _candidates(Msub, sub_blocks, rng, restarts, real, dual_vector if K > 1 else None, similar):
                 if out_of_time():
                     return report(None, False)
                 support = _support(v, sub_blocks)
@@ -704,12 +743,17 @@ def search_terminations(
                     continue
                 keep = [i for k in support for i in sub_blocks[k]]
                 forms = _block_forms(Msub[np.ix_(keep, keep)], _renumber([sub_blocks[k] for k in support]))
-                u = _polish(forms, v[keep] / np.linalg.norm(v[keep]), real, scale)
+                u = v[keep] / np.linalg.norm(v[keep])
                 if not _powers(forms, u).max() < -1e-6 * scale:
-                    continue
-                counts["candidates"] += 1
+                    u = _polish(forms, u, real, scale)
+                    if not _powers(forms, u).max() < -1e-6 * scale:
+                        continue
                 vfull = np.zeros(len(idx), dtype=complex)
                 vfull[keep] = u
+                if any(abs(np.vdot(vfull, old)) > 0.999 for old in seen):
+                    continue
+                seen.append(vfull)
+                counts["candidates"] += 1
                 wfull = -(Msub @ vfull)
                 found = False
                 for resonator in resonators:

@@ -50,7 +50,7 @@ from hapticproof import latex as tex
 from hapticproof.cli._common import add_param_option, parse_params
 from hapticproof.errors import InputFormatError
 from hapticproof.evidence import Decision, to_jsonable
-from hapticproof.networks import absolute_stability, llewellyn, port_blocks, positive_real, symmetrization_conditions
+from hapticproof.networks import absolute_stability, llewellyn, port_blocks, symmetrization_conditions
 from hapticproof.rationalmatrix import RationalMatrix, pole_report
 from hapticproof.symbols import s
 
