@@ -540,14 +540,38 @@ def _grid(Z: RationalMatrix, frequencies: Iterable[float] | None) -> list[float]
     return sorted({_round_sig(10 ** (lo + (hi - lo) * k / (count - 1))) for k in range(count)})
 
 
-def _trial_points(hints: Sequence[float], grid: Sequence[float]) -> list[complex]:
+def _axis_frequencies(Z: RationalMatrix) -> list[float]:
+    """Frequencies of the imaginary-axis poles of ``Z`` (from the exact pole report)."""
+    from hapticproof.rationalmatrix import pole_report
+
+    out = []
+    report = pole_report(Z)
+    for pole, _ in report.axis:
+        if pole.kind == "zero":
+            out.append(0.0)
+        elif pole.kind == "pair":
+            out.append(math.sqrt(float(pole.a)))
+    if report.certificate is not None:
+        for root in report.certificate.boundary:
+            if root.value is None and root.cosine is not None and hasattr(root.cosine, "approx"):
+                out.append(math.sqrt(abs(float(root.cosine.approx(17)))))
+    return sorted(set(out))
+
+
+def _trial_points(hints: Sequence[float], grid: Sequence[float], axis: Sequence[float] = ()) -> list[complex]:
     """Design points ``s0``: near the hint frequencies first (``0``: small real points; ``inf``:
-    large ones, for a failing residue at infinity), then the grid (complex, then real)."""
+    large ones, for a failing residue at infinity), then the grid (complex, then real). The
+    distance to the axis is a fraction of ``w`` and of the distance to the nearest imaginary-axis
+    pole of ``Z`` (next to a pole a point off the axis sees a very different phase)."""
     points: list[complex] = []
 
     def add(p: complex) -> None:
         if p not in points:
             points.append(p)
+
+    def near(w: float, frac: float) -> complex:
+        room = min([w] + [abs(w - f) for f in axis if f > 0])
+        return complex(_round_sig(frac * room, 3), w)
 
     fracs = (0.05, 0.2, 0.01)
     for w in hints:
@@ -559,20 +583,20 @@ def _trial_points(hints: Sequence[float], grid: Sequence[float]) -> list[complex
         w = _round_sig(float(w), 3)
         if w > 0:
             for frac in fracs:
-                add(complex(_round_sig(frac * w, 3), w))
+                add(near(w, frac))
             for f in (0.8, 1.25):
-                add(complex(_round_sig(0.05 * w * f, 3), _round_sig(w * f, 3)))
+                add(near(_round_sig(w * f, 3), 0.05))
             add(complex(_round_sig(0.5 * w, 3), 0.0))
         else:
             for g in grid[: max(3, len(grid) // 2)]:
                 add(complex(g, 0.0))
-                add(complex(_round_sig(0.2 * g, 3), g))
+                add(near(g, 0.2))
     for w in grid:
         for frac in fracs:
-            add(complex(_round_sig(frac * w, 3), w))
+            add(near(w, frac))
     for g in grid:
         add(complex(g, 0.0))
-    return points
+    return [p for p in points if p.real > 0]
 
 
 def _subsets(K: int, limit: int) -> list[tuple[int, ...]]:
@@ -707,7 +731,7 @@ def search_terminations(
     subsets += [sub for sub in _subsets(K, max_subsets) if sub not in subsets]
     constant = all(e.num.degree() <= 0 and e.den.degree() <= 0 for row in Zr.rows for e in row)
     resonators = (0.5,) if constant else (0.0, 0.5)
-    for point, s0 in enumerate(_trial_points(list(hints), grid)):
+    for point, s0 in enumerate(_trial_points(list(hints), grid, _axis_frequencies(Zr))):
         if out_of_time():
             return report(None, False)
         M = Zr.numpy_at(s0)
