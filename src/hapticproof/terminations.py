@@ -169,7 +169,13 @@ def exact_determinant(Z: Any, terminations: Sequence[Any], blocks) -> Determinan
 
 
 def verify_certificate(Z: Any, terminations: Sequence[sp.Matrix], blocks) -> tuple[list[complex], int]:
-    """Exact: the open-RHP zeros of ``det(Z + diag(T_k))`` (certified) and the numerator degree."""
+    """Exact: the open-RHP zeros of ``det(Z + diag(T_k))`` (certified) and the numerator degree.
+
+    >>> Z = sp.diag(sp.Matrix([[0, 0, 0], [0, 1, 2], [0, 2, 1]]), sp.eye(3))
+    >>> roots, degree = verify_certificate(Z, [sp.diag(1, 2/(S_SYM + 1), 2/(S_SYM + 1)), sp.eye(3)], ((0, 1, 2), (3, 4, 5)))
+    >>> roots, degree                                   # det = 8((1 + 2/(s+1))^2 - 4): a zero at s = 1
+    ([(1+0j)], 2)
+    """
     cert = exact_determinant(Z, terminations, blocks)
     roots = list(cert.roots.outside_points) if cert.roots is not None else []
     return roots, cert.numerator.degree() if not cert.numerator.is_zero() else -1
@@ -178,7 +184,12 @@ def verify_certificate(Z: Any, terminations: Sequence[sp.Matrix], blocks) -> tup
 def certify_terminations(Z: Any, terminations: Sequence[sp.Matrix], blocks, frequency: float = math.nan,
                          design_point: complex | None = None, strategy: str = "") -> InstabilityCertificate | None:
     """An :class:`InstabilityCertificate` when ``det(Z + T)`` has a certified zero in
-    ``Re s > 0`` and every termination is positive real (exact), else None."""
+    ``Re s > 0`` and every termination is positive real (exact), else None.
+
+    >>> cert = certify_terminations(sp.Matrix([[1, 3], [3, 1]]), [sp.Matrix([[4/(S_SYM + 1)]])] * 2, ((0,), (1,)))
+    >>> cert.roots, cert.terminations_positive_real
+    (((1+0j),), True)
+    """
     from hapticproof.evidence import Decision
     from hapticproof.networks import positive_real
 
@@ -215,9 +226,11 @@ class TerminationSearch:
     verifications: int = 0
     restarts: int = 0
     strategies: tuple[str, ...] = ()
+    promising: int = 0
 
     def summary(self) -> str:
-        tried = (f"tried {len(self.points)} trial points s0 (w from {self._range()}), {len(self.subsets)} port subsets, "
+        tried = (f"tried {len(self.points)} trial points s0 (w from {self._range()}) x {len(self.subsets)} port subsets "
+                 f"({self.promising} with a velocity making every port deliver power possible), "
                  f"{self.candidates} candidate terminations, {self.verifications} exact verifications "
                  f"({self.restarts} random restarts per point; roundings {', '.join(self.strategies) or 'none'})")
         if self.certificate is not None:
@@ -234,7 +247,8 @@ class TerminationSearch:
         return {"found": self.certificate is not None, "summary": self.summary(), "seconds": round(self.seconds, 3),
                 "deadline": self.deadline, "complete": self.complete,
                 "points": [f"{p.real:.4g}{p.imag:+.4g}j" for p in self.points],
-                "subsets": [[k + 1 for k in sub] for sub in self.subsets], "candidates": self.candidates,
+                "subsets": [[k + 1 for k in sub] for sub in self.subsets], "promising": self.promising,
+                "candidates": self.candidates,
                 "verifications": self.verifications, "restarts": self.restarts, "strategies": list(self.strategies)}
 
 
@@ -245,84 +259,116 @@ class TerminationSearch:
 
 def _block_forms(M: np.ndarray, blocks) -> list[np.ndarray]:
     """Hermitian ``H_k`` with ``v^H H_k v = Re(v_k^H (M v)_k)`` (power delivered into port ``k``)."""
+    return _port_forms(M, blocks)[0]
+
+
+def _port_forms(M: np.ndarray, blocks) -> tuple[list[np.ndarray], list[np.ndarray]]:
+    """Hermitian ``H_k``, ``G_k`` with ``v_k^H (M v)_k = v^H H_k v + j v^H G_k v`` (active and
+    reactive power at port ``k``)."""
     n = M.shape[0]
-    forms = []
+    real, reactive = [], []
     for blk in blocks:
         E = np.zeros((n, n))
         for i in blk:
             E[i, i] = 1.0
         A = E @ M
-        forms.append((A + A.conj().T) / 2)
-    return forms
+        real.append((A + A.conj().T) / 2)
+        reactive.append((A - A.conj().T) / 2j)
+    return real, reactive
 
 
 def _powers(forms: list[np.ndarray], v: np.ndarray) -> np.ndarray:
     return np.array([np.vdot(v, F @ v).real for F in forms])
 
 
+def _sector_powers(forms: tuple[list[np.ndarray], list[np.ndarray]], v: np.ndarray, kappa: float) -> np.ndarray:
+    """``Re p_k + kappa |Im p_k|`` per port (``p_k = v_k^H (M v)_k``): a passive termination at
+    ``s0 = sigma + j w`` can absorb ``-p_k`` only when this is negative (``kappa = sigma/w``)."""
+    real, reactive = forms
+    return np.array([np.vdot(v, H @ v).real + kappa * abs(np.vdot(v, G @ v).real) for H, G in zip(real, reactive)])
+
+
 def _dual(forms: list[np.ndarray]) -> tuple[float, np.ndarray]:
     """``max over port weights lambda (simplex) of lambda_min(sum lambda_k H_k)`` (concave; a
     lower estimate) and the eigenvector there. A value >= 0 proves that no velocity makes every
     port deliver power (``sum lambda_k p_k >= 0``); for two ports a negative maximum gives such a
-    velocity. Equal weights (the Hermitian part of the subnetwork) are tried first."""
-    import scipy.optimize as so
-
+    velocity. Equal weights (the Hermitian part of the subnetwork) first, then mirror ascent
+    along the supergradient ``(v^H H_k v)_k`` of the smallest eigenvector ``v``."""
     K = len(forms)
+    stack = np.array(forms)
+    scale = max(1e-300, float(np.abs(stack).max()))
 
-    def weights(theta):
-        e = np.exp(np.concatenate([[0.0], theta]) - np.max(np.concatenate([[0.0], theta])))
-        return e / e.sum()
+    def evaluate(lam):
+        values, vectors = np.linalg.eigh(np.tensordot(lam, stack, axes=1))
+        return float(values[0]), vectors[:, 0]
 
-    def g(theta):
-        return np.linalg.eigvalsh(sum(w * F for w, F in zip(weights(theta), forms)))[0]
+    lam = np.full(K, 1.0 / K)
+    best, vector = evaluate(lam)
+    best_lam = lam
+    if K > 1 and best < 0:
+        for step in range(1, 41):
+            grad = np.array([np.vdot(vector, F @ vector).real for F in forms])
+            lam = lam * np.exp(np.clip(2.0 * grad / (scale * math.sqrt(step)), -30, 30))   # ascent on g
+            lam = lam / lam.sum()
+            value, vector = evaluate(lam)
+            if value > best:
+                best, best_lam = value, lam
+            if best >= 0:
+                break
+        best, vector = evaluate(best_lam)
+    return best, vector
 
-    theta = np.zeros(K - 1)
-    if K > 1 and g(theta) < 0:
-        if K == 2:
-            res = so.minimize_scalar(lambda t: -g(np.array([t])), bounds=(-30, 30), method="bounded", options={"xatol": 1e-9})
-            theta = np.array([res.x])
-        else:
-            res = so.minimize(lambda th: -g(th), theta, method="Nelder-Mead",
-                              options={"maxiter": 30 * K, "xatol": 1e-4, "fatol": 1e-10})
-            theta = res.x if -res.fun > g(theta) else theta
-    H = sum(w * F for w, F in zip(weights(theta), forms))
-    values, vectors = np.linalg.eigh(H)
-    return float(values[0]), vectors[:, 0]
 
+def _polish(forms: tuple[list[np.ndarray], list[np.ndarray]], v: np.ndarray, real: bool, scale: float,
+            kappa: float) -> np.ndarray:
+    """Gradient descent on the unit sphere (Armijo backtracking) of a smooth maximum
+    (log-sum-exp) of ``Re p_k + kappa |Im p_k|`` over the ports, sharpened in steps: the
+    smoothing error ``log(K)/beta`` must fall below the margins being sought. Plain numpy, no
+    optimizer overhead; deterministic."""
+    Hs, Gs = np.array(forms[0]), np.array(forms[1])
+    delta = 1e-9 * scale
 
-def _polish(forms: list[np.ndarray], v: np.ndarray, real: bool, scale: float) -> np.ndarray:
-    """A few BFGS steps on a smooth maximum of the normalized port powers (in their support)."""
-    import scipy.optimize as so
-
-    n = v.shape[0]
-    beta = 30.0 / scale
-
-    def unpack(p):
-        return p.astype(complex) if real else p[:n] + 1j * p[n:]
-
-    def objective(p):
-        x = unpack(p)
-        norm = np.vdot(x, x).real
-        if norm == 0:
-            return 0.0, np.zeros_like(p)
-        Fx = [F @ x for F in forms]
-        q = np.array([np.vdot(x, f).real for f in Fx]) / norm
+    def value_grad(x: np.ndarray, beta: float) -> tuple[float, np.ndarray]:
+        Hx, Gx = Hs @ x, Gs @ x                         # (K, n); |x| = 1
+        re = (Hx @ x.conj()).real
+        im = (Gx @ x.conj()).real
+        soft = np.sqrt(im * im + delta * delta)
+        q = re + kappa * soft
         top = q.max()
         e = np.exp(beta * (q - top))
         weights = e / e.sum()
-        value = top + math.log(e.sum()) / beta
-        grad_c = sum(wk * 2 * (f - qk * x) / norm for wk, f, qk in zip(weights, Fx, q))
-        grad = grad_c.real if real else np.concatenate([grad_c.real, grad_c.imag])
-        return value, grad
+        parts = (Hx - re[:, None] * x) + (kappa * im / soft)[:, None] * (Gx - im[:, None] * x)
+        grad = 2 * (weights @ parts)
+        if real:
+            grad = grad.real.astype(complex)
+        return top + math.log(e.sum()) / beta, grad
 
-    start = v.real.copy() if real else np.concatenate([v.real, v.imag])
-    try:
-        res = so.minimize(objective, start, jac=True, method="BFGS", options={"maxiter": 15, "gtol": 1e-10})
-        best = res.x if res.fun <= objective(start)[0] else start
-    except (ValueError, np.linalg.LinAlgError):  # pragma: no cover - defensive
-        best = start
-    out = unpack(best)
-    return out / np.linalg.norm(out)
+    x = (v.real.astype(complex) if real else v) / np.linalg.norm(v)
+    best, best_value = x, _sector_powers(forms, x, kappa).max()
+    step = 1.0 / scale
+    for beta in (100.0 / scale, 3e3 / scale, 1e5 / scale):
+        f, g = value_grad(x, beta)
+        for _ in range(40):
+            norm_g = np.linalg.norm(g)
+            if norm_g < 1e-12 * scale:
+                break
+            while step > 1e-12 / scale:
+                y = x - step * g
+                y = y / np.linalg.norm(y)
+                fy, gy = value_grad(y, beta)
+                if fy <= f - 0.25 * step * norm_g**2:
+                    x, f, g = y, fy, gy
+                    step *= 2.0
+                    break
+                step *= 0.5
+            else:
+                break
+        value = _sector_powers(forms, x, kappa).max()
+        if value < best_value:
+            best, best_value = x, value
+        if best_value < -1e-3 * scale:
+            break
+    return best / np.linalg.norm(best)
 
 
 def _candidates(M: np.ndarray, blocks, rng: np.random.Generator, restarts: int, real: bool,
@@ -558,11 +604,12 @@ def _axis_frequencies(Z: RationalMatrix) -> list[float]:
     return sorted(set(out))
 
 
-def _trial_points(hints: Sequence[float], grid: Sequence[float], axis: Sequence[float] = ()) -> list[complex]:
+def _trial_points(hints: Sequence[float], grid: Sequence[float], axis: Sequence[float] = ()) -> tuple[list[complex], int]:
     """Design points ``s0``: near the hint frequencies first (``0``: small real points; ``inf``:
     large ones, for a failing residue at infinity), then the grid (complex, then real). The
     distance to the axis is a fraction of ``w`` and of the distance to the nearest imaginary-axis
-    pole of ``Z`` (next to a pole a point off the axis sees a very different phase)."""
+    pole of ``Z`` (next to a pole a point off the axis sees a very different phase). Returns the
+    points and how many of the first ones come from the hints."""
     points: list[complex] = []
 
     def add(p: complex) -> None:
@@ -591,12 +638,14 @@ def _trial_points(hints: Sequence[float], grid: Sequence[float], axis: Sequence[
             for g in grid[: max(3, len(grid) // 2)]:
                 add(complex(g, 0.0))
                 add(near(g, 0.2))
+    hinted = len(points)
     for w in grid:
         for frac in fracs:
             add(near(w, frac))
     for g in grid:
         add(complex(g, 0.0))
-    return [p for p in points if p.real > 0]
+    keep = [p.real > 0 for p in points]
+    return [p for p, k in zip(points, keep) if k], sum(keep[:hinted])
 
 
 def _subsets(K: int, limit: int) -> list[tuple[int, ...]]:
@@ -699,12 +748,12 @@ def search_terminations(
     points_tried: list[complex] = []
     subsets_tried: list[tuple[int, ...]] = []
     strategies_used: list[str] = []
-    counts = {"candidates": 0, "verifications": 0}
+    counts = {"candidates": 0, "verifications": 0, "promising": 0}
 
     def report(cert: InstabilityCertificate | None, complete: bool) -> TerminationSearch:
         return TerminationSearch(cert, time.monotonic() - start, deadline, complete, tuple(points_tried),
                                  tuple(subsets_tried), counts["candidates"], counts["verifications"], restarts,
-                                 tuple(strategies_used))
+                                 tuple(strategies_used), counts["promising"])
 
     def out_of_time() -> bool:
         return time.monotonic() - start > deadline
@@ -731,88 +780,117 @@ def search_terminations(
     subsets += [sub for sub in _subsets(K, max_subsets) if sub not in subsets]
     constant = all(e.num.degree() <= 0 and e.den.degree() <= 0 for row in Zr.rows for e in row)
     resonators = (0.5,) if constant else (0.0, 0.5)
-    for point, s0 in enumerate(_trial_points(list(hints), grid, _axis_frequencies(Zr))):
+    points, hint_count = _trial_points(list(hints), grid, _axis_frequencies(Zr))
+    values: dict[complex, np.ndarray] = {}
+    for s0 in points:
+        M = Zr.numpy_at(s0)
+        if np.all(np.isfinite(M)):
+            values[s0] = M
+    # tasks (point, port subset): those near the hints first, then the others; within each group
+    # the most negative dual bound first (rounded to two digits: no last-bit reordering); a
+    # subset whose bound is >= 0 cannot have every port deliver power and is dropped
+    scored = []
+    for k, p in enumerate(p for p in points if p in values):
         if out_of_time():
             return report(None, False)
-        M = Zr.numpy_at(s0)
-        if not np.all(np.isfinite(M)):
-            continue
-        points_tried.append(s0)
-        clamp = _clamp(M)
-        real = s0.imag == 0
+        points_tried.append(p)
         for number, subset in enumerate(subsets):
-            if out_of_time():
-                return report(None, False)
-            rng = np.random.default_rng([seed, point, number])     # independent of what was skipped before
             if subset not in subsets_tried:
                 subsets_tried.append(subset)
-            idx = [i for k in subset for i in blocks[k]]
-            sub_blocks = _renumber([blocks[k] for k in subset])
-            Msub = M[np.ix_(idx, idx)]
-            scale = max(1e-300, float(np.abs(Msub).max()))
-            bound, dual_vector = _dual(_block_forms(Msub, sub_blocks))
-            if bound >= -1e-9 * scale:
-                continue                       # no velocity makes every port of the subset deliver power
-            similar = None
-            if similarity is not None:
-                D = similarity(s0)
-                similar = D[idx] if D is not None and np.all(np.isfinite(D)) and np.all(D != 0) else None
-            designs = 0
-            seen: list[np.ndarray] = []
-            for origin, v in _candidates(Msub, sub_blocks, rng, restarts, real, dual_vector if K > 1 else None, similar):
-                if out_of_time():
-                    return report(None, False)
-                support = _support(v, sub_blocks)
-                if not support:
+            idx = [i for b in subset for i in blocks[b]]
+            Msub = values[p][np.ix_(idx, idx)]
+            bound, _ = _dual(_block_forms(Msub, _renumber([blocks[b] for b in subset])))
+            relative = bound / max(1e-300, float(np.abs(Msub).max()))
+            if relative < -1e-9:
+                scored.append((points.index(p) >= hint_count, float(f"{relative:.2g}"), k, number, p))
+    tasks = [(p, number) for *_, number, p in sorted(scored, key=lambda t: t[:4])]
+    counts["promising"] = len(tasks)
+    for s0, number in tasks:
+        subset = subsets[number]
+        point = points.index(s0)
+        M = values[s0]
+        clamp = _clamp(M)
+        real = s0.imag == 0
+        kappa = s0.real / s0.imag if not real else 0.0
+        if out_of_time():
+            return report(None, False)
+        rng = np.random.default_rng([seed, point, number])     # independent of what was skipped before
+        idx = [i for k in subset for i in blocks[k]]
+        sub_blocks = _renumber([blocks[k] for k in subset])
+        Msub = M[np.ix_(idx, idx)]
+        scale = max(1e-300, float(np.abs(Msub).max()))
+        bound, dual_vector = _dual(_block_forms(Msub, sub_blocks))
+        if bound >= -1e-9 * scale:
+            continue                       # no velocity makes every port of the subset deliver power
+        similar = None
+        if similarity is not None:
+            D = similarity(s0)
+            similar = D[idx] if D is not None and np.all(np.isfinite(D)) and np.all(D != 0) else None
+        designs = polished = 0
+        seen: list[np.ndarray] = []
+        queue = []
+        for order, (origin, v) in enumerate(_candidates(Msub, sub_blocks, rng, restarts, real,
+                                                        dual_vector if K > 1 else None, similar)):
+            support = _support(v, sub_blocks)
+            if not support:
+                continue
+            keep = [i for k in support for i in sub_blocks[k]]
+            forms = _port_forms(Msub[np.ix_(keep, keep)], _renumber([sub_blocks[k] for k in support]))
+            u = v[keep] / np.linalg.norm(v[keep])
+            start_value = _sector_powers(forms, u, kappa).max() / scale
+            queue.append((float(f"{start_value:.2g}"), order, origin, support, keep, forms, u))
+        queue.sort(key=lambda item: item[:2])      # most promising first (rounded: no last-bit ties)
+        for _, _, origin, support, keep, forms, u in queue:
+            if out_of_time():
+                return report(None, False)
+            if not _sector_powers(forms, u, kappa).max() < -1e-6 * scale:
+                if polished >= 2:
                     continue
-                keep = [i for k in support for i in sub_blocks[k]]
-                forms = _block_forms(Msub[np.ix_(keep, keep)], _renumber([sub_blocks[k] for k in support]))
-                u = v[keep] / np.linalg.norm(v[keep])
-                if not _powers(forms, u).max() < -1e-6 * scale:
-                    u = _polish(forms, u, real, scale)
-                    if not _powers(forms, u).max() < -1e-6 * scale:
-                        continue
-                vfull = np.zeros(len(idx), dtype=complex)
-                vfull[keep] = u
-                if any(abs(np.vdot(vfull, old)) > 0.999 for old in seen):
+                polished += 1
+                u = _polish(forms, u, real, scale, kappa)
+                if not _sector_powers(forms, u, kappa).max() < -1e-6 * scale:
                     continue
-                seen.append(vfull)
-                counts["candidates"] += 1
-                wfull = -(Msub @ vfull)
-                found = False
-                for resonator in resonators:
-                    parts = {}
-                    for k in support:
-                        blk = list(sub_blocks[k])
-                        design = _port_design(vfull[blk], wfull[blk], s0, resonator)
-                        if design is None:
-                            break
-                        parts[subset[k]] = design
-                    if len(parts) != len(support):
+            vfull = np.zeros(len(idx), dtype=complex)
+            vfull[keep] = u
+            if any(abs(np.vdot(vfull, old)) > 0.999 for old in seen):
+                continue
+            seen.append(vfull)
+            counts["candidates"] += 1
+            wfull = -(Msub @ vfull)
+            found = False
+            for resonator in resonators:
+                parts = {}
+                for k in support:
+                    blk = list(sub_blocks[k])
+                    design = _port_design(vfull[blk], wfull[blk], s0, resonator)
+                    if design is None:
                         break
-                    found = True
-                    label = f"{origin}{', series resonator' if resonator else ''}"
-                    for mode, digits in _ROUNDINGS:
-                        if out_of_time():
-                            return report(None, False)
-                        terms = [_termination(*parts[k], digits, mode) if k in parts else clamp * sp.eye(len(blocks[k]))
-                                 for k in range(K)]
-                        cert = verify(terms, s0, f"{mode} rounding to {digits + 1} digits ({label})")
-                        if cert is not None:
-                            return report(cert, False)
-                        # Newton step on the design point: aim the rounded root back at s0
-                        shifted = _newton_point(Zr, terms, blocks, s0)
-                        if shifted is not None and mode == "entrywise" and digits == _ROUNDINGS[0][1]:
-                            polished = _redesign(Zr, shifted, idx, subset, sub_blocks, support, keep, u, resonator)
-                            if polished is not None:
-                                terms = [_termination(*polished[k], digits, mode) if k in polished
-                                         else clamp * sp.eye(len(blocks[k])) for k in range(K)]
-                                cert = verify(terms, s0, f"Newton-corrected design point, {mode} rounding to {digits + 1} digits ({label})")
-                                if cert is not None:
-                                    return report(cert, False)
-                designs += found
-                if designs >= 2:
+                    parts[subset[k]] = design
+                if len(parts) != len(support):
                     break
+                found = True
+                label = f"{origin}{', series resonator' if resonator else ''}"
+                for mode, digits in _ROUNDINGS:
+                    if out_of_time():
+                        return report(None, False)
+                    terms = [_termination(*parts[k], digits, mode) if k in parts else clamp * sp.eye(len(blocks[k]))
+                             for k in range(K)]
+                    cert = verify(terms, s0, f"{mode} rounding to {digits + 1} digits ({label})")
+                    if cert is not None:
+                        return report(cert, False)
+                    # Newton step on the design point: aim the rounded root back at s0
+                    shifted = _newton_point(Zr, terms, blocks, s0)
+                    if shifted is not None and mode == "entrywise" and digits == _ROUNDINGS[0][1]:
+                        polished = _redesign(Zr, shifted, idx, subset, sub_blocks, support, keep, u, resonator)
+                        if polished is not None:
+                            terms = [_termination(*polished[k], digits, mode) if k in polished
+                                     else clamp * sp.eye(len(blocks[k])) for k in range(K)]
+                            cert = verify(terms, s0, f"Newton-corrected design point, {mode} rounding to {digits + 1} digits ({label})")
+                            if cert is not None:
+                                return report(cert, False)
+            designs += found
+            if designs >= 2:
+                break
     return report(None, True)
 
 
