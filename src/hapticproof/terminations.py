@@ -214,7 +214,8 @@ class TerminationSearch:
     """What a termination search did: the certificate (or None), the time it took against its
     deadline, whether it tried everything before the deadline (``complete``), the trial points
     ``s0``, the port subsets, how many float candidates it designed and how many it verified
-    exactly, the restarts per point and the rounding strategies."""
+    exactly, the restarts per point, the rounding strategies, and how many (point, subset) pairs
+    the port-power screen left (``promising``: the subnetwork's Hermitian part not PSD there)."""
 
     certificate: InstabilityCertificate | None
     seconds: float
@@ -230,7 +231,7 @@ class TerminationSearch:
 
     def summary(self) -> str:
         tried = (f"tried {len(self.points)} trial points s0 (w from {self._range()}) x {len(self.subsets)} port subsets "
-                 f"({self.promising} with a velocity making every port deliver power possible), "
+                 f"({self.promising} not excluded by the port-power screen), "
                  f"{self.candidates} candidate terminations, {self.verifications} exact verifications "
                  f"({self.restarts} random restarts per point; roundings {', '.join(self.strategies) or 'none'})")
         if self.certificate is not None:
@@ -787,8 +788,9 @@ def search_terminations(
         if np.all(np.isfinite(M)):
             values[s0] = M
     # tasks (point, port subset): those near the hints first, then the others; within each group
-    # the most negative dual bound first (rounded to two digits: no last-bit reordering); a
-    # subset whose bound is >= 0 cannot have every port deliver power and is dropped
+    # the most negative Hermitian part of the subnetwork first (the dual bound at equal port
+    # weights, one eigenvalue; rounded to two digits: no last-bit reordering); a subset whose
+    # Hermitian part is PSD cannot have every port deliver power and is dropped
     scored = []
     for k, p in enumerate(p for p in points if p in values):
         if out_of_time():
@@ -799,8 +801,8 @@ def search_terminations(
                 subsets_tried.append(subset)
             idx = [i for b in subset for i in blocks[b]]
             Msub = values[p][np.ix_(idx, idx)]
-            bound, _ = _dual(_block_forms(Msub, _renumber([blocks[b] for b in subset])))
-            relative = bound / max(1e-300, float(np.abs(Msub).max()))
+            low = np.linalg.eigvalsh((Msub + Msub.conj().T) / 2)[0]
+            relative = low / max(1e-300, float(np.abs(Msub).max()))
             if relative < -1e-9:
                 scored.append((points.index(p) >= hint_count, float(f"{relative:.2g}"), k, number, p))
     tasks = [(p, number) for *_, number, p in sorted(scored, key=lambda t: t[:4])]
