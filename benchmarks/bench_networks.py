@@ -11,10 +11,17 @@ verdicts, and their accuracy against a dense 50-digit frequency sweep.
    ``x = w^2``). Target: < 1 s each. Accuracy: the smallest eigenvalue of the Hermitian part of
    Z'(jw) on a dense log grid (mpmath, 50 digits) must be >= 0 for every "absolutely stable"
    verdict, and negative at the exact witness frequency of every "potentially unstable" one.
+3. The slowest decisions (issue 10): whole ``absolute_stability`` verdicts with the termination
+   search on (deadline 10 s) for the cases that used to take long -- a positive-real
+   non-symmetrizable 4x4 (it ran a 170 s search before positive realness was decided first),
+   the reciprocal non-passive 3-DOF network of the test suite (Youla plus a certificate), the
+   Table 1 teleoperators (k_vmyz = 60: Youla; 6: not symmetrizable, certificate by search) and
+   a non-symmetrizable 4x4 whose search finds nothing (it must end by its deadline and say what
+   it tried). Seconds per decision (median of ``--repeats``).
 
 Writes benchmarks/results/bench_networks.{json,png}. Quote medians.
 
-Run:  python benchmarks/bench_networks.py [--matrices 20] [--repeats 5] [--grid 400]
+Run:  python benchmarks/bench_networks.py [--matrices 20] [--repeats 5] [--grid 400] [--only slowest]
 """
 
 from __future__ import annotations
@@ -35,7 +42,7 @@ import sympy as sp
 
 import hapticproof.derivations.bilateral_3dof as paper
 from hapticproof.evidence import Decision
-from hapticproof.networks import absolute_stability, symmetrization_conditions
+from hapticproof.networks import absolute_stability, symmetrization_conditions, symmetrize
 from hapticproof.symbols import s
 
 RESULTS = Path(__file__).parent / "results"
@@ -93,7 +100,7 @@ def random_networks(count: int, grid: int, seed: int = 2024) -> dict:
         start = time.perf_counter()
         verdict = absolute_stability(Z, search=False)
         exact_seconds = time.perf_counter() - start
-        Zp = verdict.symmetrization.zprime()
+        Zp = symmetrize(Z).zprime()             # Z itself when positive realness decided first
         f = sp.lambdify(s, Zp, "mpmath")
         start = time.perf_counter()
         freqs = [0.0] + list(np.logspace(-3, 3, grid))
@@ -104,7 +111,8 @@ def random_networks(count: int, grid: int, seed: int = 2024) -> dict:
         if verdict.decision == Decision.PROVED:
             row["agrees"] = bool(sweep >= -mpmath.mpf(10) ** -40)
         else:
-            witness = verdict.positive_real.hermitian.witness if verdict.positive_real else None
+            decided = verdict.zprime or verdict.positive_real
+            witness = decided.hermitian.witness if decided is not None else None
             if witness:
                 w = float(mpmath.sqrt(mpmath.mpf(sp.Rational(witness["x"]).p) / sp.Rational(witness["x"]).q))
                 at_witness = min_eig_hermitian(f, w)
@@ -129,6 +137,41 @@ def random_networks(count: int, grid: int, seed: int = 2024) -> dict:
         "grid_points": grid + 1,
         "target_seconds": 1.0,
     }
+
+
+def slowest_cases() -> dict[str, tuple[sp.Matrix, tuple[int, ...] | None]]:
+    """The decisions that used to be slow (issue 10), as exact matrices."""
+    pr_nonsym = sp.Matrix([[6 + 1 / (s + 1), 1, 0, 1 / (s + 2)], [2 / (s + 1), 5, 1, 0],
+                           [0, -1, 7, 1], [1, 0, 2 / (s + 3), 6]])
+    undecided = sp.Matrix([[(8 * s + 77) / (s + 10), 1, (s**2 + 2 * s + 5) / (s + 2), (3 * s + 1) / (s + 2)],
+                           [(s + 9) / (s + 5), (4 * s + 15) / (s + 3), (3 * s + 15) / (s + 3), 2],
+                           [0, 3 / (s + 1), (5 * s + 9) / (s + 2), -1],
+                           [(-14 * s - 83) / (2 * s**2 + 21 * s + 10), (3 * s + 7) / (s + 3), -2 * s / (2 * s**2 + 3 * s + 1),
+                            (5 * s**2 + 14 * s + 6) / (s**2 + 3 * s)]])
+    return {
+        "positive-real non-symmetrizable 4x4": (pr_nonsym, None),
+        "reciprocal non-passive 3-DOF 2-port": (sp.diag(sp.Matrix([[0, 0, 0], [0, 1, 2], [0, 2, 1]]), sp.eye(3)), (3, 3)),
+        "Table 1, k_vmyz = 60": (paper.table1_impedance(60), (3, 3)),
+        "Table 1, k_vmyz = 6": (paper.table1_impedance(6), (3, 3)),
+        "non-symmetrizable 4x4, nothing found": (undecided, None),
+    }
+
+
+def slowest_decisions(repeats: int, deadline: float = 10.0) -> dict:
+    out = {}
+    for name, (Z, ports) in slowest_cases().items():
+        times, verdict = [], None
+        for _ in range(repeats):
+            start = time.perf_counter()
+            verdict = absolute_stability(Z, ports=ports, deadline=deadline)
+            times.append(time.perf_counter() - start)
+        out[name] = {"seconds_median": statistics.median(times), "seconds_max": max(times),
+                     "decision": verdict.decision.value, "method": verdict.method,
+                     "certificate": verdict.certificate is not None,
+                     "search": verdict.search.summary() if verdict.search is not None else None}
+        print(f"  {name}: {out[name]['seconds_median']:.2f} s, {verdict.decision.value} ({verdict.method})"
+              + (f"; search: {out[name]['search'][:90]}" if out[name]["search"] else ""))
+    return {"cases": out, "deadline": deadline}
 
 
 def plot(result: dict, path: Path) -> None:
@@ -162,7 +205,14 @@ def main() -> None:
     parser.add_argument("--matrices", type=int, default=20)
     parser.add_argument("--repeats", type=int, default=5)
     parser.add_argument("--grid", type=int, default=400)
+    parser.add_argument("--only", choices=("slowest",), help="run only the slowest-decisions section")
     args = parser.parse_args()
+    print("slowest decisions (absolute stability, search deadline 10 s) ...")
+    slowest = slowest_decisions(1 if args.only else min(args.repeats, 3))
+    if args.only:
+        RESULTS.mkdir(exist_ok=True)
+        (RESULTS / "bench_networks_slowest.json").write_text(json.dumps(slowest, indent=2, default=str))
+        return
     print("symbolic case study ...")
     symbolic = symbolic_case_study(args.repeats)
     print(f"  median {symbolic['seconds_total_median']:.2f} s (conditions {symbolic['seconds_conditions_median']:.2f} s, "
@@ -172,7 +222,7 @@ def main() -> None:
     print(f"  exact verdict median {random_result['seconds_exact_median']:.3f} s (max {random_result['seconds_exact_max']:.3f} s); "
           f"sweep median {random_result['seconds_sweep_median']:.1f} s; all agree: {random_result['all_agree']}; "
           f"verdicts {random_result['verdicts']}")
-    result = {"symbolic": symbolic, "random": random_result}
+    result = {"symbolic": symbolic, "random": random_result, "slowest": slowest}
     RESULTS.mkdir(exist_ok=True)
     (RESULTS / "bench_networks.json").write_text(json.dumps(result, indent=2, default=str))
     plot(result, RESULTS / "bench_networks.png")

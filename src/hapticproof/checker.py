@@ -16,7 +16,10 @@ from its JSON alone, importing nothing of the kernel, with other methods:
   three-term recurrence and checked as sign certificates, up to the degree limit;
 * **roots** certificates -- the bilinear map ``z = (1 + s)/(1 - s)`` and a **Routh-Hurwitz**
   array (after removing the imaginary-axis roots found as real roots of
-  ``gcd(Re R(jw), Im R(jw))``), instead of complex root isolation.
+  ``gcd(Re R(jw), Im R(jw))``), instead of complex root isolation;
+* **determinant** certificates (destabilizing terminations of an n-port) -- ``det(Z + T)``
+  against its claimed numerator/denominator by exact evaluation at more points than the degree
+  of the identity, then the numerator's roots certificate (a zero in ``Re s > 0``).
 
 ``check_report`` walks a saved JSON report (audit or derive) and re-verifies every certificate
 it contains, saying which entries carry none (not re-verifiable).
@@ -140,7 +143,10 @@ def _eval_transfer(entry: dict, z: _G) -> _G:
     d = _horner(den, z)
     if d.is_zero():
         raise _Fail("the witness is a pole of the transfer function")
-    return _horner(num, z) / d
+    value = _horner(num, z) / d
+    if "factor" in entry:                    # a Gaussian-rational constant factor (e.g. j)
+        value = value * _G(_q(entry["factor"][0]), _q(entry["factor"][1]))
+    return value
 
 
 # ---------------------------------------------------------------------------------------------
@@ -607,8 +613,62 @@ def _check_chebyshev(cert: dict) -> list[str]:
     return _check_sign(_as_sign_certificate(cert)) + ["converted from the Chebyshev basis"]
 
 
+def _check_determinant(cert: dict) -> list[str]:
+    """``det M(s) = numerator/denominator`` (lowest terms) for the rational matrix ``M`` (entries
+    ``{num, den}`` in ``s``), proved by exact evaluation at more points than the degree of the
+    polynomial identity allows; then the roots certificate of the numerator (Routh-Hurwitz) and,
+    when ``rhp_zero`` is claimed, a zero of ``det M`` in ``Re s > 0``."""
+    num, den = _poly(cert["numerator"]), _poly(cert["denominator"])
+    if num.is_zero() or den.is_zero():
+        raise _Fail("the determinant is identically zero (or has a zero denominator)")
+    if num.gcd(den).degree() > 0:
+        raise _Fail("numerator and denominator are not coprime")
+    rows = [[(_poly(e["num"]), _poly(e["den"])) for e in row] for row in cert["matrix"]]
+    m = len(rows)
+    if any(len(row) != m for row in rows):
+        raise _Fail("the matrix is not square")
+    lcms, degree = [], 0
+    for row in rows:
+        lcm = flint.fmpq_poly([1])
+        for _, d in row:
+            lcm = lcm * d / lcm.gcd(d)
+        lcms.append(lcm)
+        present = [n.degree() + lcm.degree() - d.degree() for n, d in row if not n.is_zero()]
+        if not present:
+            raise _Fail("a zero row: the determinant vanishes identically")
+        degree += max(present)
+    product = flint.fmpq_poly([1])
+    for lcm in lcms:
+        product *= lcm
+    if max(degree + den.degree(), num.degree() + product.degree()) > 4 * _max_degree():
+        raise _Skip("determinant identity above the checker's degree limit")
+    # det(M) * product is a polynomial of degree <= `degree`; the identity
+    # det(M) * product * den - num * product = 0 has degree <= bound
+    bound = max(degree + den.degree(), num.degree() + product.degree())
+    checked, point = 0, Fraction(0)
+    while checked <= bound:
+        point += 1
+        if _val(product, point) == 0 or _val(den, point) == 0:
+            continue
+        M = [[_G(_val(n, point) / _val(d, point)) for n, d in row] for row in rows]
+        if _det(M).re * _val(den, point) != _val(num, point):
+            raise _Fail(f"det M differs from numerator/denominator at s = {point}")
+        checked += 1
+    notes = [f"det M = numerator/denominator at {checked} points (identity proved by degree)"]
+    roots = cert.get("roots")
+    if roots is not None:
+        if _poly(roots["polynomial"]) != num:
+            raise _Fail("the roots certificate is not about the numerator")
+        notes += _check_roots(roots)
+        if cert.get("rhp_zero") and not roots["outside"] > 0:
+            raise _Fail("no zero in Re s > 0 is certified")
+        if cert.get("rhp_zero"):
+            notes.append("a zero of det M in Re s > 0")
+    return notes
+
+
 _CHECKS = {"sign": _check_sign, "psd": _check_psd, "roots": _check_roots, "residue": _check_residue,
-           "constant-psd": _check_constant_psd, "chebyshev-sign": _check_chebyshev}
+           "constant-psd": _check_constant_psd, "chebyshev-sign": _check_chebyshev, "determinant": _check_determinant}
 
 
 def check_certificate(cert: dict) -> CheckResult:

@@ -12,10 +12,12 @@ The continuous-time counterpart of :mod:`unitcircle` for *matrices*: entries are
 * **PSD over frequency.** A Hermitian matrix is PSD iff *all* its principal minors are >= 0,
   equivalently iff the coefficients ``E_k`` of its characteristic polynomial (sums of the
   principal minors of order ``k``) are all >= 0 -- never the leading minors alone
-  (:func:`decide_psd`, decisions by root isolation with an exact rational witness ``x``).
-* **Poles.** Imaginary-axis poles are found exactly (``gcd`` of the real and imaginary parts
-  of the denominator on ``s = jw``); the other poles are placed in the open half planes by
-  certified complex root isolation (:func:`pole_report`).
+  (:func:`decide_psd`). Every sign question goes to the decision kernel
+  (:mod:`hapticproof.kernel`), which answers with a certificate that the independent checker
+  re-verifies; a disproof carries a rational frequency ``w`` and the exact matrix there.
+* **Poles.** One root certificate of the lcm of the denominators places every pole: exact
+  imaginary-axis roots with multiplicities, a certified count in ``Re s > 0``
+  (:func:`pole_report`, :func:`hapticproof.kernel.locate_roots`).
 
 >>> import sympy as sp
 >>> from hapticproof.symbols import s
@@ -29,19 +31,20 @@ from __future__ import annotations
 
 import itertools
 import math
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
-from fractions import Fraction
 from typing import Any
 
 import flint
 import sympy as sp
 
+from hapticproof import kernel
+from hapticproof.certify import canonical_fraction
 from hapticproof.errors import InputFormatError
 from hapticproof.evidence import Decision, Evidence, Method, Outcome
+from hapticproof.kernel import BoundaryRoot, RootCertificate, locate_roots, poly_json
 from hapticproof.realroots import as_fmpq, real_roots, to_rational
 from hapticproof.symbols import s as S_SYM
-from hapticproof.certify import canonical_fraction
 
 __all__ = [
     "RationalFunction",
@@ -53,12 +56,10 @@ __all__ = [
     "hermitian_minors",
     "minors_from_polynomial_matrix",
     "decide_psd",
-    "decide_nonnegative",
-    "rational_frequency",
+    "constant_psd",
     "AxisPole",
     "PoleReport",
     "pole_report",
-    "rhp_roots",
     "HalflineMinimum",
     "minimise_halfline",
     "matrix_psd",
@@ -191,6 +192,40 @@ class RationalFunction:
             num = mpmath.polyval([mpmath.mpf(int(a.p)) / int(a.q) for a in reversed(self.num.coeffs())] or [0], z)
             den = mpmath.polyval([mpmath.mpf(int(a.p)) / int(a.q) for a in reversed(self.den.coeffs())], z)
             return num / den
+
+    def axis_value(self, omega: Any) -> tuple[flint.fmpq, flint.fmpq]:
+        """Exact ``(Re, Im)`` of ``f(j w)`` at a rational ``w`` (``ZeroDivisionError`` at a pole).
+
+        >>> RationalFunction.from_sympy(1/(S_SYM + 1)).axis_value(1)      # 1/(1 + j) = (1 - j)/2
+        (1/2, -1/2)
+        """
+        w = as_fmpq(omega)
+        nr, ni = (part(w) for part in _axis_parts(self.num))
+        dr, di = (part(w) for part in _axis_parts(self.den))
+        mod2 = dr * dr + di * di
+        if mod2 == 0:
+            raise ZeroDivisionError(f"pole at s = j*{omega}")
+        return (nr * dr + ni * di) / mod2, (ni * dr - nr * di) / mod2
+
+    def axis_form(self) -> tuple[flint.fmpq_poly, flint.fmpq_poly, flint.fmpq_poly]:
+        """``(a, b, d)``: polynomials in ``x = w**2`` with ``Re f(jw) = a/d``, ``Im f(jw) = w b/d``
+        and ``d = |den(jw)|**2 >= 0`` (zero only at imaginary-axis poles).
+
+        >>> a, b, d = RationalFunction.from_sympy(9/(S_SYM + 3)).axis_form()
+        >>> [p.coeffs() for p in (a, b, d)]            # Re = 27/(x + 9), Im = -9 w/(x + 9)
+        [[27], [-9], [9, 1]]
+        """
+        nr, ni = _axis_parts(self.num)
+        dr, di = _axis_parts(self.den)
+        even = nr * dr + ni * di
+        odd = ni * dr - nr * di
+        d = dr * dr + di * di
+        odd_over_w = flint.fmpq_poly(odd.coeffs()[1:]) if not odd.is_zero() else _ZERO
+        return even_to_x(even, "omega"), even_to_x(odd_over_w, "omega"), even_to_x(d, "omega")
+
+    def to_json(self) -> dict[str, list[str]]:
+        """``{'num': [...], 'den': [...]}``: exact coefficients, lowest degree first."""
+        return {"num": poly_json(self.num), "den": poly_json(self.den)}
 
     @property
     def relative_degree(self) -> int:
@@ -350,6 +385,32 @@ class RationalMatrix:
         with mpmath.workdps(dps):
             return mpmath.matrix([[e.complex_at(point, dps) for e in row] for row in self.rows])
 
+    def axis_value(self, omega: Any) -> sp.Matrix:
+        """The exact matrix ``Z(j w)`` at a rational ``w`` (Gaussian rationals)."""
+        out = []
+        for row in self.rows:
+            values = []
+            for e in row:
+                re, im = e.axis_value(omega)
+                values.append(to_rational(re) + sp.I * to_rational(im))
+            out.append(values)
+        return sp.Matrix(out)
+
+    def hermitian_at(self, omega: Any) -> sp.Matrix:
+        """``Z(jw) + Z(jw)^H`` exactly at a rational ``w``.
+
+        >>> RationalMatrix.from_sympy(sp.Matrix([[1, 3], [0, 1]])).hermitian_at(1)
+        Matrix([
+        [2, 3],
+        [3, 2]])
+        """
+        M = self.axis_value(omega)
+        return (M + M.H).applyfunc(sp.expand)
+
+    def transfer_json(self) -> dict[str, Any]:
+        """The matrix for the independent checker: ``{'variable': 's', 'entries': [[{num, den}]]}``."""
+        return {"variable": "s", "entries": [[e.to_json() for e in row] for row in self.rows]}
+
     def numpy_at(self, point: complex):
         """The matrix at a complex point in double precision (numpy)."""
         import numpy as np
@@ -438,12 +499,16 @@ class HermitianMinors:
     ``minors[S](x)`` equals ``scale[len(S)](x)`` times the true minor of order ``|S|`` of
     ``(Z(jw) + Z(jw)^H)/2``; every ``scale[k]`` is >= 0 on ``[0, oo)`` and vanishes only at
     imaginary-axis poles (where the Hermitian part is undefined), so signs agree wherever the
-    minor is defined.
+    minor is defined. ``evaluate`` (optional) returns the exact matrix ``Z(jw) + Z(jw)^H`` at a
+    witness ``{'x', 'omega'}`` and ``transfer`` the original matrix for the independent checker
+    (:func:`hapticproof.kernel.decide_psd`).
     """
 
     n: int
     minors: Mapping[tuple[int, ...], flint.fmpq_poly]
     scale: Mapping[int, flint.fmpq_poly]
+    evaluate: Callable[[Mapping[str, Any]], sp.Matrix | None] | None = None
+    transfer: Mapping[str, Any] | None = None
 
     def coefficient(self, k: int) -> flint.fmpq_poly:
         """``E_k``: the sum of the principal minors of order ``k`` (scaled by ``scale[k]``)."""
@@ -466,7 +531,9 @@ class HermitianMinors:
 
 
 def minors_from_polynomial_matrix(
-    P: Sequence[Sequence[flint.fmpq_poly]], scale: flint.fmpq_poly, variable: str
+    P: Sequence[Sequence[flint.fmpq_poly]], scale: flint.fmpq_poly, variable: str,
+    evaluate: Callable[[Mapping[str, Any]], sp.Matrix | None] | None = None,
+    transfer: Mapping[str, Any] | None = None,
 ) -> HermitianMinors:
     """Hermitian minors from a polynomial matrix ``P = scale * H`` whose minors are even in
     ``variable`` (``'s'`` for a para-Hermitian ``Phi(s)``, ``'omega'`` for a real symmetric
@@ -475,7 +542,7 @@ def minors_from_polynomial_matrix(
     raw = principal_minors(P)
     minors = {k: even_to_x(v, variable) for k, v in raw.items()}
     base = even_to_x(scale, variable)
-    return HermitianMinors(n, minors, {k: base**k for k in range(1, n + 1)})
+    return HermitianMinors(n, minors, {k: base**k for k in range(1, n + 1)}, evaluate, transfer)
 
 
 def hermitian_minors(Z: RationalMatrix) -> HermitianMinors:
@@ -493,141 +560,113 @@ def hermitian_minors(Z: RationalMatrix) -> HermitianMinors:
     # 2 Phi(s) L(s) L(-s) = P(s) L(-s) + P(-s)^T L(s), since P(-s) = L(-s) Z(-s)
     Phi = [[(P[i][j] * Lm + _reflect(P[j][i]) * L) / 2 for j in range(n)] for i in range(n)]
     scale2 = L * Lm  # = |L(jw)|^2 on the axis
-    return minors_from_polynomial_matrix(Phi, scale2, "s")
+    return minors_from_polynomial_matrix(Phi, scale2, "s", evaluate=_hermitian_evaluator(Z), transfer=Z.transfer_json())
+
+
+def _hermitian_evaluator(Z: RationalMatrix) -> Callable[[Mapping[str, Any]], sp.Matrix | None]:
+    def evaluate(witness: Mapping[str, Any]) -> sp.Matrix | None:
+        if "omega" not in witness:
+            return None
+        try:
+            return Z.hermitian_at(witness["omega"])
+        except ZeroDivisionError:  # pragma: no cover - a witness is never an axis pole
+            return None
+
+    return evaluate
 
 
 # ---------------------------------------------------------------------------------------------
-# decisions on [0, oo)
+# decisions (all through the decision kernel, with certificates)
 # ---------------------------------------------------------------------------------------------
 
 
-def _negative_interval(p: flint.fmpq_poly, lo: Any, hi: Any) -> tuple[flint.fmpq, flint.fmpq | None] | None:
-    """An open interval ``(a, b)`` inside ``[lo, hi]`` (``hi`` None: unbounded) on which ``p < 0``.
-
-    The real roots of the squarefree part are isolated and refined to a small relative width;
-    ``p`` has constant sign on each gap between consecutive isolating intervals.
-    """
-    if p.is_zero():
-        return None
-    lo_q = as_fmpq(lo)
-    hi_q = None if hi is None else as_fmpq(hi)
-    sqf = flint.fmpq_poly(1)
-    for f, _ in p.numer().factor_squarefree()[1]:
-        sqf *= flint.fmpq_poly(f)
-    roots = []
-    for r in real_roots(sqf, lo_q, hi_q):
-        scale = abs(r.lo) + abs(r.hi) + 1
-        roots.append(r.refine(scale / 10**6))
-    edges: list[tuple[flint.fmpq, flint.fmpq | None]] = []
-    left = lo_q
-    for r in roots:
-        if left < r.lo:
-            edges.append((left, r.lo))
-        left = r.hi
-    if hi_q is None:
-        edges.append((left, None))
-    elif left < hi_q:
-        edges.append((left, hi_q))
-    for a, b in edges:
-        mid = a + 1 if b is None else (a + b) / 2
-        if p(mid) < 0:
-            return a, b
-    return None
-
-
-def rational_frequency(p: flint.fmpq_poly, interval: tuple[flint.fmpq, flint.fmpq | None]) -> sp.Rational | None:
-    """The simplest rational ``w`` (smallest denominator first) with ``p(w**2) < 0`` and ``w**2`` in
-    the open ``interval`` of ``x`` where ``p < 0`` (exactly checked)."""
-    a, b = interval
-    lo = math.sqrt(max(float(a), 0.0))
-    hi = math.sqrt(float(b)) if b is not None else 2 * lo + 1.0
-    for den in (1, 2, 4, 5, 10, 20, 100, 1000, 10**4, 10**6, 10**9):
-        start = math.floor(lo * den)
-        for num in range(start, start + 4):
-            w = Fraction(num, den)
-            if not lo < w < hi and not (b is None and w > lo):
-                continue
-            q = flint.fmpq(w.numerator, w.denominator)
-            x = q * q
-            if x > a and (b is None or x < b) and p(x) < 0:
-                return sp.Rational(w.numerator, w.denominator)
-    return None
-
-
-def decide_nonnegative(p: flint.fmpq_poly, what: str = "polynomial") -> Outcome:
-    """Exact decision of ``p(x) >= 0`` on ``[0, oo)`` with a rational witness ``x`` (and a rational
-    frequency ``w`` when one is found quickly).
-
-    >>> decide_nonnegative(flint.fmpq_poly([1, -2, 1])).decision.value      # (x - 1)**2
-    'proved'
-    >>> out = decide_nonnegative(flint.fmpq_poly([-1, 1]))                   # x - 1
-    >>> out.decision.value, out.witness['x'] < 1
-    ('disproved', True)
-    """
-    if p.is_zero():
-        return Outcome(Decision.PROVED, Evidence(Method.CANONICAL_FORM, facts={what: "identically 0"}),
-                       f"{what} is identically zero")
-    gap = _negative_interval(p, 0, None)
-    if gap is None:
-        touches = [r for r in real_roots(p, 0, None)]
-        facts = {"zeros_in_x": [str(r) for r in touches]} if touches else {}
-        return Outcome(Decision.PROVED, Evidence(Method.ROOT_ISOLATION, facts=facts),
-                       f"{what} >= 0 for all x = w^2 >= 0")
-    a, b = gap
-    x0 = (a + b) / 2 if b is not None else a + 1
-    witness: dict[str, Any] = {"x": to_rational(x0)}
-    w = rational_frequency(p, gap)
-    if w is not None:
-        witness["omega"] = w
-        witness["x"] = w**2
-    value = to_rational(p(as_fmpq(witness["x"])))
-    return Outcome(Decision.DISPROVED, Evidence(Method.ROOT_ISOLATION, witness=witness, facts={f"{what}(x)": value}),
-                   f"{what} < 0 at x = {witness['x']}")
-
-
-def decide_psd(minors: HermitianMinors, method: str = "charpoly") -> Outcome:
+def decide_psd(minors: HermitianMinors, what: str = "Z(jw) + Z(jw)^H") -> Outcome:
     """Decide exactly whether the Hermitian matrix function is PSD for every ``w`` (every ``x >= 0``).
 
-    ``method='charpoly'`` decides the ``n`` characteristic-polynomial coefficients ``E_k``
-    (sums of principal minors of order ``k``); ``'principal'`` decides every principal minor.
-    Both are necessary and sufficient; the leading minors alone are not. A disproof carries a
-    rational ``x`` (and ``w`` when rational) and the exact negative minors there.
+    The ``n`` characteristic-polynomial coefficients ``E_k`` (sums of the principal minors of
+    order ``k``, scaled by ``scale**k >= 0``) are decided by the decision kernel
+    (:func:`hapticproof.kernel.decide_psd`) on the whole half line ``[0, oo)`` -- ``x = 0``
+    and the stretch before the first root included. Necessary and sufficient; the leading
+    minors alone are not. A disproof carries a rational frequency ``w`` where some ``E_k < 0``,
+    the exact matrix there and a negative principal minor; the certificate lets the independent
+    checker re-verify it (:mod:`hapticproof.checker`).
+
+    >>> Z = RationalMatrix.from_sympy(sp.Matrix([[1 - 2/(S_SYM + 1) + 10/(S_SYM + 10**4)]]))
+    >>> out = decide_psd(hermitian_minors(Z))          # Re Z(j0) = -0.999
+    >>> out.decision.value, out.witness
+    ('disproved', {'x': 0, 'omega': 0})
     """
-    if method not in ("charpoly", "principal"):
-        raise ValueError("method must be 'charpoly' or 'principal'")
-    items = (
-        [((k,), minors.coefficient(k)) for k in range(1, minors.n + 1)]
-        if method == "charpoly"
-        else [(subset, value) for subset, value in sorted(minors.minors.items(), key=lambda kv: (len(kv[0]), kv[0]))]
-    )
-    for key, poly in items:
-        label = f"E_{key[0]}" if method == "charpoly" else f"minor{list(key)}"
-        out = decide_nonnegative(poly, label)
-        if out.decision == Decision.DISPROVED:
-            x0 = out.witness["x"]
-            negative = {}
-            try:
-                for subset in minors.minors:
-                    value = minors.true_minor(subset, x0)
-                    if value < 0:
-                        negative[str(list(subset))] = value
-            except ZeroDivisionError:
-                pass
-            facts = dict(out.evidence.facts)
-            facts["negative_principal_minors"] = negative
-            return Outcome(Decision.DISPROVED, Evidence(Method.ROOT_ISOLATION, witness=out.witness, facts=facts),
-                           f"the Hermitian part is not PSD at x = w^2 = {x0} ({label} < 0)")
-    return Outcome(Decision.PROVED,
-                   Evidence(Method.ROOT_ISOLATION, facts={"method": method, "checked": len(items)}),
-                   f"the Hermitian part is PSD for every real w ({len(items)} polynomials in x = w^2 decided)")
+    coefficients = [minors.coefficient(k) for k in range(1, minors.n + 1)]
+    return kernel.decide_psd(coefficients, 0, None, "x", scale=minors.scale[1], evaluate=minors.evaluate,
+                             transfer=minors.transfer, what=what)
+
+
+def _real_embedding(M: sp.Matrix) -> tuple[flint.fmpq_mat, bool]:
+    """``M`` (Gaussian-rational Hermitian) as a rational symmetric matrix with the same PSD-ness:
+    ``M`` itself when real, else ``[[X, -Y], [Y, X]]`` for ``M = X + jY``."""
+    n = M.rows
+    re = [[as_fmpq(sp.re(M[i, j])) for j in range(n)] for i in range(n)]
+    im = [[as_fmpq(sp.im(M[i, j])) for j in range(n)] for i in range(n)]
+    if all(v == 0 for row in im for v in row):
+        return flint.fmpq_mat(n, n, [v for row in re for v in row]), False
+    big = [[re[i % n][j % n] if (i < n) == (j < n) else (-im[i][j - n] if i < n else im[i - n][j])
+            for j in range(2 * n)] for i in range(2 * n)]
+    return flint.fmpq_mat(2 * n, 2 * n, [v for row in big for v in row]), True
+
+
+def constant_psd(M: Any, what: str = "the matrix") -> Outcome:
+    """Exact PSD decision of a constant Hermitian matrix with (Gaussian) rational entries, through
+    the decision kernel: its characteristic coefficients ``E_k`` are constants whose sign
+    certificates the checker re-verifies; a disproof records the matrix and a negative
+    principal minor. A complex ``M = X + jY`` is decided on ``[[X, -Y], [Y, X]]`` (same
+    eigenvalues, each twice).
+
+    >>> constant_psd(sp.Matrix([[0, 0], [0, -1]])).decision.value    # leading minors 0, 0: not PSD
+    'disproved'
+    >>> constant_psd(sp.Matrix([[1, sp.I], [-sp.I, 1]])).decision.value
+    'proved'
+    """
+    M = sp.Matrix(M)
+    if M.rows != M.cols:
+        raise ValueError("a PSD test needs a square matrix")
+    if any(sp.simplify(M[i, j] - sp.conjugate(M[j, i])) != 0 for i in range(M.rows) for j in range(i, M.rows)):
+        return Outcome(Decision.DISPROVED, Evidence(Method.CANONICAL_FORM, facts={"matrix": M}), f"{what} is not Hermitian")
+    real, embedded = _real_embedding(M)
+    size = real.nrows()
+    char = real.charpoly().coeffs()          # det(l I - M) = sum c_i l^i
+    coefficients = [flint.fmpq_poly([char[size - k] * (-1) ** k]) for k in range(1, size + 1)]
+    matrix = sp.Matrix(size, size, lambda i, j: to_rational(real[i, j]))
+    out = kernel.decide_psd(coefficients, 0, 1, "t", evaluate=lambda witness: matrix, what=what)
+    facts = dict(out.evidence.facts)
+    facts["matrix"] = M
+    if embedded:
+        facts["real_form"] = "[[Re M, -Im M], [Im M, Re M]]"
+    if out.decision == Decision.PROVED:
+        return Outcome(Decision.PROVED, Evidence(Method.CANONICAL_FORM, facts=facts), f"{what} is PSD (every E_k >= 0)")
+    minor = facts.get("negative_principal_minor")
+    return Outcome(Decision.DISPROVED, Evidence(Method.CANONICAL_FORM, witness={"negative_principal_minor": minor}, facts=facts),
+                   f"{what} is not PSD" + (f" (principal minor {minor['rows']} = {minor['value']} < 0)" if minor else ""))
 
 
 def matrix_psd(M: sp.Matrix) -> tuple[bool, dict[str, Any]]:
-    """Exact PSD test of a constant Hermitian SymPy matrix by all principal minors.
+    """Exact PSD test of a constant Hermitian SymPy matrix: ``(holds, negative principal minors)``.
+
+    (Gaussian) rational entries are decided by :func:`constant_psd` (the decision kernel);
+    algebraic entries (square roots of Youla's ``Z'``), which the rational kernel cannot take,
+    by exact SymPy principal minors.
 
     >>> matrix_psd(sp.Matrix([[0, 0], [0, -1]]))[0]      # leading minors 0, 0 but not PSD
     False
+    >>> matrix_psd(sp.Matrix([[1, sp.sqrt(2)], [sp.sqrt(2), 2]]))[0]
+    True
     """
+    M = sp.Matrix(M)
+    if all(sp.re(v).is_Rational and sp.im(v).is_Rational for v in M):
+        out = constant_psd(M)
+        if out.decision == Decision.PROVED:
+            return True, {}
+        minor = out.evidence.facts.get("negative_principal_minor")
+        return False, ({str([i - 1 for i in minor["rows"]]): minor["value"]} if minor else {"hermitian": False})
     n = M.rows
     bad = {}
     for k in range(1, n + 1):
@@ -682,55 +721,14 @@ class AxisPole:
         return f"roots of {self.factor}"
 
 
-def _axis_factors(den: flint.fmpq_poly) -> list[tuple[flint.fmpz_poly, int]]:
-    """Irreducible factors of ``den`` (with multiplicity) whose roots lie on the imaginary axis."""
-    if den.degree() <= 0:
-        return []
-    pr, pi = _axis_parts(den)
-    g = pr.gcd(pi) if not pi.is_zero() else pr
-    if g.degree() <= 0:
-        return []
-    out = []
-    _, factors = den.numer().factor()
-    for f, mult in factors:
-        fq = flint.fmpq_poly(f)
-        fr, fi = _axis_parts(fq)
-        gf = fr.gcd(fi) if not fi.is_zero() else fr
-        if gf.degree() > 0:
-            out.append((f, mult))
-    return out
-
-
-def rhp_roots(p: flint.fmpq_poly, prec: int = 64) -> list[tuple[Any, int]]:
-    """Roots of ``p`` in the open right half plane, certified (acb balls with Re > 0).
-
-    Imaginary-axis roots are removed exactly first, so every other root's real part is nonzero
-    and ball arithmetic decides its sign after enough refinement.
-
-    >>> [float(r.real.mid()) for r, m in rhp_roots(flint.fmpq_poly([-2, 1, 1]))]   # (s - 1)(s + 2)
-    [1.0]
-    """
-    if p.degree() <= 0:
-        return []
-    core = p.numer()
-    for f, mult in _axis_factors(p):
-        for _ in range(mult):
-            core = core // f
-    if core.degree() <= 0:
-        return []
-    old = flint.ctx.prec
-    try:
-        precision = prec
-        while True:
-            flint.ctx.prec = precision
-            roots = core.complex_roots()
-            if all(r.real > 0 or r.real < 0 for r, _ in roots):
-                return [(r, m) for r, m in roots if r.real > 0]
-            precision *= 2
-            if precision > 1 << 16:  # pragma: no cover - would need a root on the axis
-                raise ArithmeticError("could not separate roots from the imaginary axis")
-    finally:
-        flint.ctx.prec = old
+def _axis_pole(root: BoundaryRoot) -> AxisPole:
+    f = root.factor
+    if root.value is not None:
+        return AxisPole("zero")
+    coeffs = f.coeffs()
+    if f.degree() == 2 and coeffs[1] == 0:
+        return AxisPole("pair", sp.Rational(int(coeffs[0]), int(coeffs[2])))
+    return AxisPole("other", factor=str(flint.fmpq_poly(f)))
 
 
 @dataclass(frozen=True, slots=True)
@@ -739,12 +737,15 @@ class PoleReport:
 
     ``rhp`` lists ``(entry, approximate root)`` for certified open-RHP poles; ``axis`` maps each
     imaginary-axis pole to its maximal multiplicity over the entries; ``improper`` the largest
-    excess ``deg num - deg den`` (a pole at infinity of that order when positive).
+    excess ``deg num - deg den`` (a pole at infinity of that order when positive);
+    ``certificate`` is the decision kernel's root certificate of the lcm of the denominators
+    (:func:`hapticproof.kernel.locate_roots`, re-verified by Routh-Hurwitz in the checker).
     """
 
     rhp: tuple[tuple[tuple[int, int], complex], ...]
     axis: tuple[tuple[AxisPole, int], ...]
     improper: int
+    certificate: RootCertificate | None = None
 
     @property
     def stable(self) -> bool:
@@ -758,45 +759,38 @@ class PoleReport:
 def pole_report(Z: RationalMatrix) -> PoleReport:
     """Poles of every entry: certified RHP poles, exact imaginary-axis poles, pole at infinity.
 
+    One root certificate of the lcm ``L`` of the entry denominators decides them all (an
+    axis pole's multiplicity in ``L`` is its largest multiplicity in an entry).
+
     >>> Z = RationalMatrix.from_sympy(sp.Matrix([[1/S_SYM, 1/(S_SYM**2 + 4)], [0, S_SYM]]))
     >>> rep = pole_report(Z)
     >>> [(p.label(), m) for p, m in rep.axis], rep.improper, rep.stable
     ([('s = 0', 1), ('s = +-j*sqrt(4)', 1)], 1, True)
     """
-    rhp = []
-    axis: dict[str, tuple[AxisPole, int]] = {}
-    improper = -(10**9)
     n, m = Z.shape
-    seen_dens: dict[str, tuple[list, list]] = {}
-    for i in range(n):
-        for j in range(m):
-            e = Z.rows[i][j]
-            if e.is_zero():
-                continue
-            improper = max(improper, e.num.degree() - e.den.degree())
-            key = str(e.den)
-            if key not in seen_dens:
-                roots = [(complex(float(r.real.mid()), float(r.imag.mid()))) for r, _ in rhp_roots(e.den)]
-                axes = []
-                for f, mult in _axis_factors(e.den):
-                    fq = flint.fmpq_poly(f)
-                    if f.degree() == 1:
-                        pole = AxisPole("zero")
-                    elif f.degree() == 2 and f.coeffs()[1] == 0:
-                        c0, _, c2 = f.coeffs()
-                        pole = AxisPole("pair", sp.Rational(int(c0), int(c2)))
-                    else:
-                        pole = AxisPole("other", factor=str(fq))
-                    axes.append((pole, mult))
-                seen_dens[key] = (roots, axes)
-            roots, axes = seen_dens[key]
-            for r in roots:
-                rhp.append(((i, j), r))
-            for pole, mult in axes:
-                label = pole.label()
-                if label not in axis or axis[label][1] < mult:
-                    axis[label] = (pole, mult)
-    return PoleReport(tuple(rhp), tuple(axis.values()), max(improper, 0) if improper > -(10**9) else 0)
+    improper = max((e.num.degree() - e.den.degree() for row in Z.rows for e in row if not e.is_zero()), default=0)
+    L = Z.denominator_lcm()
+    if L.degree() <= 0:
+        return PoleReport((), (), max(improper, 0), None)
+    cert = locate_roots(L, "halfplane")
+    rhp: list[tuple[tuple[int, int], complex]] = []
+    if cert.outside:
+        seen: dict[str, tuple[complex, ...]] = {}
+        for i in range(n):
+            for j in range(m):
+                e = Z.rows[i][j]
+                if e.den.degree() <= 0:
+                    continue
+                key = str(e.den)
+                if key not in seen:
+                    seen[key] = locate_roots(e.den, "halfplane").outside_points
+                rhp += [((i, j), complex(p)) for p in seen[key]]
+    axis: dict[str, tuple[AxisPole, int]] = {}
+    for r in sorted(cert.boundary, key=lambda r: (r.value is None, r.factor.degree(), str(r.factor))):
+        pole = _axis_pole(r)
+        if pole.label() not in axis or axis[pole.label()][1] < r.multiplicity:
+            axis[pole.label()] = (pole, r.multiplicity)
+    return PoleReport(tuple(rhp), tuple(axis.values()), max(improper, 0), cert)
 
 
 # ---------------------------------------------------------------------------------------------

@@ -21,11 +21,15 @@ the matrix itself or name the file; with free parameters only the symmetrization
 conditions are derived (symbolically). ``--ports 3,3`` groups the ports (a 2-port with 3-DOF
 ports terminated by full 3x3 impedances); the default is scalar ports.
 
-The report: poles; positive realness (Definition 3, exact, with a frequency witness);
-Llewellyn's criterion for scalar 2-ports (with the frequency where it is tightest); Youla's
-symmetrization conditions (A, B) and the reciprocal ``Z'``; the absolute-stability verdict,
-with verified destabilizing terminations when potentially unstable (``--no-search`` skips the
-search). ``--format text|json|latex``.
+The report: poles; positive realness (Definition 3: every condition with its decision and a
+certificate; a disproof gives an exact frequency); Llewellyn's criterion for scalar 2-ports
+(with the frequency where it is tightest); Youla's symmetrization conditions (A, B), the
+reciprocal ``Z'`` and its positive realness; the absolute-stability verdict (a positive-real
+``Z`` is absolutely stable, decided first), with verified destabilizing terminations when
+potentially unstable. The termination search ends after ``--deadline`` seconds (default 10)
+and then says what it tried; ``--no-search`` skips it. ``--format text|json|latex``; the JSON
+report lists every decided condition under ``conditions`` with its certificates, so that
+``hapticproof check REPORT.json`` re-verifies it.
 """
 
 from __future__ import annotations
@@ -41,7 +45,7 @@ from hapticproof import latex as tex
 from hapticproof.cli._common import add_output_option, add_scene_options, check_output, scene_from_args, write_output
 from hapticproof.errors import InputFormatError
 from hapticproof.evidence import Decision, to_jsonable
-from hapticproof.networks import absolute_stability, llewellyn, port_blocks, positive_real, symmetrization_conditions
+from hapticproof.networks import absolute_stability, llewellyn, port_blocks, symmetrization_conditions
 from hapticproof.rationalmatrix import RationalMatrix, pole_report
 from hapticproof.symbols import s  # noqa: F401 - the variable of the matrix entries
 
@@ -87,12 +91,25 @@ def register(systems: argparse._SubParsersAction) -> None:
     parser.add_argument("--fragment", action="store_true",
                         help="with --format latex: only the displays (amsmath), not a complete document")
     parser.add_argument("--no-search", action="store_true", help="do not search destabilizing terminations")
+    parser.add_argument("--deadline", default="10", metavar="SECONDS",
+                        help="time limit of the termination search (default 10 s); it then reports what it tried")
     add_output_option(parser)
     parser.set_defaults(handler=run)
 
 
-def analyse(Z: sp.Matrix, ports: tuple[int, ...] | None, search: bool = True) -> dict[str, Any]:
-    """The report as data (used by all formats)."""
+def _deadline(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise InputFormatError(f"--deadline expects a number of seconds, got {text!r}") from None
+    if not value > 0 or value == float("inf"):
+        raise InputFormatError(f"--deadline must be a positive number of seconds, got {text!r}")
+    return value
+
+
+def analyse(Z: sp.Matrix, ports: tuple[int, ...] | None, search: bool = True, deadline: float = 10.0) -> dict[str, Any]:
+    """The report as data (used by all formats). ``conditions`` holds every decided condition
+    with its certificates (what ``hapticproof check`` re-verifies)."""
     n = Z.rows
     out: dict[str, Any] = {"size": n, "ports": list(ports) if ports else [1] * n, "matrix": Z}
     free = sorted(Z.free_symbols - {s}, key=str)
@@ -105,25 +122,51 @@ def analyse(Z: sp.Matrix, ports: tuple[int, ...] | None, search: bool = True) ->
         out["note"] = "free parameters: only the symmetrization conditions are derived (fix them with --param)"
         return out
     R = RationalMatrix.from_sympy(Z)
+    verdict = absolute_stability(R, ports, search=search, deadline=deadline)
+    pr = verdict.positive_real
     rep = pole_report(R)
-    out["poles"] = {"rhp": [str(r) for _, r in rep.rhp], "imaginary_axis": [(p.label(), m) for p, m in rep.axis],
+    out["poles"] = {"rhp": [f"{r:.6g}" for _, r in rep.rhp], "imaginary_axis": [(p.label(), m) for p, m in rep.axis],
                     "pole_at_infinity_order": rep.improper}
-    out["positive_real"] = positive_real(R).to_json()
+    decided = [{"name": "Z positive real (Definition 3)", **pr.to_json()}]
+    out["positive_real"] = {"decision": pr.decision.value, "reason": pr.reason}
     blocks = port_blocks(n, ports)
     if n == 2 and len(blocks) == 2:
-        result = llewellyn(R)
+        result = verdict.llewellyn if verdict.llewellyn is not None else llewellyn(R)
+        decided.append({"name": "Llewellyn's criterion", **result.to_json()})
         out["llewellyn"] = {"decision": result.decision.value, "reason": result.reason,
-                            "conditions": {k: v.to_json() for k, v in result.conditions.items()},
+                            "conditions": {c.name: c.decision.value for c in result.conditions},
                             "tightest_x": str(result.tightest.argmin) if result.tightest else None,
                             "eta_min": result.eta_min}
-    verdict = absolute_stability(R, ports, search=search)
-    out["absolute_stability"] = verdict.to_json()
     if verdict.symmetrization is not None:
         sym = verdict.symmetrization
         out["symmetrization"] = {"decision": sym.symmetrizable.value, "reason": sym.reason}
         if sym.symmetrizable == Decision.PROVED:
             out["symmetrization"]["Z_prime"] = sym.zprime()
+    if verdict.zprime is not None:
+        decided.append({"name": "Z' positive real (Youla)", **verdict.zprime.to_json()})
+        out["zprime_positive_real"] = {"decision": verdict.zprime.decision.value, "reason": verdict.zprime.reason}
+    summary = {"decision": verdict.decision.value, "method": verdict.method, "reason": verdict.reason}
+    entry = {"name": "absolute stability", **summary, "evidence": {"method": verdict.evidence.method}}
+    if verdict.certificate is not None:
+        entry["certificate"] = verdict.certificate.to_json()
+        summary["certificate"] = {k: v for k, v in entry["certificate"].items() if k in ("terminations", "rhp_roots", "strategy")}
+    if verdict.search is not None:
+        entry["search"] = verdict.search.to_json()
+        summary["search"] = verdict.search.summary()
+    decided.append(entry)
+    out["absolute_stability"] = summary
+    out["conditions"] = decided
     return out
+
+
+def _condition_lines(entry: dict[str, Any], indent: str = "  ") -> list[str]:
+    lines = []
+    for cond in entry.get("conditions", []):
+        text = f"{indent}{cond['name']}: {cond['decision']}"
+        if cond["decision"] != "proved" or len(cond["reason"]) < 100:
+            text += f" ({cond['reason']})"
+        lines.append(text)
+    return lines
 
 
 def _text(report: dict[str, Any]) -> str:
@@ -139,28 +182,33 @@ def _text(report: dict[str, Any]) -> str:
     p = report["poles"]
     lines += ["", f"poles: RHP {p['rhp'] or 'none'}; imaginary axis {p['imaginary_axis'] or 'none'}; "
                   f"order at infinity {p['pole_at_infinity_order']}"]
-    pr = report["positive_real"]
+    entries = {e["name"]: e for e in report["conditions"]}
+    pr = entries["Z positive real (Definition 3)"]
     lines.append(f"positive real (Definition 3): {pr['decision']} -- {pr['reason']}")
-    if pr["hermitian"].get("evidence", {}).get("witness"):
-        lines.append(f"  witness: {pr['hermitian']['evidence']['witness']}")
-    if "llewellyn" in report:
-        ll = report["llewellyn"]
+    lines += _condition_lines(pr)
+    if "Llewellyn's criterion" in entries:
+        ll = entries["Llewellyn's criterion"]
         lines.append(f"Llewellyn: {ll['decision']} -- {ll['reason']}")
-        for name, outcome in ll["conditions"].items():
-            lines.append(f"  {name}: {outcome['decision']} ({outcome['reason']})")
+        lines += _condition_lines(ll)
     if "symmetrization" in report:
         sym = report["symmetrization"]
         lines.append(f"symmetrization: {sym['decision']} -- {sym['reason']}")
         if "Z_prime" in sym:
             lines.append(f"  Z' = {sp.sstr(sym['Z_prime'])}")
-    ab = report["absolute_stability"]
+    if "Z' positive real (Youla)" in entries:
+        zp = entries["Z' positive real (Youla)"]
+        lines.append(f"Z' positive real: {zp['decision']}")
+        lines += _condition_lines(zp)
+    ab = entries["absolute stability"]
     word = {"proved": "absolutely stable", "disproved": "potentially unstable", "undecided": "undecided"}[ab["decision"]]
     lines += ["", f"absolute stability: {word} ({ab['method']}) -- {ab['reason']}"]
     if "certificate" in ab:
         cert = ab["certificate"]
-        lines.append(f"  destabilizing passive terminations (RHP zeros of det(Z + T) at {cert['rhp_roots']}):")
+        lines.append(f"  destabilizing passive terminations (RHP zeros of det(Z + T) at {cert['rhp_roots']}, verified exactly):")
         for k, T in enumerate(cert["terminations"], 1):
             lines.append(f"    T_{k} = {T}")
+    if "search" in ab:
+        lines.append(f"  termination search: {ab['search']['summary']}")
     return "\n".join(lines)
 
 
@@ -199,7 +247,7 @@ def run(args: argparse.Namespace) -> int:
     ports = spec.ports
     if ports is not None:
         port_blocks(Z.rows, ports)
-    report = analyse(Z, ports, search=not args.no_search)
+    report = analyse(Z, ports, search=not args.no_search, deadline=_deadline(args.deadline))
     if args.format == "json":
         text = json.dumps(to_jsonable(report), indent=2)
     elif args.format == "latex":
