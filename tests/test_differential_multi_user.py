@@ -23,20 +23,22 @@ from pathlib import Path
 
 import pytest
 import sympy as sp
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, Phase, given, settings
 from hypothesis import strategies as st
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from oracles.discrete import multi_user_positive_real  # noqa: E402
-from oracles.harness import Tally, examples, expected_decision  # noqa: E402
+from oracles.harness import Tally, examples, expected_decision, timed  # noqa: E402
 
 from hapticproof.multiuser import MultiUserScene, positive_real  # noqa: E402
 
 R = sp.Rational
 APPROXIMATIONS = ("forward", "backward", "tustin")
-SETTINGS = dict(deadline=None, suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large,
-                                                      HealthCheck.filter_too_much])
+# No shrinking: every example costs oracle calls, and the failure message already gives the exact
+# inputs; the minimal known-bad cases are the explicit regression tests below.
+SETTINGS = dict(deadline=None, phases=(Phase.explicit, Phase.reuse, Phase.generate),
+                suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large, HealthCheck.filter_too_much])
 
 
 @st.composite
@@ -69,6 +71,7 @@ def scenes(draw) -> dict:
         probe = multi_user_positive_real(b=spread, z_a=[0] * m, **params)
         herm = probe.details.get("G + G^H >= 0")
         m0 = herm.margin if herm is not None and herm.margin is not None else 0.0
+        m0 = m0 if abs(m0) > (herm.band or 0.0 if herm is not None else 0.0) else 0.0  # noise-level: 0
         offset = {"boundary": 0.0, "above": 1e-9, "below": -1e-9, "far-above": 1e-3, "far-below": -1e-3}[placement]
         value = -m0 / 2 + offset * abs(m0) / 2
         q = Fraction(f"{value:.15g}")
@@ -102,12 +105,11 @@ def test_multi_user_positive_real_matches_oracle():
     @settings(max_examples=examples(0.5), **SETTINGS)
     @given(case=scenes())
     def run(case):
-        oracle = _oracle(case)
-        try:
-            decision, error = positive_real(_scene(case)).decision.value, None
-        except Exception as exc:  # noqa: BLE001 - any exception is a finding
-            decision, error = None, f"{type(exc).__name__}: {exc}"
-        tally.check({k: v for k, v in case.items()}, decision, oracle, call=_call(case), error=error)
+        oracle, t_oracle, _ = timed(_oracle, case)
+        outcome, t_toolkit, error = timed(lambda: positive_real(_scene(case)))
+        decision = outcome.decision.value if outcome is not None else None
+        tally.check(dict(case), decision, oracle, call=_call(case), error=error,
+                    seconds={"toolkit": t_toolkit, "oracle": t_oracle})
 
     run()
     print(tally)

@@ -29,24 +29,26 @@ from pathlib import Path
 
 import pytest
 import sympy as sp
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, Phase, given, settings
 from hypothesis import strategies as st
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from oracles.absolute import absolute_stability as oracle_absolute_stability  # noqa: E402
 from oracles.continuous import S, llewellyn as oracle_llewellyn, positive_real_matrix  # noqa: E402
-from oracles.harness import Tally, examples, expected_decision  # noqa: E402
+from oracles.harness import Tally, examples, expected_decision, timed  # noqa: E402
 from oracles.polys import RationalFunction  # noqa: E402
-from oracles.result import NO, YES  # noqa: E402
+from oracles.result import YES, OracleResult  # noqa: E402
 from oracles.search import check_termination  # noqa: E402
 
 from hapticproof.networks import absolute_stability, llewellyn, positive_real  # noqa: E402
 
 s = S
 R = sp.Rational
-SETTINGS = dict(deadline=None, suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large,
-                                                      HealthCheck.filter_too_much])
+# No shrinking: every example costs oracle calls, and the failure message already gives the exact
+# inputs; the minimal known-bad cases are the explicit regression tests below.
+SETTINGS = dict(deadline=None, phases=(Phase.explicit, Phase.reuse, Phase.generate),
+                suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large, HealthCheck.filter_too_much])
 
 
 # ---------------------------------------------------------------------------------------------
@@ -128,7 +130,7 @@ def _place(Z: sp.Matrix, placement: str) -> sp.Matrix:
     herm = probe.details.get("Z + Z^H >= 0")
     if herm is None or herm.margin is None or not abs(herm.margin) < float("inf"):
         return Z
-    m0 = herm.margin
+    m0 = herm.margin if abs(herm.margin) > 1e-25 else 0.0  # a noise-level minimum is 0
     offset = {"boundary": 0.0, "above": 1e-9, "below": -1e-9, "far-above": 1e-3, "far-below": -1e-3}[placement]
     alpha = -m0 / 2 + offset * max(abs(m0), 1e-6) / 2
     q = Fraction(f"{alpha:.15g}")
@@ -159,12 +161,12 @@ def _zstr(Z: sp.Matrix) -> str:
     return "Matrix(" + sp.sstr(Z.tolist()) + ")"
 
 
-def _decide(call, tally: Tally, case: dict, oracle, label: str):
-    try:
-        decision, error = call().decision.value, None
-    except Exception as exc:  # noqa: BLE001 - any exception is a finding
-        decision, error = None, f"{type(exc).__name__}: {exc}"
-    tally.check({**case, "Z": _zstr(case["Z"])}, decision, oracle, call=label, error=error)
+def _decide(call, tally: Tally, case: dict, oracle_call, label: str):
+    oracle, t_oracle, _ = timed(oracle_call)
+    outcome, t_toolkit, error = timed(call)
+    decision = outcome.decision.value if outcome is not None else None
+    tally.check({**case, "Z": _zstr(case["Z"])}, decision, oracle, call=label, error=error,
+                seconds={"toolkit": t_toolkit, "oracle": t_oracle})
     return decision
 
 
@@ -177,11 +179,11 @@ def _decide(call, tally: Tally, case: dict, oracle, label: str):
 def test_positive_real_matches_oracle(n):
     tally = Tally(f"network positive_real {n}x{n}")
 
-    @settings(max_examples=examples(0.75 if n == 2 else 0.5), **SETTINGS)
+    @settings(max_examples=examples(0.6 if n == 2 else 0.4), **SETTINGS)
     @given(case=networks(n))
     def run(case):
-        oracle = positive_real_matrix(case["Z"])
-        _decide(lambda: positive_real(case["Z"]), tally, case, oracle, f"positive_real({_zstr(case['Z'])})")
+        _decide(lambda: positive_real(case["Z"]), tally, case, lambda: positive_real_matrix(case["Z"]),
+                f"positive_real({_zstr(case['Z'])})")
 
     run()
     print(tally)
@@ -196,11 +198,11 @@ def test_positive_real_matches_oracle(n):
 def test_llewellyn_matches_oracle():
     tally = Tally("network llewellyn 2x2")
 
-    @settings(max_examples=examples(0.75), **SETTINGS)
+    @settings(max_examples=examples(0.6), **SETTINGS)
     @given(case=networks(2, reciprocal=False, placements=["as-is", "above", "below", "far-below"]))
     def run(case):
-        oracle = oracle_llewellyn(case["Z"])
-        _decide(lambda: llewellyn(case["Z"]), tally, case, oracle, f"llewellyn({_zstr(case['Z'])})")
+        _decide(lambda: llewellyn(case["Z"]), tally, case, lambda: oracle_llewellyn(case["Z"]),
+                f"llewellyn({_zstr(case['Z'])})")
 
     run()
     print(tally)
@@ -236,19 +238,16 @@ def test_absolute_stability_matches_oracle():
     @given(case=stability_cases())
     def run(case):
         Z, ports = case["Z"], case["ports"]
-        try:
-            verdict = absolute_stability(Z, ports=ports, search=False)
-            decision, error = verdict.decision.value, None
-        except Exception as exc:  # noqa: BLE001
-            decision, error = None, f"{type(exc).__name__}: {exc}"
+        verdict, t_toolkit, error = timed(lambda: absolute_stability(Z, ports=ports, search=False))
+        decision = verdict.decision.value if verdict is not None else None
         # the search oracle runs only when it could refute the toolkit's "proved"
-        oracle = oracle_absolute_stability(Z, ports, search=decision == "proved")
+        oracle, t_oracle, _ = timed(lambda: oracle_absolute_stability(Z, ports, search=decision == "proved"))
         # completeness (issue 10): reciprocal, diagonally symmetrizable and scalar 2-port networks
         # must be decided; others may be undecided without the search
         must_decide = case["route"] in ("reciprocal", "similar") or Z.rows == 2
         tally.check({**case, "Z": _zstr(Z), "oracle_route": oracle.details.get("route")}, decision, oracle,
                     call=f"absolute_stability({_zstr(Z)}, ports={ports}, search=False)", error=error,
-                    fail_undecided=must_decide)
+                    fail_undecided=must_decide, seconds={"toolkit": t_toolkit, "oracle": t_oracle})
 
     run()
     print(tally)
@@ -264,7 +263,9 @@ def test_absolute_stability_decides_reciprocal_networks():
 
 @st.composite
 def two_ports_not_llewellyn(draw) -> dict:
-    return draw(networks(2, reciprocal=draw(st.booleans()), placements=["far-below", "below", "as-is"]))
+    """Mostly potentially unstable 2-ports (a reciprocal 2-port below the passivity boundary fails
+    Llewellyn's criterion too), so that the toolkit returns certificates to check."""
+    return draw(networks(2, reciprocal=draw(st.integers(0, 3)) > 0, placements=["far-below", "below", "far-below", "as-is"]))
 
 
 def test_absolute_stability_certificates_are_valid():
@@ -272,16 +273,20 @@ def test_absolute_stability_certificates_are_valid():
     them: each is positive real and ``det(Z + T)`` has a zero in ``Re s > 0`` (exact count)."""
     tally = Tally("network certificate (2x2)")
 
-    @settings(max_examples=examples(0.3), **SETTINGS)
+    @settings(max_examples=examples(0.4), **SETTINGS)
     @given(case=two_ports_not_llewellyn())
     def run(case):
         Z = case["Z"]
-        verdict = absolute_stability(Z, search=True)
-        if verdict.certificate is None:
+        verdict, t_toolkit, error = timed(lambda: absolute_stability(Z, search=True))
+        if error is None and verdict.certificate is None:
             return
-        oracle = check_termination(Z, verdict.certificate.terminations)
-        tally.check({**case, "Z": _zstr(Z), "terminations": [_zstr(T) for T in verdict.certificate.terminations]},
-                    "proved", oracle, call="absolute_stability(Z).certificate is a valid certificate")
+        terms = verdict.certificate.terminations if error is None else []
+        oracle, t_oracle, _ = timed(lambda: check_termination(Z, terms)) if error is None else (None, 0.0, None)
+        if oracle is None:
+            oracle = OracleResult("yes", "not checked: the toolkit raised")
+        tally.check({**case, "Z": _zstr(Z), "terminations": [_zstr(T) for T in terms]},
+                    "proved", oracle, call="absolute_stability(Z).certificate is a valid certificate", error=error,
+                    seconds={"toolkit": t_toolkit, "oracle": t_oracle})
 
     run()
     print(tally)

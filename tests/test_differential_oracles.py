@@ -61,7 +61,7 @@ def test_oracles_import_nothing_from_the_package():
 @pytest.mark.parametrize("F, want", [
     (1 + 1 / (z - 1), "yes"),             # Res 1 at z = 1, Re F = 1/2
     (1 + 1 / (z + 1), "no"),              # Res/z0 = -1 at z = -1
-    ((z - 1) / (z + 1), "uncertain"),     # lossless: Re F = 0 on the circle (Res/z0 = 2)
+    ((z - 1) / (z + 1), "yes"),           # lossless: Re F = 0 on the circle (Res/z0 = 2), exact
     (1 / (z - 1) ** 2 + 5, "no"),         # double pole on the circle
     (1 + 1 / (z - 2), "no"),              # pole outside
     (z**2 / (z - R(1, 2)), "no"),         # improper
@@ -78,7 +78,9 @@ def test_delayed_wall_dirichlet_bound(n, approximation):
     minimum -K T (n + 1/2) is the limit theta -> 0, at the pole z = 1."""
     K, T = R(3), R(1, 100)
     bound = K * T * (n + R(1, 2))
-    for factor, want in ((1 + R(1, 10**9), "yes"), (1 - R(1, 10**9), "no"), (1, "uncertain")):
+    # at the bound itself the minimum 0 is a limit (uncertain), but for n = 0 G^-1 = KT(z+1)/(2(z-1))
+    # is lossless, Re G^-1 = 0 identically, which the oracle recognises exactly
+    for factor, want in ((1 + R(1, 10**9), "yes"), (1 - R(1, 10**9), "no"), (1, "yes" if n == 0 else "uncertain")):
         result = single_user_positive_real(b=bound * factor, T=T, H=K + 0 * z, approximation=approximation, delay=n)
         assert result.verdict == want, result.summary()
 

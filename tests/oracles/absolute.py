@@ -30,7 +30,7 @@ from typing import Any, Sequence
 import sympy as sp
 
 from .continuous import S, RationalMatrix, llewellyn, positive_real_matrix
-from .result import NO, UNCERTAIN, YES, OracleResult
+from .result import NO, UNCERTAIN, OracleResult
 from .search import find_destabilizing_termination, port_blocks
 
 __all__ = ["absolute_stability", "diagonal_symmetrization"]

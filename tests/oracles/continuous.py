@@ -59,7 +59,7 @@ import numpy as np
 import sympy as sp
 
 from .minimise import golden, local_minima
-from .polys import RationalFunction, to_fraction
+from .polys import RationalFunction, mpf_of, to_fraction
 from .result import NO, UNCERTAIN, YES, OracleResult, combine
 
 __all__ = ["S", "RationalMatrix", "positive_real_matrix", "llewellyn", "halfline_nonnegative", "psd_exact"]
@@ -221,9 +221,17 @@ def halfline_nonnegative(
     budget = 400
     refined: dict[int, tuple] = {}
     for p in sorted((p for p in points if p[3] is not None and p[1] <= beta), key=lambda p: p[1]):
-        if len(refined) >= 2:
-            break  # the rest stay judged against beta (at worst: uncertain)
         i = p[3]
+        # a plateau (an eigen-direction along which M is constant, common with rank-deficient
+        # coefficient matrices): flat to 60 digits on both sides -> judged against 1e-25 S
+        h = 1e-4 * (u[i + 1] - u[i - 1])
+        x = math.log10(p[0])
+        sides = [final(10.0 ** (x + d))[0] for d in (-h, h)]
+        if max(abs(v - p[1]) for v in sides) <= 1e-25 * S:
+            p[2] = 1e-25 * S
+            continue
+        if len(refined) >= 2:
+            continue  # the rest stay judged against beta (at worst: uncertain)
         while 0 < i < len(u) - 1 and budget > 0:
             left, here, right = exact_at(i - 1), exact_at(i), exact_at(i + 1)
             budget -= 1
@@ -355,8 +363,55 @@ def positive_real_matrix(Z: Any, s: sp.Symbol = S) -> OracleResult:
         return combine([("poles", poles)])
     if residues.verdict == NO:
         return combine([("poles", poles), ("residues", residues)])
-    hermitian = _hermitian_condition(Zm)
+    hermitian = _exact_ends(Zm) or _lossless(Zm) or _hermitian_condition(Zm)
     return combine([("poles", poles), ("residues", residues), ("Z + Z^H >= 0", hermitian)])
+
+
+def _paraconjugate_sum_is_zero(f: RationalFunction, g: RationalFunction) -> bool:
+    """``f(s) + g(-s) == 0`` identically (exact)."""
+    x = sp.Symbol("x")
+    return sp.cancel(f.expr(x) + g.expr(x).subs(x, -x)) == 0
+
+
+def _lossless(Zm: RationalMatrix) -> OracleResult | None:
+    """``Z(s) + Z(-s)^T = 0`` identically: the Hermitian part vanishes on the axis (lossless)."""
+    n = Zm.n
+    if all(_paraconjugate_sum_is_zero(Zm[i, j], Zm[j, i]) for i in range(n) for j in range(i, n)):
+        return OracleResult(YES, "Z(s) + Z(-s)^T = 0 identically (lossless): Z(jw) + Z(jw)^H = 0", margin=0.0, band=0.0)
+    return None
+
+
+def _value_at_zero(f: RationalFunction) -> Fraction | None:
+    """``f(0)`` exactly (None at a pole)."""
+    return None if f.den[-1] == 0 else f.num[-1] / f.den[-1]
+
+
+def _value_at_infinity(f: RationalFunction) -> Fraction:
+    """The constant term of ``f`` at infinity (``f = L s + D0 + O(1/s)``), exactly."""
+    if f.is_zero or f.relative_degree > 0:
+        return Fraction(0)
+    return f.polynomial_part()[-1]
+
+
+def _exact_ends(Zm: RationalMatrix) -> OracleResult | None:
+    """``Z + Z^H`` at ``w = 0`` (no pole there) and its limit at infinity are rational matrices
+    ``Z(0) + Z(0)^T`` and ``D0 + D0^T``: decided exactly (principal minors). Returns a ``no``
+    if one is not PSD, else None."""
+    n = Zm.n
+    ends = [("w = 0", 0.0, [[_value_at_zero(Zm[i, j]) for j in range(n)] for i in range(n)]),
+            ("w -> oo", math.inf, [[_value_at_infinity(Zm[i, j]) for j in range(n)] for i in range(n)])]
+    for label, w, D in ends:
+        if any(v is None for row in D for v in row):
+            continue
+        M = [[D[i][j] + D[j][i] for j in range(n)] for i in range(n)]
+        ok, bad = psd_exact(M)
+        if not ok:
+            with mpmath.workdps(120):
+                A = mpmath.matrix([[mpf_of(v) for v in row] for row in M])
+                low = float(min(mpmath.eigsy(A, eigvals_only=True)))
+            return OracleResult(NO, f"Z + Z^H at {label} is not PSD (exact: minor {bad[0]} = {bad[1]})",
+                                margin=low, band=0.0, where={"omega": w})
+    return None
 
 
 def _hermitian_condition(Zm: RationalMatrix) -> OracleResult:
@@ -483,8 +538,25 @@ def llewellyn(Z: Any, s: sp.Symbol = S) -> OracleResult:
     def re_mp(f):
         return lambda w: (f.mp(mpmath.mpc(0, w)).real, abs(f.mp(mpmath.mpc(0, w))))
 
-    parts.append(("Re z11 >= 0", scalar(re_np(z11), re_c(z11), re_mp(z11), "Re z11")))
-    parts.append(("Re z22 >= 0", scalar(re_np(z22), re_c(z22), re_mp(z22), "Re z22")))
+    # exact values at w = 0 (no pole there) and the limits at infinity
+    for label, at in (("w = 0", _value_at_zero), ("w -> oo", _value_at_infinity)):
+        if label == "w -> oo" and P.relative_degree < 0:
+            continue  # |z12 z21| grows without bound: the samples decide
+        a, b, p = at(z11), at(z22), at(P)
+        if None in (a, b, p):
+            continue
+        for name, value in (("Re z11 >= 0", a), ("Re z22 >= 0", b),
+                            ("2 Re z11 Re z22 - Re z12z21 - |z12z21| >= 0", 2 * a * b - p - abs(p))):
+            if value < 0:
+                parts.append((name, OracleResult(NO, f"{name.split(' >=')[0]} = {float(value):.6g} < 0 at {label} (exact)",
+                                                 margin=float(value), band=0.0, where={"omega": 0.0 if at is _value_at_zero else math.inf})))
+                return combine(parts)
+    for k, f in ((1, z11), (2, z22)):
+        if _paraconjugate_sum_is_zero(f, f):
+            part = OracleResult(YES, f"Re z{k}{k} = 0 identically (z{k}{k}(s) + z{k}{k}(-s) = 0)", margin=0.0, band=0.0)
+        else:
+            part = scalar(re_np(f), re_c(f), re_mp(f), f"Re z{k}{k}")
+        parts.append((f"Re z{k}{k} >= 0", part))
 
     def g_np(w):
         a, b, p = z11.np(1j * w).real, z22.np(1j * w).real, P.np(1j * w)

@@ -15,12 +15,13 @@ from __future__ import annotations
 
 import json
 import os
+import time
 from dataclasses import dataclass, field
 from typing import Any
 
 from .result import NO, YES, OracleResult
 
-__all__ = ["DEFAULT_EXAMPLES", "examples", "expected_decision", "Tally", "jsonable"]
+__all__ = ["DEFAULT_EXAMPLES", "examples", "expected_decision", "Tally", "jsonable", "timed"]
 
 DEFAULT_EXAMPLES = 10
 
@@ -30,6 +31,15 @@ def examples(weight: float = 1.0) -> int:
     raw = os.environ.get("HAPTICPROOF_DIFF_EXAMPLES", "").strip()
     n = int(raw) if raw else DEFAULT_EXAMPLES
     return max(1, int(round(n * weight)))
+
+
+def timed(func, *args, **kwargs):
+    """``(func(*args, **kwargs), CPU seconds)``; an exception is returned as ``(None, s, error)``."""
+    start = time.process_time()
+    try:
+        return func(*args, **kwargs), time.process_time() - start, None
+    except Exception as exc:  # noqa: BLE001 - the caller records it
+        return None, time.process_time() - start, f"{type(exc).__name__}: {exc}"
 
 
 def expected_decision(oracle: OracleResult) -> str | None:
@@ -54,13 +64,14 @@ class Tally:
     family: str
     counts: dict[str, int] = field(default_factory=lambda: {"agree": 0, "disagree": 0, "undecided": 0, "uncertain": 0,
                                                             "error": 0})
+    seconds: dict[str, float] = field(default_factory=lambda: {"toolkit": 0.0, "oracle": 0.0})
 
     @property
     def total(self) -> int:
         return sum(self.counts.values())
 
     def check(self, case: dict[str, Any], decision: str | None, oracle: OracleResult, *, call: str,
-              error: str | None = None, fail_undecided: bool = True) -> str:
+              error: str | None = None, fail_undecided: bool = True, seconds: dict[str, float] | None = None) -> str:
         """Compare ``decision`` (the toolkit's) with the oracle; record; fail unless collecting.
 
         Statuses: ``agree``; ``disagree`` (opposite decisions); ``undecided`` (the toolkit
@@ -77,11 +88,13 @@ class Tally:
         else:
             status = "agree" if decision == want else "disagree"
         self.counts[status] += 1
+        for key, value in (seconds or {}).items():
+            self.seconds[key] = self.seconds.get(key, 0.0) + value
         path = os.environ.get("HAPTICPROOF_DIFF_COLLECT", "").strip()
         record = {"family": self.family, "status": status, "call": call, "case": jsonable(case),
                   "toolkit": decision if error is None else f"error: {error}", "oracle": oracle.verdict,
                   "oracle_reason": oracle.reason, "margin": oracle.margin, "band": oracle.band,
-                  "where": jsonable(oracle.where)}
+                  "where": jsonable(oracle.where), "seconds": seconds}
         if path:
             with open(path, "a", encoding="utf-8") as fh:
                 fh.write(json.dumps(record) + "\n")
@@ -100,4 +113,5 @@ class Tally:
         assert decided >= 1 or self.total < 3
 
     def __str__(self) -> str:
-        return f"{self.family}: {self.total} cases, " + ", ".join(f"{k} {v}" for k, v in self.counts.items())
+        return (f"{self.family}: {self.total} cases, " + ", ".join(f"{k} {v}" for k, v in self.counts.items())
+                + " (CPU s: " + ", ".join(f"{k} {v:.1f}" for k, v in self.seconds.items()) + ")")

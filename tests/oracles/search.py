@@ -26,7 +26,6 @@ failed search is ``uncertain`` (it proves nothing).
 
 from __future__ import annotations
 
-import itertools
 import math
 from fractions import Fraction
 from typing import Any, Sequence
