@@ -62,6 +62,7 @@ __all__ = [
     "multi_user_inverse",
     "multi_user_positive_real",
     "laplacian",
+    "teleoperator_passivity",
 ]
 
 #: The oracle's own ``z`` (a plain SymPy symbol).
@@ -491,3 +492,43 @@ def _matrix_circle_minimum(model: _MultiUser, n_grid: int) -> OracleResult:
     where = {"theta": float(x), "c": math.cos(float(x))}
     return OracleResult(UNCERTAIN, f"min lambda_min = {float(value):.3g} inside the band", margin=float(value),
                         band=band, where=where)
+
+
+# ---------------------------------------------------------------------------------------------
+# the sampled-data teleoperator (teleoperator paper)
+# ---------------------------------------------------------------------------------------------
+
+
+def teleoperator_passivity(*, b_m: Any, b_s: Any, T: Any, C: Any, alpha: Any = 1, z: sp.Symbol = Z,
+                           controller_poles: bool = False) -> OracleResult:
+    r"""The passivity condition of the teleoperator paper: ``b > T/(1 - cos wT) Re{(1 - e^{-jwT})
+    C(e^{jwT})}`` for equal controllers, and for ``C_m = alpha C`` the per-robot form
+    ``b_s >= (alpha + 1) L``, ``b_m >= (alpha + 1) alpha L`` with ``L = T/(2(1 - c)) Re{(1 -
+    z^{-1}) C}`` (``alpha = 1`` gives the printed bound).
+
+    On the circle ``|1 - z|^2 = 2(1 - c)``, so ``T (1 - z^{-1})/(2(1 - c)) = T/(1 - z)`` and ``L =
+    Re{T C(z)/(1 - z)}``: each condition is ``Re G(e^{jwT}) >= 0`` for ``G = b + k T C(z)/(z - 1)``
+    (``k = alpha + 1`` or ``(alpha + 1) alpha``), decided with the Hermitian-part minimiser of
+    :func:`discrete_positive_real` (only its third condition: the bound says nothing about
+    poles). With ``controller_poles`` a pole of ``C`` outside the unit circle (an unstable
+    controller) is a ``no`` as well.
+    """
+    a = sp.Rational(to_fraction(alpha).numerator, to_fraction(alpha).denominator)
+    Tq = sp.Rational(to_fraction(T).numerator, to_fraction(T).denominator)
+    parts = []
+    if controller_poles:
+        with mpmath.workdps(DPS):
+            for r, _ in RationalFunction.from_expr(C, z).poles(DPS):
+                if abs(r) - 1 > ON_CIRCLE:
+                    return combine([("controller poles", OracleResult(
+                        NO, f"the controller has a pole z ~ {complex(r):.6g} outside the unit circle",
+                        margin=float(1 - abs(r)), where={"pole": complex(r)}))])
+        parts.append(("controller poles", OracleResult(YES, "controller poles in |z| <= 1")))
+    for robot, b, k in (("master", b_m, (a + 1) * a), ("slave", b_s, a + 1)):
+        bq = sp.Rational(to_fraction(b).numerator, to_fraction(b).denominator)
+        G = bq + k * Tq * sp.sympify(C) / (z - 1)
+        herm = discrete_positive_real(G, z, always_hermitian=True).details.get("Re F >= 0")
+        if herm is None:
+            herm = OracleResult(UNCERTAIN, "Re G is unbounded near a unit-circle pole of C")
+        parts.append((f"b_{robot[0]} >= bound", herm))
+    return combine(parts)
