@@ -15,27 +15,48 @@ jwL^T = 0`` likewise.
 
 Method: exact cancellation (SymPy), poles of each entry by square-free factorisation and mpmath
 ``polyroots`` at 60+ digits (on the axis when ``|Re p| <= 1e-40 max(1, |p|)``), residues
-``num/den'``. Hermitian part: ``lambda_min`` screened on a log grid of 40 points per decade over
-``[min(1e-8, 1e-3 r_min), max(1e8, 1e3 r_max)]`` (``r``: moduli of all poles and zeros of the
-entries) plus points clustered at lightly damped poles, in double precision except within
-``1e-4`` (relative) of axis poles (``w <= 1e-6`` for a pole at 0), where ``Z`` is evaluated at 30 digits; the eight lowest interior
-local minima are refined by golden section on ``log w`` and re-evaluated with ``Z`` at 60 digits
-(eigenvalues at 60 digits unless the double-precision ones of that matrix are clearly positive);
-a minimum below ``1e-13 S`` is located again at 60 digits. The two ends are sampled at 60
-digits: ``w = 0``, ``w = 10^-k`` (``k`` from 9 to 30) and ``w = 10^k`` (``k`` from 9 to 40).
+``num/den'``. Exact checks first: ``Z(0) + Z(0)^T`` (no pole at 0) and the limit ``D0 + D0^T`` at
+infinity are rational matrices, decided by their principal minors; ``Z(s) + Z(-s)^T = 0``
+identically (lossless) means the Hermitian part vanishes. Then ``lambda_min(Z(jw) + Z(jw)^H)``:
 
-Uncertainty band: ``no`` needs a 60-digit value ``< -nu`` with ``nu = max(1e-30 S, 1e-50 A)``
-(``S = max |M_ij|`` over the grid away from axis poles, ``A = |Z_ij|`` at the point); ``yes`` needs every refined interior minimum
-``> 1e-13 S`` (the refinement places the minimiser to ~1e-8) and no end sample below ``-nu``.
-Residue matrices are Hermitian when ``|R - R^H| <= 1e-30 |R|`` (not when ``> 1e-20 |R|``) and
-PSD when ``lambda_min >= -1e-30 |R|`` (a rank tolerance: exact rank-deficient residues are
-common; a true eigenvalue that small is not, for coefficients of moderate height).
+* screened on a log grid of 40 points per decade over ``[min(1e-8, 1e-3 r_min), max(1e8, 1e3
+  r_max)]`` (``r``: moduli of all poles and zeros of the entries) plus points clustered at lightly
+  damped poles, in double precision except within ``1e-4`` (relative) of axis poles (``w <=
+  1e-6`` for a pole at 0), where ``Z`` is evaluated at 30 digits;
+* the eight lowest interior local minima are refined by golden section on ``log w`` (double
+  precision) and re-evaluated with ``Z`` formed at 60 digits (eigenvalues at 60 digits unless
+  the double-precision ones of that 60-digit matrix are clearly positive);
+* a minimum below ``beta = 1e-13 S`` is looked at again: flat to 60 digits on both sides (a
+  plateau: a constant eigen-direction) it is judged against ``1e-25 S``; otherwise (two of them
+  at most) a downhill walk on the grid with 60-digit values (double-precision noise makes
+  spurious minima where ``lambda_min`` is tiny but ``M`` is not) either reaches a grid end (then
+  the end samples cover it) or a true local minimum, located by golden section at 60 digits and
+  judged against ``1e-20 S``;
+* the ends are sampled at 60 digits: ``w = 0``, ``w = 10^-k`` (``k`` from 9 to 30), ``w = 10^k``
+  (``k`` from 9 to 40).
+
+Near an axis pole every evaluation is the mean of the two sides at relative distance ``1e-15``
+with 35 extra digits (``s - j w0`` and the polar part cost 15 digits each).
+
+Uncertainty band: ``no`` needs a 60-digit value ``< -nu``, ``nu = max(1e-30 S, 1e-50 A)`` (``S =
+max |M_ij|`` over the grid away from axis poles, ``A = max |Z_ij|`` at the point), or an exact end
+matrix that is not PSD; ``yes`` needs every interior minimum above its band (``1e-13 S``, or the
+smaller bands above after a second look) and no end sample below ``-nu`` (the ends only ever
+refute: a true value within ``1e-50 A`` of 0 but negative is not expected from coefficients of
+moderate height; the exact end checks catch the limits themselves). Residue matrices are
+Hermitian when ``|R - R^H| <= 1e-30 |R|`` (not when ``> 1e-20 |R|``) and PSD when ``lambda_min
+>= -1e-30 |R|`` (a rank tolerance: exact rank-deficient residues are common; a true eigenvalue
+that small is not, for coefficients of moderate height); the coefficient of ``s`` at infinity is
+decided exactly.
 
 :func:`llewellyn` -- Llewellyn's criterion for a 2-port in impedance form: open-circuit stable
 (no entry with a pole in ``Re s > 0``); ``z11`` and ``z22`` have only simple axis poles (and at
 most a simple pole at infinity) with real non-negative residues; and for all ``w``: ``Re z11
->= 0``, ``Re z22 >= 0``, ``2 Re z11 Re z22 - Re(z12 z21) - |z12 z21| >= 0``. Same numerics and
-bands, each function minimised separately.
+>= 0``, ``Re z22 >= 0``, ``2 Re z11 Re z22 - Re(z12 z21) - |z12 z21| >= 0``. The three functions
+are minimised separately with the same numerics and bands (``S`` is the largest of ``|Re z_kk|``,
+resp. ``2 |Re z11 Re z22| + 2 |z12 z21|``, on the grid); their values at ``w = 0`` and their limits
+at infinity (when ``z12 z21`` stays bounded) are exact rationals, checked first; ``Re z_kk = 0``
+identically (``z_kk(s) + z_kk(-s) = 0``) is recognised exactly.
 
 >>> import sympy as sp
 >>> s = S

@@ -16,15 +16,18 @@ oracle evaluates it there as the mean of the two sides at ``phi = +-1e-15`` (err
 unbounded below, which condition 2 already rejects.
 
 Method: exact cancellation and square-free factorisation (SymPy), poles by mpmath ``polyroots``
-at 60+ digits (a root is on the circle when ``||z| - 1| <= 1e-40``), residues ``num/den'`` at
-60 digits. ``Re F`` is screened on ``[0, pi]`` (``F`` real-rational: symmetric) with 4097 points
-plus points clustered at the angles of poles near the circle, in double precision except within
-``1e-3`` of a unit-circle pole (mpmath there), then the six lowest local minima are refined by a
-golden-section search at 60 digits down to a bracket of ``1e-22``.
+at 60+ digits (a root is on the circle when ``||z| - 1| <= 1e-40``), residues ``num/den'`` at 60
+digits. ``F(z) + F(1/z) = 0`` identically (lossless: ``Re F = 0`` on the circle) is recognised
+exactly. Otherwise ``Re F`` is screened on ``[0, pi]`` (``F`` real-rational: symmetric) with 4097
+points plus points clustered at the angles of poles near the circle, in double precision except
+within ``1e-3`` of a unit-circle pole (mpmath there), then the six lowest local minima (and the
+pole angles) are refined by a golden-section search at 60 digits down to a bracket of ``1e-22``.
+Within ``1e-2`` of a unit-circle pole the precision is raised by ``2 log10(1/distance)`` digits.
 
 Uncertainty band: the minimum ``m`` of ``Re F`` is decisive when ``|m| > band`` with
 ``band = max(1e-25 * S, 1e-40 * A)``, ``S = max |Re F|`` and ``A = max |F|`` over the screened
-points; residues need ``|Im q| <= 1e-40 |q|`` (real) or ``> 1e-30 |q|`` (not real).
+points (away from unit-circle poles); residues need ``|Im q| <= 1e-40 |q|`` (real) or ``> 1e-30
+|q|`` (not real).
 
 The models (:func:`single_user_inverse`, :func:`multi_user_positive_real`) are written from the
 HVE paper: ``G^{-1}(z) = (b - z_a) + z^{-n} H(z) X(z)/V(z)`` with ``X/V = T/(z-1)`` (forward),
