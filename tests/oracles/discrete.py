@@ -438,6 +438,12 @@ def multi_user_positive_real(*, b, T, K0, B0=None, K=None, B=None, delays=None, 
     if residue.verdict == NO:
         return combine([("poles", poles), ("residues", residue)])
     hermitian = _matrix_circle_minimum(model, n_grid + (n_grid // 4) * max(model.n))
+    if hermitian.verdict == UNCERTAIN:
+        # lossless (e.g. no damping, no coupling, b = z_a): G(z) + G(1/z)^T = 0 identically
+        G = multi_user_inverse(b=b, T=T, K0=K0, B0=B0, K=K, B=B, delays=delays, z_a=z_a, approximation=approximation)
+        if all(sp.cancel(G[i, j] + G[j, i].subs(Z, 1 / Z)) == 0 for i in range(m) for j in range(i, m)):
+            hermitian = OracleResult(YES, "G(z) + G(1/z)^T = 0 identically (lossless): G + G^H = 0 on the circle",
+                                     margin=0.0, band=0.0)
     return combine([("poles", poles), ("residues", residue), ("G + G^H >= 0", hermitian)])
 
 
