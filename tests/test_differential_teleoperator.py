@@ -67,10 +67,13 @@ def scenes(draw) -> dict:
     kind, C = draw(controllers(T))
     alpha = draw(st.sampled_from([R(1), R(1), R(1, 2), R(2), R(3, 2), R(1, 10)]))
     placement = draw(st.sampled_from(["above", "below", "far-above", "far-below", "random", "boundary"]))
-    probe = teleoperator_passivity(b_m=0, b_s=0, T=T, C=C, alpha=alpha)
+    try:
+        probe = teleoperator_passivity(b_m=0, b_s=0, T=T, C=C, alpha=alpha).details
+    except Exception:  # noqa: BLE001 - a failing probe only costs the placement
+        probe = {}
     dampings = []
     for key in ("b_m >= bound", "b_s >= bound"):
-        part = probe.details.get(key)
+        part = probe.get(key)
         if placement == "random" or part is None or part.margin is None:
             dampings.append(draw(magnitude(-4, 1)))
             continue
@@ -89,14 +92,15 @@ def test_teleoperator_passivity_matches_oracle():
     @settings(max_examples=examples(0.5), **SETTINGS)
     @given(case=scenes())
     def run(case):
-        oracle, t_oracle, _ = timed(lambda: teleoperator_passivity(b_m=case["b_m"], b_s=case["b_s"], T=case["T"],
+        oracle, t_oracle, oracle_error = timed(lambda: teleoperator_passivity(b_m=case["b_m"], b_s=case["b_s"], T=case["T"],
                                                                    C=case["C"], alpha=case["alpha"]))
         scene = lambda: TeleoperatorScene(1, 1, case["b_m"], case["b_s"], case["T"], case["C"], case["alpha"])  # noqa: E731
         outcome, t_toolkit, error = timed(lambda: passivity(scene()))
         decision = outcome.decision.value if outcome is not None else None
         call = (f"passivity(TeleoperatorScene(m_m=1, m_s=1, b_m={case['b_m']}, b_s={case['b_s']}, T={case['T']}, "
                 f"C={sp.sstr(case['C'])}, alpha={case['alpha']}))")
-        tally.check(case, decision, oracle, call=call, error=error, seconds={"toolkit": t_toolkit, "oracle": t_oracle})
+        tally.check(case, decision, oracle, call=call, error=error, seconds={"toolkit": t_toolkit, "oracle": t_oracle},
+                    oracle_error=oracle_error)
 
     run()
     print(tally)

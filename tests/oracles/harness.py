@@ -19,7 +19,7 @@ import time
 from dataclasses import dataclass, field
 from typing import Any
 
-from .result import NO, YES, OracleResult
+from .result import NO, UNCERTAIN, YES, OracleResult
 
 __all__ = ["DEFAULT_EXAMPLES", "examples", "expected_decision", "Tally", "jsonable", "timed"]
 
@@ -63,23 +63,30 @@ class Tally:
 
     family: str
     counts: dict[str, int] = field(default_factory=lambda: {"agree": 0, "disagree": 0, "undecided": 0, "uncertain": 0,
-                                                            "error": 0})
+                                                            "error": 0, "oracle-error": 0})
     seconds: dict[str, float] = field(default_factory=lambda: {"toolkit": 0.0, "oracle": 0.0})
 
     @property
     def total(self) -> int:
         return sum(self.counts.values())
 
-    def check(self, case: dict[str, Any], decision: str | None, oracle: OracleResult, *, call: str,
-              error: str | None = None, fail_undecided: bool = True, seconds: dict[str, float] | None = None) -> str:
+    def check(self, case: dict[str, Any], decision: str | None, oracle: OracleResult | None, *, call: str,
+              error: str | None = None, fail_undecided: bool = True, seconds: dict[str, float] | None = None,
+              oracle_error: str | None = None) -> str:
         """Compare ``decision`` (the toolkit's) with the oracle; record; fail unless collecting.
 
         Statuses: ``agree``; ``disagree`` (opposite decisions); ``undecided`` (the toolkit
         answered ``undecided`` where the oracle decided: a failure unless ``fail_undecided`` is
-        False); ``uncertain`` (the oracle did not decide); ``error`` (the toolkit raised).
+        False); ``uncertain`` (the oracle did not decide); ``error`` (the toolkit raised);
+        ``oracle-error`` (the oracle raised: a bug of the test suite, reported as such).
         """
+        oracle_failed = oracle is None or oracle_error is not None
+        if oracle_failed:
+            oracle = OracleResult(UNCERTAIN, f"the oracle raised {oracle_error}")
         want = expected_decision(oracle)
-        if error is not None:
+        if oracle_failed:
+            status = "oracle-error"
+        elif error is not None:
             status = "error"
         elif want is None:
             status = "uncertain"
@@ -99,7 +106,7 @@ class Tally:
             with open(path, "a", encoding="utf-8") as fh:
                 fh.write(json.dumps(record) + "\n")
             return status
-        if status in ("disagree", "error") or (status == "undecided" and fail_undecided):
+        if status in ("disagree", "error", "oracle-error") or (status == "undecided" and fail_undecided):
             raise AssertionError(
                 f"[{self.family}] {call} returned {record['toolkit']!r}, the oracle says {oracle.verdict!r} "
                 f"({oracle.summary()})\ninputs: {json.dumps(record['case'])}")
