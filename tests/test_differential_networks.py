@@ -301,6 +301,10 @@ Z_NONRECIPROCAL = sp.Matrix([[24 * s**3 / (s**3 + 10000 * s**2 + 10000 * s + 19)
 Z_RECIPROCAL = sp.Matrix([[200 * s / (s**2 + 1000 * s + 3000), 1 / (30 * s + 100)],
                           [1 / (30 * s + 100), 1 / (5 * s + 20)]])                            # det M(0) = -1/2500
 Z_4X4 = sp.diag(ISSUE_Z, 1, 1, 1)
+_z12 = 130000 / (50000 * s**2 + 2800 * s + 23)
+Z_LLEWELLYN = sp.Matrix([[(150000 * s**3 + 4500000 * s**2 + 4500000 * s + 45000) / (s**4 + 15000 * s**3 + 15000 * s**2
+                                                                                 + 500 * s + 5), _z12],
+                         [_z12, (1025000 * s + 10500) / (6250 * s**2 + 350 * s + 3)]])   # 2 Re z11 Re z22 - 2 z12^2 < 0 at w = 0
 Z_GROUPED_NEGATIVE_COUPLING = sp.Matrix([[2, -1, 0, 0], [-1, 2, 0, 0], [0, 0, 2, 0], [0, 0, 0, 2]])
 
 #: (Z, expected positive_real decision) -- the expected decision is the oracle's.
@@ -317,11 +321,13 @@ PR_REGRESSIONS = [
 LLEWELLYN_REGRESSIONS = [
     (sp.Matrix([[ISSUE_Z, 0], [0, 1]]), "disproved"),  # issue 10
     (sp.Matrix([[Z_REAL_NEG_AT_0, 0], [0, 1]]), "disproved"),
+    (Z_LLEWELLYN, "disproved"),
 ]
 
 #: (Z, ports, expected absolute_stability(search=False) decision)
 AS_REGRESSIONS = [
     (sp.Matrix([[ISSUE_Z, 0], [0, 1]]), None, "disproved"),  # issue 10: a 0.5 ohm termination destabilises
+    (Z_LLEWELLYN, None, "disproved"),                        # Llewellyn route
     (Z_4X4, None, "disproved"),                              # reciprocal, not PR: Youla says "absolutely stable"
     (Z_4X4, (2, 2), "disproved"),
     (Z_GROUPED_NEGATIVE_COUPLING, (2, 2), "proved"),         # issue 10 (completeness): reciprocal and PR
