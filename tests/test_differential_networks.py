@@ -305,6 +305,8 @@ _z12 = 130000 / (50000 * s**2 + 2800 * s + 23)
 Z_LLEWELLYN = sp.Matrix([[(150000 * s**3 + 4500000 * s**2 + 4500000 * s + 45000) / (s**4 + 15000 * s**3 + 15000 * s**2
                                                                                  + 500 * s + 5), _z12],
                          [_z12, (1025000 * s + 10500) / (6250 * s**2 + 350 * s + 3)]])   # 2 Re z11 Re z22 - 2 z12^2 < 0 at w = 0
+#: D S D^-1 with S = [[ISSUE_Z, 1/10], [1/10, 1]] (+) [[1, 1/10], [1/10, 1]], D = diag(1, 2, 1, 1): non-reciprocal
+Z_SIMILAR = sp.Matrix([[ISSUE_Z, R(1, 20), 0, 0], [R(1, 5), 1, 0, 0], [0, 0, 1, R(1, 10)], [0, 0, R(1, 10), 1]])
 Z_GROUPED_NEGATIVE_COUPLING = sp.Matrix([[2, -1, 0, 0], [-1, 2, 0, 0], [0, 0, 2, 0], [0, 0, 0, 2]])
 
 #: (Z, expected positive_real decision) -- the expected decision is the oracle's.
@@ -330,6 +332,7 @@ AS_REGRESSIONS = [
     (Z_LLEWELLYN, None, "disproved"),                        # Llewellyn route
     (Z_4X4, None, "disproved"),                              # reciprocal, not PR: Youla says "absolutely stable"
     (Z_4X4, (2, 2), "disproved"),
+    (Z_SIMILAR, None, "disproved"),                          # symmetrizable by D: Youla says "absolutely stable"
     (Z_GROUPED_NEGATIVE_COUPLING, (2, 2), "proved"),         # issue 10 (completeness): reciprocal and PR
     (sp.Matrix([[2, 1, 0, 0], [1, 2, 0, 0], [0, 0, 2, 1], [0, 0, 1, 2]]) - sp.eye(4) * R(3, 2), (2, 2), "disproved"),
 ]
