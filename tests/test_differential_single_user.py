@@ -160,7 +160,7 @@ def scenes(draw) -> dict:
         z_a = sp.Integer(0)
     b = d + z_a
     return {"kind": kind, "placement": placement, "b": b, "T": T, "H": H, "approximation": approximation,
-            "delay": delay, "z_a": sp.nsimplify(z_a)}
+            "delay": delay, "z_a": sp.sympify(z_a)}
 
 
 def _scene(case: dict) -> SingleUserScene:
@@ -238,7 +238,7 @@ def _wall_boundary(approximation: str, K, B, T):
                                      (5, R(1, 100), R(1, 1000))])
 def test_wall_exact_boundary_is_positive_real(approximation, K, B, T):
     """At b = boundary exactly Re G^-1 touches 0: positive real (>= 0); 1e-9 below it: not."""
-    K, B, T = sp.nsimplify(K), sp.nsimplify(B), sp.nsimplify(T)
+    K, B, T = sp.sympify(K), sp.sympify(B), sp.sympify(T)
     bound = _wall_boundary(approximation, K, B, T)
     H = K + B * (z - 1) / (T * z)
     for offset, want in ((0, "proved"), (R(1, 10**9), "proved"), (-R(1, 10**9), "disproved")):
@@ -277,14 +277,14 @@ SUMMARY_REGRESSIONS = REGRESSIONS + [
 
 @pytest.mark.parametrize("b, T, H, approximation, delay, z_a, want", REGRESSIONS)
 def test_positive_real_regressions(b, T, H, approximation, delay, z_a, want):
-    case = {"b": sp.nsimplify(b), "T": T, "H": H, "approximation": approximation, "delay": delay, "z_a": sp.nsimplify(z_a)}
+    case = {"b": sp.sympify(b), "T": T, "H": H, "approximation": approximation, "delay": delay, "z_a": sp.sympify(z_a)}
     assert expected_decision(_oracle(case)) == want
     assert positive_real(_scene(case)).decision.value == want
 
 
 @pytest.mark.parametrize("b, T, H, approximation, delay, z_a, want", SUMMARY_REGRESSIONS)
 def test_summary_verdict_regressions(b, T, H, approximation, delay, z_a, want):
-    case = {"b": sp.nsimplify(b), "T": T, "H": H, "approximation": approximation, "delay": delay, "z_a": sp.nsimplify(z_a)}
+    case = {"b": sp.sympify(b), "T": T, "H": H, "approximation": approximation, "delay": delay, "z_a": sp.sympify(z_a)}
     assert expected_decision(_oracle(case)) == want
     assert summarize_single_user(_scene(case)).verdict == want
 
