@@ -41,11 +41,10 @@ def _relation(paper: str, eq: str) -> sp.Basic:
 
 
 def _teleoperator_intro(which: str) -> sp.Basic:
+    """The condition quoted by the teleoperator paper's introduction (parsed from its claim)."""
     from hapticproof.derivations import teleoperator as tele
 
-    text = tele.INTRO_COLGATE if which == "colgate" else tele.INTRO_ROUTH
-    (rel,) = parse_printed(text, tele.TABLE).relations()
-    return rel.as_sympy()
+    return tele.intro_condition(which)
 
 
 def _as_ge(rel: sp.Basic) -> sp.Basic:

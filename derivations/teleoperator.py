@@ -466,7 +466,7 @@ def eq5(ctx: AuditContext) -> Finding:
                 derivation="(31) at alpha = 1")
 def eq6(ctx: AuditContext) -> Finding:
     (rel,) = _parse(ctx, ERROR_TABLE).relations()            # e is the error here, not Euler's number
-    (rel31,) = _parse(ctx, ERROR_TABLE, PRINTED["31"]).relations()
+    (rel31,) = _parse(ctx, ERROR_TABLE, PAPER.get("31").printed).relations()
     derived = rel31.rhs.subs(alpha, 1)
     return compare_expressions(rel.rhs, derived, what="the position error (6)",
                                note="it is the error of the scaled case (31) at alpha = 1")
@@ -724,7 +724,7 @@ def eq16(ctx: AuditContext) -> Finding:
                 derivation="(30) at alpha = 1")
 def eq17(ctx: AuditContext) -> Finding:
     (rel,) = _relations(ctx.statement)
-    (rel30,) = _parse(ctx, TABLE, PRINTED["30"]).relations()
+    (rel30,) = _parse(ctx, TABLE, PAPER.get("30").printed).relations()
     same = all(is_identically_zero(a - b_.subs(alpha, 1)) for a, b_ in zip(rel.terms, rel30.terms))
     if same and rel.ops == rel30.ops:
         return Finding(Verdict.CONFIRMED, "equal controllers are the scaled case (30) at alpha = 1",
@@ -751,7 +751,7 @@ def eq18(ctx: AuditContext) -> Finding:
                 derivation="the combination of V_m, V_s for which (16) with (17) is the single integral (18)")
 def eq19(ctx: AuditContext) -> Finding:
     (rel,) = _relations(ctx.statement)
-    p16 = _equal_controllers(_parse(ctx, TABLE, PRINTED["16"]).expressions()[0])
+    p16 = _equal_controllers(_parse(ctx, TABLE, PAPER.get("16").printed).expressions()[0])
     target = _generic_integral(SPECTRA["Cbar"](omega, SIG))
     substituted = target.replace(SPECTRA["V"], lambda w, sig: rel.rhs.subs(omega, w))
     if _same_form(p16, substituted):
@@ -866,8 +866,8 @@ def eq28(ctx: AuditContext) -> Finding:
                 printed="Applying Lemma 4 in Appendix to the last integral in (27), it can be said that (27) is less than (28)",
                 derivation="(27) - (28) as one integrand")
 def less_claim(ctx: AuditContext) -> Finding:
-    p27 = _parse(ctx, TABLE, PRINTED["27"]).expressions()[0]
-    p28 = _parse(ctx, TABLE, PRINTED["28"]).expressions()[0]
+    p27 = _parse(ctx, TABLE, PAPER.get("27").printed).expressions()[0]
+    p28 = _parse(ctx, TABLE, PAPER.get("28").printed).expressions()[0]
     (s27, r27), (s28, r28) = _integrand_form(p27), _integrand_form(p28)
     vm, vs = SPECTRA["V_m"](omega, SIG), SPECTRA["V_s"](omega, SIG)
     square = (vm + vs) * sp.conjugate(vm + vs)
@@ -956,7 +956,7 @@ def eq29(ctx: AuditContext) -> Finding:
                 derivation="scaled controllers; consistent with the text's C_m < C_s and x_m > x_s (both mean alpha < 1)")
 def eq30(ctx: AuditContext) -> Finding:
     (rel,) = _relations(ctx.statement)
-    (rel31,) = _parse(ctx, ERROR_TABLE, PRINTED["31"]).relations()
+    (rel31,) = _parse(ctx, ERROR_TABLE, PAPER.get("31").printed).relations()
     cm = sp.solve(sp.Eq(rel.terms[0], rel.terms[1]), CONTROLLERS["C_m"](sp.I * omega))[0]
     ratio = sp.cancel(cm / CONTROLLERS["C_s"](sp.I * omega))
     tracking = sp.solve(sp.Eq(rel31.rhs, 0), X_S)[0] / X_M            # x_s/x_m when the error vanishes
@@ -1018,7 +1018,7 @@ def eq33(ctx: AuditContext) -> Finding:
                 printed="a PD controller K + Bs, which can be discretized using bilinear transformation method as (33)",
                 derivation="sympy.physics.control.bilinear of K + Bs vs (33)")
 def bilinear_claim(ctx: AuditContext) -> Finding:
-    (rel,) = _relations(_parse(ctx, TABLE, PRINTED["33"]))
+    (rel,) = _relations(_parse(ctx, TABLE, PAPER.get("33").printed))
     finding = compare_expressions(rel.terms[-1], tele.discretize_pd("bilinear"), what="(33)", on_mismatch=Verdict.WRONG)
     if finding.verdict == Verdict.CONFIRMED:
         return finding
@@ -1075,7 +1075,7 @@ def eq35(ctx: AuditContext) -> Finding:
                         "a discretely-simulated virtual wall as investigated by Colgate and Schenkel [7]",
                 derivation="(35) vs Colgate's virtual-wall condition derived by classics.colgate_wall")
 def colgate_claim(ctx: AuditContext) -> Finding:
-    p35 = ctx.parse(PRINTED["35"]).relations()[0].as_sympy()
+    p35 = ctx.parse(PAPER.get("35").printed).relations()[0].as_sympy()
     colgate = classics.colgate_wall(B=B)
     cmp = compare_bounds(colgate, sp.Ge(p35.lhs, p35.rhs), b, what="Colgate's condition as a condition for (35)")
     doubled = classics.colgate_wall(K=2 * K, B=2 * B)
@@ -1111,12 +1111,47 @@ def monotone(ctx: AuditContext) -> Finding:
 # introduction, abstract and conclusions
 # ---------------------------------------------------------------------------------------------
 
-INTRO_COLGATE = "b > KT/2 + B"
-INTRO_ROUTH = "b > KT/2 - B"
+def _quoted(text: str, last: bool = True) -> str:
+    """The ``$...$`` mathematics a claim quotes (the last one by default)."""
+    from hapticproof.audit import quoted_math
+
+    quotes = quoted_math(text)
+    if not quotes:
+        from hapticproof.errors import LatexParseError
+
+        raise LatexParseError("the claim quotes no $...$ condition", text, 0)
+    return quotes[-1] if last else quotes[0]
 
 
-def _intro_relation(ctx: AuditContext, text: str) -> sp.Basic:
-    return ctx.parse(text).relations()[0].as_sympy()
+def intro_condition(which: str) -> sp.Basic:
+    """The condition the introduction quotes, parsed from the registered claim (``colgate``:
+    ``intro-colgate``, ``routh``: ``intro-routh``)."""
+    from hapticproof.parse import parse_printed
+
+    text = PAPER.get({"colgate": "intro-colgate", "routh": "intro-routh"}[which]).printed
+    return _single_relation(parse_printed(_quoted(text), TABLE))
+
+
+def _single_relation(statement: Any) -> sp.Basic:
+    relations = statement.relations()
+    if len(relations) != 1:
+        from hapticproof.errors import LatexParseError
+
+        raise LatexParseError(f"expected one relation, found {len(relations)}", "", 0)
+    return relations[0].as_sympy()
+
+
+def _quoted_relation(ctx: AuditContext) -> sp.Basic:
+    return _single_relation(ctx.parse(_quoted(ctx.equation.printed)))
+
+
+def _bound_reading(condition: sp.Basic, var: sp.Symbol = b) -> str:
+    from hapticproof.certify import NotABound, as_bound
+
+    try:
+        return str(as_bound(condition, var))
+    except NotABound as err:
+        return f"{sp.sstr(condition)} ({err.reason})"
 
 
 @PAPER.equation("intro-colgate", kind="claim", after="0", section="I",
@@ -1124,20 +1159,20 @@ def _intro_relation(ctx: AuditContext, text: str) -> sp.Basic:
                         "$b > KT/2 + B$, where b is the haptic interface damping and T is the sampling time [7]",
                 derivation="Colgate & Schenkel's bound of K + B(z-1)/(Tz), worst case over c (classics.colgate_wall)")
 def intro_colgate(ctx: AuditContext) -> Finding:
-    return compare_bounds(_intro_relation(ctx, INTRO_COLGATE), classics.colgate_wall(B=B), b,
-                          what="the quoted passivity condition", note="B >= 0; for B < 0 it is KT/2 + |B|")
+    return compare_bounds(_quoted_relation(ctx), classics.colgate_wall(B=B), b,
+                          what=f"the quoted passivity condition {_bound_reading(_quoted_relation(ctx))}",
+                          note="B >= 0; for B < 0 it is KT/2 + |B|")
 
 
 @functools.lru_cache(maxsize=1)   # shared by HVE (4) and the intro claim; read-only
 def _gil_counterexamples() -> dict:
-    """Certified instances where b > KT/2 - B holds but the sampled loop is unstable."""
+    """Certified decisions of the ZOH loop at two damping levels (no printed condition involved)."""
     moderate = {"m": 1, "b": 1, "T": sp.Rational(1, 100), "B": 1, "K": 398}          # KT/2 = 1.99 < b + B = 2
     large = {"m": 1, "b": 1, "T": sp.Rational(1, 100), "B": 300, "K": 1}             # delta = 3 > alpha^2/l_0
     out = {}
     for name, point in (("moderate_B", moderate), ("large_B", large)):
         outcome = bnd.certified_stable(point["m"], point["b"], point["T"], point["K"], point["B"])
-        holds = point["b"] > point["K"] * point["T"] / 2 - point["B"]
-        out[name] = {"point": point, "printed_holds": holds, "decision": outcome.decision.value,
+        out[name] = {"point": point, "decision": outcome.decision.value,
                      "spectral_radius": outcome.evidence.facts["spectral_radius"]}
     crit = bnd.critical_stiffness(1, 1, sp.Rational(1, 100), 300)
     out["large_B"]["critical"] = crit.mode
@@ -1146,24 +1181,49 @@ def _gil_counterexamples() -> dict:
 
 def routh_finding(printed: sp.Basic, what: str) -> Finding:
     """Gil et al.'s linear condition against the exact sampled-data boundary (shared with the
-    HVE paper's (4))."""
+    HVE paper's (4)): the printed condition is compared with the leading order of the exact
+    boundary and evaluated at certified unstable loops."""
     leading = classics.gil_linear_condition(0)
-    same_leading = compare_bounds(printed, sp.Ge(leading.lhs - B, leading.rhs - B), b)
+    reference = sp.Ge(leading.lhs - B, leading.rhs - B)
+    same_leading = compare_bounds(printed, reference, b, what=what)
+    reading = _bound_reading(printed)
+    form = same_leading.evidence.facts.get("printed_form")
+    corrected = (r"b + B > \frac{KT}{2} \ \text{only for } B \le \frac{b}{6} \text{ to first order; exactly: } "
+                 r"2(\alpha+\delta) \le \beta^*(\alpha,\delta)")
+    if same_leading.verdict not in (Verdict.CONFIRMED, Verdict.CONSERVATIVE):
+        return Finding(same_leading.verdict,
+                       f"{what} reads {reading}, not the small-damping (leading-order) form b > KT/2 - B of the exact ZOH "
+                       f"stability boundary: {same_leading.detail}",
+                       Evidence(same_leading.evidence.method, witness=same_leading.evidence.witness,
+                                facts={**dict(same_leading.evidence.facts), "reading": reading}),
+                       derived=leading, corrected=corrected)
     region, expansion = classics.gil_sufficiency_region()
     examples = _gil_counterexamples()
-    assert all(e["printed_holds"] and e["decision"] == "disproved" for e in examples.values())
+    holding = {}
+    for name, e in examples.items():
+        value = printed.subs({k: v for k, v in zip((b, T, B, K), (e["point"]["b"], e["point"]["T"], e["point"]["B"],
+                                                                    e["point"]["K"]))})
+        holding[name] = bool(value) if value in (sp.true, sp.false) else None
+    unstable = [n for n, e in examples.items() if holding[n] and e["decision"] == "disproved"]
+    facts = {"certified": {n: {**e, "printed_holds": holding[n]} for n, e in examples.items()},
+             "first_order_ratio": expansion, "exact_region": region, "against_leading_order": same_leading.verdict.value,
+             "printed_form": form, "reading": reading}
+    if not unstable:
+        return Finding(Verdict.UNDECIDED,
+                       f"{what} reads {reading} ({same_leading.verdict.value} against the leading order beta* = "
+                       f"2(alpha + delta) + ...); it fails at the certified unstable loops tried and its sufficiency was "
+                       "not settled", Evidence(Method.INSTANCES, instances=len(examples), facts=facts), derived=region)
+    where = " and ".join(f"(B, K) = ({examples[n]['point']['B']}, {examples[n]['point']['K']})" for n in unstable)
     return Finding(
         Verdict.NEEDS_ASSUMPTION,
-        f"{what} is the small-damping (leading-order) form of the exact ZOH stability boundary "
+        f"{what} reads {reading}, the small-damping (leading-order) form of the exact ZOH stability boundary "
         f"({same_leading.verdict.value} against beta* = 2(alpha + delta) + ...), but not an exact condition: "
         f"beta*/(2(alpha + delta)) = {sp.sstr(expansion)} + O(2), so it is sufficient for small parameters only when "
         "B <= b/6 (first order; exact region: 2(alpha + delta) <= the Jury bounds), and for large B no stiffness is stable "
-        "(delta l_0 >= alpha^2): certified unstable loops with the condition satisfied at m = 1, b = 1, T = 0.01 and "
-        "(B, K) = (1, 398) and (300, 1)",
-        Evidence(Method.COUNTEREXAMPLE, witness=examples["moderate_B"]["point"],
-                 facts={"certified": examples, "first_order_ratio": expansion, "exact_region": region}),
+        f"(delta l_0 >= alpha^2): it holds at certified unstable loops with m = 1, b = 1, T = 0.01 and {where}",
+        Evidence(Method.COUNTEREXAMPLE, witness=examples[unstable[0]]["point"], facts=facts),
         derived=region,
-        corrected=r"b + B > \frac{KT}{2} \ \text{only for } B \le \frac{b}{6} \text{ to first order; exactly: } 2(\alpha+\delta) \le \beta^*(\alpha,\delta)",
+        corrected=corrected,
     )
 
 
@@ -1172,20 +1232,38 @@ def routh_finding(printed: sp.Basic, what: str) -> Finding:
                         "[8]; the condition for the stability of the same system is $b > KT/2 - B$",
                 derivation="exact ZOH stability boundary (boundary.closed_form_boundary) and its small-damping expansion")
 def intro_routh(ctx: AuditContext) -> Finding:
-    return routh_finding(_intro_relation(ctx, INTRO_ROUTH), "the quoted Routh-Hurwitz condition b > KT/2 - B")
+    return routh_finding(_quoted_relation(ctx), "the quoted Routh-Hurwitz condition")
 
 
 @PAPER.equation("intro-less-conservative", kind="claim", after="0", section="I",
                 printed="$b > KT/2 - B$, which is clearly less conservative than the passivity condition",
                 derivation="difference of the two quoted bounds; exact passivity implies exact stability")
 def intro_less(ctx: AuditContext) -> Finding:
-    passive = _intro_relation(ctx, INTRO_COLGATE)
-    stable = _intro_relation(ctx, INTRO_ROUTH)
-    cmp = compare_bounds(passive, sp.Ge(stable.lhs, stable.rhs), b, what="the passivity condition as a stability condition")
+    passive = intro_condition("colgate")
+    stable = _single_relation(ctx.parse(_quoted(ctx.equation.printed, last=False)))
+    from hapticproof.certify import NotABound, as_bound
+
+    try:
+        stable_bound = as_bound(stable, b)
+    except NotABound as err:
+        stable_bound = None
+        reason = err.reason
+    if stable_bound is None or not stable_bound.lower:
+        why = reason if stable_bound is None else f"it is an upper bound, {stable_bound}"
+        return Finding(Verdict.WRONG, f"the quoted stability condition {sp.sstr(stable)} is not a lower bound on b ({why}), so "
+                       f"it cannot be compared as less conservative than the passivity condition {_bound_reading(passive)}",
+                       Evidence(Method.CANONICAL_FORM, facts={"printed_form": sp.srepr(stable)}))
+    cmp = compare_bounds(passive, sp.Ge(b, stable_bound.bound), b, what="the passivity condition as a stability condition")
+    facts = {**dict(cmp.evidence.facts), "printed_form": str(stable_bound)}
     if cmp.verdict == Verdict.CONSERVATIVE:
-        return Finding(Verdict.CONFIRMED, "the passivity bound exceeds the stability bound by 2B >= 0: the stability region "
-                       "contains the passivity region (strictly for B > 0)", cmp.evidence)
-    return Finding(Verdict.WRONG, "the stability condition is not less conservative", cmp.evidence)
+        gap = cmp.evidence.facts.get("difference")
+        return Finding(Verdict.CONFIRMED, f"the passivity bound ({_bound_reading(passive)}) exceeds the quoted stability bound "
+                       f"({stable_bound}) by {sp.sstr(gap)} >= 0: the stability region contains the passivity region "
+                       "(strictly where the difference is positive)", Evidence(cmp.evidence.method, witness=cmp.evidence.witness,
+                                                                                facts=facts))
+    return Finding(Verdict.WRONG, f"the quoted stability condition {stable_bound} is not less conservative than the passivity "
+                   f"condition {_bound_reading(passive)} ({cmp.verdict.value}: {cmp.detail})",
+                   Evidence(cmp.evidence.method, witness=cmp.evidence.witness, facts=facts))
 
 
 @PAPER.equation("intro-zoh", kind="claim", after="0", section="I",
