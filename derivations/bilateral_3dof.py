@@ -36,12 +36,13 @@ from __future__ import annotations
 import itertools
 from fractions import Fraction
 from functools import lru_cache
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
 import sympy as sp
 
-from hapticproof.audit import AuditContext, Paper
+from hapticproof.audit import AuditContext, Paper, malformed
 from hapticproof.certify import compare_expressions, is_identically_zero
 from hapticproof.energy import Sinusoid, input_energy, port_admittance
 from hapticproof.evidence import Decision, Evidence, Finding, Method, Plot, Series, Verdict
@@ -496,14 +497,90 @@ def _rhs_matrix(ctx: AuditContext) -> sp.Matrix:
     return sp.Matrix(ctx.statement.relations()[0].rhs)
 
 
-def _definition(ctx: AuditContext, what: str, facts: dict | None = None) -> Finding:
-    """A defining display: it parses, with the stated shapes (the only claim it makes)."""
-    statement = ctx.statement
-    shapes = {}
-    for term in statement.expressions():
-        if hasattr(term, "shape"):
-            shapes[sp.sstr(term)[:40]] = list(term.shape)
-    return Finding(Verdict.CONFIRMED, what, Evidence(Method.PARSE, facts={**(facts or {}), "shapes": shapes}))
+def _explicit(x: Any) -> Any:
+    """A parsed matrix expression as an explicit matrix (blocks of matrix symbols expanded to
+    their entries), for entry-by-entry comparison of two readings."""
+    if isinstance(x, sp.MatrixBase):
+        if any(isinstance(e, sp.MatrixExpr) for e in x):
+            return sp.Matrix(sp.BlockMatrix([[_explicit(e) for e in row] for row in x.tolist()]).as_explicit())
+        return sp.Matrix(x)
+    if isinstance(x, sp.BlockMatrix):
+        return sp.Matrix(sp.BlockMatrix([[_explicit(e) for e in row] for row in x.blocks.tolist()]).as_explicit())
+    if isinstance(x, sp.MatrixSymbol):
+        return sp.Matrix(x.as_explicit())
+    if isinstance(x, sp.Transpose):
+        return _explicit(x.arg).T
+    if isinstance(x, (sp.MatMul, sp.Mul)) and any(isinstance(a, (sp.MatrixExpr, sp.MatrixBase)) for a in x.args):
+        out = sp.Integer(1)
+        for a in x.args:
+            out = out * _explicit(a)
+        return out
+    if isinstance(x, (sp.MatAdd, sp.Add)) and any(isinstance(a, (sp.MatrixExpr, sp.MatrixBase)) for a in x.args):
+        parts = [_explicit(a) for a in x.args]
+        out = parts[0]
+        for a in parts[1:]:
+            out = out + a
+        return out
+    return x
+
+
+def _line(x: Any) -> str:
+    """One-line text of an expression or matrix (details are one sentence)."""
+    if isinstance(x, sp.MatrixBase):
+        return "[" + "; ".join(", ".join(sp.sstr(e) for e in row) for row in x.tolist()) + "]"
+    if isinstance(x, sp.BlockMatrix):
+        return _line(sp.Matrix(x.blocks))
+    return " ".join(sp.sstr(x).split())
+
+
+def _stacked(x: Any) -> Any:
+    """The paper writes the stacked vector [F_1; F_2] as [F_1 \\ F_2]^T: a column of transposed
+    column vectors is read as the stack of the vectors."""
+    if isinstance(x, sp.BlockMatrix):
+        blocks = x.blocks
+        if blocks.cols == 1 and all(isinstance(e, sp.Transpose) and e.arg.shape[1] == 1 for e in blocks):
+            return sp.BlockMatrix([[e.arg] for e in blocks])
+    return x
+
+
+def _same_relation(printed: Any, lhs: Any, rhs: Any) -> tuple[bool, str]:
+    """Whether the printed relation says ``lhs = rhs`` (entry by entry); the first difference."""
+    try:
+        got = _explicit(printed.lhs) - _explicit(printed.rhs)
+        want = _explicit(lhs) - _explicit(rhs)
+    except (ValueError, TypeError, sp.ShapeError) as err:
+        return False, f"the sides do not combine ({err})"
+    if getattr(got, "shape", None) != getattr(want, "shape", None):
+        return False, f"shape {getattr(got, 'shape', '()')} instead of {getattr(want, 'shape', '()')}"
+    if isinstance(want, sp.MatrixBase):
+        for k, (a, c) in enumerate(zip(got, want)):
+            if sp.expand(a - c) != 0:
+                i, j = divmod(k, want.cols)
+                return False, f"entry ({i + 1},{j + 1}) reads {sp.sstr(sp.expand(a))} = 0 instead of {sp.sstr(sp.expand(c))} = 0"
+        return True, ""
+    return (sp.expand(got - want) == 0), f"{sp.sstr(sp.expand(got))} = 0 instead of {sp.sstr(sp.expand(want))} = 0"
+
+
+def _definition(ctx: AuditContext, what: str, lhs: Any, rhs: Any, facts: dict | None = None,
+                reading: Callable[[Any], Any] | None = None) -> Finding:
+    """A defining display against the model's definition ``lhs = rhs`` (matrix symbols of the
+    table): equal entry by entry, or a typo naming the first difference."""
+    relations = ctx.statement.relations()
+    if len(relations) != 1 or relations[0].ops != ("=",):
+        return Finding(Verdict.MALFORMED, f"{what}: expected one equation, found {[r.ops for r in relations]}",
+                       Evidence(Method.PARSE))
+    rel = relations[0]
+    printed = rel.as_sympy()
+    if reading is not None:
+        printed = sp.Eq(reading(printed.lhs), reading(printed.rhs), evaluate=False)
+    same, why = _same_relation(printed, lhs, rhs)
+    form = ("definition", sp.srepr(_explicit(printed.lhs) - _explicit(printed.rhs)) if same else sp.srepr(printed))
+    if same:
+        return Finding(Verdict.CONFIRMED, f"{what} (the model's {_line(lhs)} = {_line(rhs)}, entry by entry)",
+                       Evidence(Method.CANONICAL_FORM, facts={**(facts or {}), "printed_form": ("definition", sp.srepr(sp.Eq(lhs, rhs, evaluate=False)))}))
+    return Finding(Verdict.TYPO, f"{what}: the display reads {_line(printed)}, not the model's {_line(lhs)} = {_line(rhs)}: {why}",
+                   Evidence(Method.CANONICAL_FORM, facts={**(facts or {}), "printed_form": form}),
+                   corrected=tex(sp.Eq(lhs, rhs, evaluate=False)) if not isinstance(lhs, sp.MatrixBase) else None)
 
 
 def _pr_facts(result) -> dict[str, Any]:
@@ -521,29 +598,59 @@ def _certificate_facts(cert) -> dict[str, Any]:
 # Section 2: motivating examples
 # ---------------------------------------------------------------------------------------------
 
-TEXT_DIAGONAL = (9 / (s + 3), 1 / (s + 3), 2 / (s + 3))
+def text_diagonal() -> tuple[sp.Expr, ...]:
+    """The DOF terminations the text names after (1), parsed from the claim ``1-diagonal``."""
+    from hapticproof.audit import quoted_math
+
+    return tuple(parse_printed(q, TABLE).expressions()[0] for q in quoted_math(PAPER.get("1-diagonal").printed))
 
 
-@PAPER.equation("1", kind="expression", printed=PRINTED["1"], section="2",
+def _not_in_s(M: Any, what: str) -> Finding | None:
+    """A printed transfer matrix must be a rational matrix in s alone (else malformed)."""
+    stray = sorted({str(x) for x in sp.Matrix(M).free_symbols} - {str(s)})
+    if stray:
+        return Finding(Verdict.MALFORMED, f"{what} is not a transfer matrix in s: its entries hold {stray}",
+                       Evidence(Method.PARSE, facts={"symbols": stray, "printed_form": sp.srepr(sp.Matrix(M))}))
+    return None
+
+
+def _pr_text(result) -> str:
+    w = result.hermitian.witness or {}
+    if result.decision == Decision.DISPROVED:
+        return f"not positive real (negative principal minor of the Hermitian part at w = {w.get('omega', w)})"
+    return f"{result.decision.value} positive real"
+
+
+@PAPER.equation("1", kind="expression", printed=PRINTED["1"], section="2", quotes=("1-diagonal",),
                 derivation="diagonal of the printed T_1 vs the terminations the text names after it")
 def eq1(ctx: AuditContext) -> Finding:
     T = _rhs_matrix(ctx)
+    bad = _not_in_s(T, "T_1")
+    if bad is not None:
+        return bad
+    text = text_diagonal()
+    if T.shape != (3, 3) or len(text) != 3:
+        return Finding(Verdict.MALFORMED, f"T_1 is {T.shape[0]}x{T.shape[1]} and the text names {len(text)} terminations",
+                       Evidence(Method.PARSE, facts={"printed_form": sp.srepr(T)}))
     printed_diag = [sp.cancel(T[i, i]) for i in range(3)]
-    differ = [i for i in range(3) if not is_identically_zero(printed_diag[i] - TEXT_DIAGONAL[i])]
-    readings = {"as printed": T}
+    differ = [i for i in range(3) if not is_identically_zero(printed_diag[i] - text[i])]
     variant = T.copy()
     for i in range(3):
-        variant[i, i] = TEXT_DIAGONAL[i]
-    readings["with the text's diagonal"] = variant
-    facts = {name: _pr_facts(positive_real(M)) for name, M in readings.items()}
+        variant[i, i] = text[i]
+    results = {"as printed": positive_real(T), "with the text's diagonal": positive_real(variant)}
+    facts = {name: _pr_facts(r) for name, r in results.items()}
+    facts.update({"printed_diagonal": printed_diag, "text_diagonal": list(text), "printed_form": sp.srepr(T)})
+    passivity = f"as printed T_1 is {_pr_text(results['as printed'])}; with the text's diagonal it is " \
+                f"{_pr_text(results['with the text' + chr(39) + 's diagonal'])}"
     if not differ:
-        return Finding(Verdict.CONFIRMED, "the printed diagonal agrees with the text", Evidence(Method.CANONICAL_FORM, facts=facts))
+        return Finding(Verdict.CONFIRMED, f"the printed diagonal agrees with the text; {passivity}",
+                       Evidence(Method.CANONICAL_FORM, facts=facts))
     return Finding(
         Verdict.INCONSISTENT,
-        "the display prints 9/(s+3) on all three diagonal entries while the text after it (claim 1-diagonal) names "
-        "the DOF terminations 9/(s+3), 1/(s+3) and 2/(s+3); either way T_1 is not passive (see 1-nonpassive)",
-        Evidence(Method.CANONICAL_FORM, witness={"entries": [[i + 1, i + 1] for i in differ]},
-                 facts={"printed_diagonal": printed_diag, "text_diagonal": list(TEXT_DIAGONAL), **facts}),
+        f"the display prints {', '.join(sp.sstr(d) for d in printed_diag)} on the diagonal while the text after it (claim "
+        f"1-diagonal) names the DOF terminations {', '.join(sp.sstr(t) for t in text)} (entries "
+        f"{[i + 1 for i in differ]} differ); {passivity}",
+        Evidence(Method.CANONICAL_FORM, witness={"entries": [[i + 1, i + 1] for i in differ]}, facts=facts),
         derived=variant,
     )
 
@@ -553,108 +660,181 @@ def eq1(ctx: AuditContext) -> Finding:
                         "three DOFs are passive",
                 derivation="positive realness of each scalar termination")
 def diagonal_passive(ctx: AuditContext) -> Finding:
-    results = {sp.sstr(t): positive_real(sp.Matrix([[t]])) for t in TEXT_DIAGONAL}
+    from hapticproof.audit import quoted_math
+
+    terms = [ctx.parse(q).expressions()[0] for q in quoted_math(ctx.equation.printed)]
+    for t in terms:
+        bad = _not_in_s(sp.Matrix([[t]]), f"the termination {sp.sstr(t)}")
+        if bad is not None:
+            return bad
+    results = {sp.sstr(t): positive_real(sp.Matrix([[t]])) for t in terms}
+    facts = {k: v.reason for k, v in results.items()}
+    facts["printed_form"] = sorted(results)
     if all(r.decision == Decision.PROVED for r in results.values()):
-        return Finding(Verdict.CONFIRMED, "each named scalar termination a/(s+3), a > 0, is positive real "
-                       "(pole at -3, Re = 3a/(9 + w^2) > 0)",
-                       Evidence(Method.ROOT_ISOLATION, facts={k: v.reason for k, v in results.items()}))
+        return Finding(Verdict.CONFIRMED, f"each named scalar termination ({', '.join(results)}) is positive real",
+                       Evidence(Method.ROOT_ISOLATION, facts=facts))
     bad = next(k for k, v in results.items() if v.decision != Decision.PROVED)
-    return Finding(Verdict.WRONG, f"{bad} is not positive real", results[bad].evidence)
+    return Finding(Verdict.WRONG, f"{bad} is not positive real ({results[bad].reason})",
+                   Evidence(results[bad].evidence.method, witness=results[bad].evidence.witness, facts=facts))
 
 
-@PAPER.equation("1-nonpassive", kind="claim", after="1", section="2",
+@PAPER.equation("1-nonpassive", kind="claim", after="1", section="2", quotes=("1", "1-diagonal"),
                 printed="the coupled 3-DOF termination \\mathbf{T}_1 is non-passive",
                 derivation="Definition 3 for the printed T_1 (and for the text's diagonal)")
 def t1_nonpassive(ctx: AuditContext) -> Finding:
     T = printed_matrix("1")
+    bad = _not_in_s(T, "T_1 of (1)")
+    if bad is not None:
+        return Finding(Verdict.UNDECIDED, bad.detail, bad.evidence)
     variant = T.copy()
-    for i in range(3):
-        variant[i, i] = TEXT_DIAGONAL[i]
-    printed, text = positive_real(T), positive_real(variant)
-    if printed.decision == Decision.DISPROVED and text.decision == Decision.DISPROVED:
+    text = text_diagonal()
+    for i in range(min(3, len(text), T.rows)):
+        variant[i, i] = text[i]
+    printed, altered = positive_real(T), positive_real(variant)
+    facts = {"as printed": _pr_facts(printed), "text diagonal": _pr_facts(altered)}
+    if printed.decision == Decision.DISPROVED and altered.decision == Decision.DISPROVED:
         w = printed.hermitian.witness
         return Finding(Verdict.CONFIRMED,
                        f"T_1 (1) is not positive real: T_1(jw) + T_1(jw)^H has a negative principal minor at w = {w.get('omega', w)}; "
                        "with the text's diagonal it is not passive either (already at w = "
-                       f"{text.hermitian.witness.get('omega', text.hermitian.witness)}), although every diagonal entry is",
-                       Evidence(Method.ROOT_ISOLATION, witness=dict(w),
-                                facts={"as printed": _pr_facts(printed), "text diagonal": _pr_facts(text)}))
-    return Finding(Verdict.WRONG, "T_1 is positive real", printed.evidence)
+                       f"{altered.hermitian.witness.get('omega', altered.hermitian.witness)}), although every diagonal entry is",
+                       Evidence(Method.ROOT_ISOLATION, witness=dict(w), facts=facts))
+    return Finding(Verdict.WRONG, f"T_1 as printed is {_pr_text(printed)}; with the text's diagonal it is {_pr_text(altered)}",
+                   Evidence(printed.evidence.method, facts=facts))
 
 
 @PAPER.equation("2", kind="expression", printed=PRINTED["2"], section="2", derivation="impedance form of the 2-port")
 def eq2(ctx: AuditContext) -> Finding:
-    return _definition(ctx, "defines the 3-DOF teleoperator in impedance form: forces [F_h; F_e] (6x1) = Z (6x6) velocities")
+    L = TABLE.lookup
+    return _definition(ctx, "defines the 3-DOF teleoperator in impedance form: forces [F_h; F_e] (6x1) = Z (6x6) velocities",
+                       sp.BlockMatrix([[L("F_h")], [L("F_e")]]), L(r"\mathcal{Z}") * sp.BlockMatrix([[L("V_h")], [L("V_e")]]))
 
 
 @PAPER.equation("3", kind="expression", printed=PRINTED["3"], section="2", derivation="block partition")
 def eq3(ctx: AuditContext) -> Finding:
-    return _definition(ctx, "partitions Z into 3x3 blocks Z_ij (port 1 = operator, port 2 = environment)")
+    return _definition(ctx, "partitions Z into 3x3 blocks Z_ij (port 1 = operator, port 2 = environment)", *_partition())
+
+
+def _partition() -> tuple[Any, Any]:
+    L = TABLE.lookup
+    return L(r"\mathcal{Z}"), sp.BlockMatrix([[L(r"\mathbf{Z}_{11}"), L(r"\mathbf{Z}_{12}")],
+                                              [L(r"\mathbf{Z}_{21}"), L(r"\mathbf{Z}_{22}")]])
 
 
 @PAPER.equation("3a", kind="expression", printed=PRINTED["3a"], section="2", parse=False,
-                derivation="the printed 6x6 impedance: open-circuit stability, symmetrization conditions")
+                derivation="the printed 6x6 impedance: open-circuit stability, symmetrization conditions", quotes=('5',))
 def eq3a(ctx: AuditContext) -> Finding:
-    Z = section2_network()
-    rep = RationalMatrix.from_sympy(Z)
-    sym = symmetrize(rep, (3, 3))
     from hapticproof.rationalmatrix import pole_report
 
+    Z = printed_matrix("3a", prefix=r"\mathcal{Z} ")
+    bad = _not_in_s(Z, "the impedance (3)")
+    if bad is not None:
+        return bad
+    if Z.shape != (6, 6):
+        return Finding(Verdict.MALFORMED, f"the impedance of (3) is {Z.shape[0]}x{Z.shape[1]}, not 6x6",
+                       Evidence(Method.PARSE, facts={"printed_form": sp.srepr(Z)}))
+    rep = RationalMatrix.from_sympy(Z)
     poles = pole_report(rep)
+    # what the paper states about this network: its DOF subsystems are (5), it is potentially unstable
+    p5 = printed_matrix("5")
+    subsystems = [name for i, name in enumerate(AXES)
+                  if p5.shape == (2, 2) and all(is_identically_zero(a - c) for a, c in zip(Z.extract([i, i + 3], [i, i + 3]), p5))]
+    roots, degree, passive = _certified("unit")
+    sym = symmetrize(rep, (3, 3))
+    properties = ("entries stable" if not poles.rhp else "an entry has an RHP pole",
+                  f"DOF subsystems equal to (5): {subsystems}", f"unit terminations destabilise it: {bool(roots and passive)}")
+    facts = {"symmetrization": sym.reason, "axis_poles": [p.label() for p, _ in poles.axis], "rhp_roots_unit": [str(r) for r in roots],
+             "printed_form": ("data display; the properties the paper states about it", properties)}
     if poles.rhp:
-        return Finding(Verdict.WRONG, "an entry has a pole in Re s > 0", Evidence(Method.ROOT_ISOLATION))
+        return Finding(Verdict.WRONG, f"an entry has a pole in Re s > 0 ({poles.rhp[0][0].label()}): the open-circuit network is "
+                       "unstable", Evidence(Method.ROOT_ISOLATION, facts=facts))
+    if len(subsystems) != 3:
+        return Finding(Verdict.INCONSISTENT, f"the DOF subsystems of (3) extracted at (i, i), (i, i+3), (i+3, i), (i+3, i+3) "
+                       f"agree with (5) only for {subsystems or 'no DOF'}", Evidence(Method.CANONICAL_FORM,
+                                                                                     facts={**facts, "ids": ["3a", "5"]}))
+    if not (roots and passive):
+        return Finding(Verdict.INCONSISTENT, "with unit resistive terminations det(Z + I) has no zero in Re s > 0, so the network "
+                       "does not show the potential instability the text states (see 5-unstable)",
+                       Evidence(Method.ROOT_ISOLATION, facts={**facts, "ids": ["3a", "5-unstable"]}))
     return Finding(Verdict.CONFIRMED,
                    "a well-formed 6x6 rational impedance (read as the continuation '\\mathcal{Z} = ...' of (3)) whose entries are "
-                   f"all stable; it is not symmetrizable ({sym.reason}), so Theorem 9 does not apply to it",
-                   Evidence(Method.PARSE, facts={"symmetrization": sym.reason, "axis_poles": [p.label() for p, _ in poles.axis]}))
+                   f"all stable, whose DOF subsystems are (5) and which unit terminations destabilise (det(Z + I) = 0 at "
+                   f"s ~ {roots[0].real:.6g}); it is not symmetrizable ({sym.reason}), so Theorem 9 does not apply to it",
+                   Evidence(Method.PARSE, facts=facts))
 
 
 @PAPER.equation("4", kind="expression", printed=PRINTED["4"], section="2", derivation="the 1-DOF subsystems")
 def eq4(ctx: AuditContext) -> Finding:
-    return _definition(ctx, "defines the per-DOF 2-ports Z_i, i = x, y, z (entries (i, i), (i, i+3), (i+3, i), (i+3, i+3) of (3))")
+    L = TABLE.lookup
+    statement = ctx.statement
+    ranges = [tuple(map(str, r.values)) for r in getattr(statement, "ranges", ())]
+    if ranges != [("x", "y", "z")]:
+        return Finding(Verdict.TYPO, f"the per-DOF 2-ports must range over the three DOFs i = x, y, z; the display has {ranges}",
+                       Evidence(Method.PARSE, facts={"printed_form": ranges}))
+    return _definition(ctx, "defines the per-DOF 2-ports Z_i, i = x, y, z (entries (i, i), (i, i+3), (i+3, i), (i+3, i+3) of (3))",
+                       sp.Matrix([[L("f_{hi}")], [L("f_{ei}")]]), L(r"\mathbf{Z}_i") * sp.Matrix([[L("v_{hi}")], [L("v_{ei}")]]))
 
 
 @PAPER.equation("5", kind="expression", printed=PRINTED["5"], section="2",
-                derivation="extract [[z_ii, z_i,i+3], [z_i+3,i, z_i+3,i+3]] from (3) for i = x, y, z")
+                derivation="extract [[z_ii, z_i,i+3], [z_i+3,i, z_i+3,i+3]] from (3) for i = x, y, z", quotes=('3a',))
 def eq5(ctx: AuditContext) -> Finding:
+    rel = ctx.statement.relations()[0]
+    names = tuple(rel.terms[:-1])
+    expected = tuple(TABLE.lookup(rf"\mathbf{{Z}}_{a}") for a in AXES)
     printed = _rhs_matrix(ctx)
+    if names != expected:
+        return Finding(Verdict.TYPO, f"the chain must name the three DOF subsystems Z_x = Z_y = Z_z; it reads "
+                       f"{' = '.join(map(sp.sstr, names))}", Evidence(Method.PARSE, facts={"printed_form": [sp.srepr(x) for x in names]}))
     Z = section2_network()
     mismatched = []
     for i, name in enumerate(AXES):
         sub = Z.extract([i, i + 3], [i, i + 3])
-        if not all(is_identically_zero(a - b) for a, b in zip(sub, printed)):
-            mismatched.append(name)
+        if printed.shape != (2, 2) or not all(is_identically_zero(a - b) for a, b in zip(sub, printed)):
+            mismatched.append((name, sub))
     if mismatched:
-        return Finding(Verdict.TYPO, f"the extraction from (3) differs for {mismatched}", Evidence(Method.CANONICAL_FORM))
+        listing = "; ".join(f"Z_{n} = {_line(sub)}" for n, sub in mismatched)
+        return Finding(Verdict.TYPO, f"the printed {_line(printed)} is not the subsystem extracted from (3): {listing}",
+                       Evidence(Method.CANONICAL_FORM, facts={"printed_form": sp.srepr(printed)}))
     return Finding(Verdict.CONFIRMED, "Z_x, Z_y and Z_z extracted from (3) all equal the printed 2x2 matrix",
-                   Evidence(Method.CANONICAL_FORM, facts={"subsystems": list(AXES)}), derived=printed)
+                   Evidence(Method.CANONICAL_FORM, facts={"subsystems": list(AXES), "printed_form": ("equals (3)",)}),
+                   derived=printed)
 
 
 @PAPER.equation("5-llewellyn", kind="claim", after="5", section="2",
                 printed="the subsystems involving \\mathbf{Z}_x , \\mathbf{Z}_y , and \\mathbf{Z}_z always satisfy Llewellyn's criterion",
-                derivation="Llewellyn's criterion decided exactly for (5)")
+                derivation="Llewellyn's criterion decided exactly for (5)", quotes=('5',))
 def subsystems_llewellyn(ctx: AuditContext) -> Finding:
-    result = llewellyn(printed_matrix("5"))
+    Z = printed_matrix("5")
+    bad = _not_in_s(Z, "the subsystem (5)")
+    if bad is not None or Z.shape != (2, 2):
+        return Finding(Verdict.UNDECIDED, "(5) is not a 2x2 transfer matrix in s", Evidence(Method.PARSE))
+    result = llewellyn(Z)
     if result.decision != Decision.PROVED:
-        return Finding(Verdict.WRONG, result.reason, result.evidence)
-    where = result.tightest.argmin
+        return Finding(Verdict.WRONG, f"Llewellyn's criterion fails for (5): {result.reason}", result.evidence)
+    where = result.tightest.argmin if result.tightest is not None else None
+    w = sp.Symbol("w", positive=True)
+    at = Z.subs(s, sp.I * w).applyfunc(lambda e: sp.expand_complex(sp.cancel(e)))
+    P = sp.expand_complex(at[0, 1] * at[1, 0])
+    modulus = sp.sqrt(sp.factor(sp.cancel(sp.expand(P * sp.conjugate(P)))))
+    product = sp.factor(sp.cancel(2 * sp.re(at[0, 0]) * sp.re(at[1, 1]) - sp.re(P) - modulus))
     return Finding(Verdict.CONFIRMED,
-                   "Llewellyn's conditions hold exactly: 2 Re z11 Re z22 - Re z12z21 - |z12z21| = 162/(9+w^2)^2 - 2/(1+w^2)^2 "
-                   f">= 0 (equivalent to 8 w^2 >= 0); the stability factor is smallest at x = w^2 = {where} with eta = {result.eta_min}: "
-                   "the criterion holds with equality at w = 0 (marginally)",
-                   result.evidence)
+                   f"Llewellyn's conditions hold exactly: 2 Re z11 Re z22 - Re z12z21 - |z12z21| = {sp.sstr(sp.factor(product))} >= 0; "
+                   f"the stability factor is smallest at x = w^2 = {where} with eta = {result.eta_min}",
+                   Evidence(result.evidence.method, witness=result.evidence.witness,
+                            facts={**dict(result.evidence.facts), "printed_form": ("llewellyn holds", str(result.eta_min))}))
 
 
 @PAPER.equation("5-unstable", kind="claim", after="5", section="2",
                 printed="the coupled 3-DOF teleoperator (2) is not absolutely stable",
-                derivation="search for passive 3-DOF terminations with a zero of det(Z + T) in Re s > 0, verified exactly")
+                derivation="search for passive 3-DOF terminations with a zero of det(Z + T) in Re s > 0, verified exactly", quotes=('3a',))
 def coupled_unstable(ctx: AuditContext) -> Finding:
     roots, degree, passive = _certified("unit")
+    sym = symmetrize(RationalMatrix.from_sympy(section2_network()), (3, 3))
     if roots and passive:
         return Finding(Verdict.CONFIRMED,
                        "unit resistors on all six DOFs (T_1 = T_2 = I_3, passive) already destabilize the network (3): "
                        f"det(Z + I) has a zero at s ~ {roots[0].real:.4g} > 0 (certified on the exact degree-{degree} numerator); "
-                       "(3) violates B (z_46 != z_64), so Theorem 9 does not apply to it",
+                       f"(3) is not symmetrizable ({sym.reason}), so Theorem 9 does not apply to it",
                        Evidence(Method.COUNTEREXAMPLE, witness={"T_1": "I_3", "T_2": "I_3"},
                                 facts={"rhp_roots": [str(r) for r in roots], "numerator_degree": degree}))
     cert = _search("3a")
@@ -672,7 +852,32 @@ def _scalar_counterexample() -> tuple[sp.Matrix, sp.Matrix]:
     return sp.Matrix([[1, 3], [3, 1]]), sp.Matrix([[10]])
 
 
+ENERGY_TABLE = TABLE.with_functions({name: sp.Function(name.replace("{", "").replace("}", ""))
+                                     for name in ("F_h", "V_h", "F_e", "V_e", "f_{hx}", "v_{hx}", "f_{ex}", "v_{ex}", "E_s")})
+
+
+def _energy_reading(ctx: AuditContext, three_dof: bool) -> Finding | None:
+    """The display must be the input energy at port 1 from rest, E_s(t) = int_0^t force . velocity >= 0."""
+    tau, t = TABLE.lookup(r"\tau"), TABLE.lookup("t")
+    force, velocity = ("F_h", "V_h") if three_dof else ("f_hx", "v_hx")
+    statement = parse_printed(ctx.equation.printed, ENERGY_TABLE)
+    relations = statement.relations()
+    expected = sp.Integral(sp.Function(force)(tau) * sp.Function(velocity)(tau), (tau, 0, t))
+    if len(relations) != 1:
+        return malformed(ctx, f"expected one relation chain, found {len(relations)}")
+    rel = relations[0]
+    ok = (rel.ops == ("=", ">=") and rel.terms[0] == sp.Function("E_s")(t) and rel.terms[1] == expected and rel.terms[2] == 0)
+    if ok:
+        return None
+    return Finding(Verdict.WRONG, f"the display must be the input energy at port 1, E_s(t) = int_0^t {force} {velocity} dtau >= 0; "
+                   f"it reads {' '.join(f'{sp.sstr(x)} {op}' for x, op in zip(rel.terms, rel.ops))} {sp.sstr(rel.terms[-1])}",
+                   Evidence(Method.PARSE, facts={"printed_form": sp.srepr(rel.as_sympy())}))
+
+
 def _energy_quantifier(ctx: AuditContext, three_dof: bool) -> Finding:
+    reading = _energy_reading(ctx, three_dof)
+    if reading is not None:
+        return reading
     Z2, load = _scalar_counterexample()
     Z = sp.kronecker_product(Z2, sp.eye(3)) if three_dof else Z2
     ports = (3, 3) if three_dof else (1, 1)
@@ -687,7 +892,8 @@ def _energy_quantifier(ctx: AuditContext, three_dof: bool) -> Finding:
             f"the 2-port {'kron([[1, 3], [3, 1]], I_3)' if three_dof else '[[1, 3], [3, 1]]'} is potentially unstable, yet with "
             "the passive load 10 its input impedance 2/11 is positive real, so E_s >= 0 for every input",
             Evidence(Method.COUNTEREXAMPLE, witness={"Z": Z2, "load": load},
-                     facts={"absolute_stability": verdict.reason, "input_impedance_PR": zin.reason}),
+                     facts={"absolute_stability": verdict.reason, "input_impedance_PR": zin.reason,
+                            "printed_form": "input energy at port 1 >= 0"}),
             corrected=(r"\text{absolutely stable} \iff E_s(t) \geq 0 \ \forall t > 0,\ \forall \text{inputs from rest},\ "
                        r"\forall \text{passive terminations of port 2}"),
         )
@@ -764,13 +970,26 @@ def property4(ctx: AuditContext) -> Finding:
 # ---------------------------------------------------------------------------------------------
 
 
-for _id, _what in (("8", "impedance model of the 2-port with 3-DOF ports (6x1 = 6x6 * 6x1)"),
-                   ("9", "stacks the port forces F_1, F_2 (3x1 each)"),
-                   ("10", "stacks the port velocities V_1, V_2 (3x1 each)"),
-                   ("11", "block partition of Z (as (3))"),
-                   ("13", "block-diagonal termination of two 3-DOF (full 3x3) impedances")):
-    def _check(ctx: AuditContext, _what=_what) -> Finding:
-        return _definition(ctx, "defines " + _what)
+def _section4_definitions() -> dict[str, tuple[str, Any, Any, Any]]:
+    L = TABLE.lookup
+    Z, Zb = _partition()
+    return {
+        "8": ("impedance model of the 2-port with 3-DOF ports (6x1 = 6x6 * 6x1)", L(r"\mathcal{F}"),
+              L(r"\mathcal{Z}") * L(r"\mathcal{V}"), None),
+        "9": ("stacks the port forces F_1, F_2 (3x1 each; [F_1 F_2]^T read as the stack)", L(r"\mathcal{F}"),
+              sp.BlockMatrix([[L("F_1")], [L("F_2")]]), _stacked),
+        "10": ("stacks the port velocities V_1, V_2 (3x1 each; [V_1 V_2]^T read as the stack)", L(r"\mathcal{V}"),
+               sp.BlockMatrix([[L("V_1")], [L("V_2")]]), _stacked),
+        "11": ("block partition of Z (as (3))", Z, Zb, None),
+        "13": ("block-diagonal termination of two 3-DOF (full 3x3) impedances", L(r"\mathcal{T}"),
+               sp.BlockDiagMatrix(L(r"\mathbf{T}_1"), L(r"\mathbf{T}_2")), None),
+    }
+
+
+for _id in ("8", "9", "10", "11", "13"):
+    def _check(ctx: AuditContext) -> Finding:
+        what, lhs, rhs, reading = _section4_definitions()[ctx.equation.id]
+        return _definition(ctx, "defines " + what, lhs, rhs, reading=reading)
     PAPER.equation(_id, kind="expression", printed=PRINTED[_id], section="4", derivation="definition")(_check)
 
 
@@ -779,6 +998,10 @@ for _id, _what in (("8", "impedance model of the 2-port with 3-DOF ports (6x1 = 
 def eq12(ctx: AuditContext) -> Finding:
     from hapticproof.parse import expand_indexed, index_symbol
 
+    rel = ctx.statement.relations()[0]
+    if rel.lhs != TABLE.lookup(r"\mathbf{Z}_{ij}"):
+        return Finding(Verdict.TYPO, f"the display must define the block Z_ij; it defines {sp.sstr(rel.lhs)}",
+                       Evidence(Method.PARSE, facts={"printed_form": sp.srepr(rel.lhs)}))
     M = _rhs_matrix(ctx)
     i, j = index_symbol("i"), index_symbol("j")
     for bi in (1, 2):
@@ -797,9 +1020,51 @@ def _table1_symmetrization():
     return symmetrize(table1_impedance(60), (3, 3))
 
 
+def _zprime_entry(i: int, j: int) -> sp.Expr:
+    """Youla's z'_ij (1-based): z_ii on the diagonal, gamma_k sqrt(z_ij z_ji) off it, with k the
+    position of the pair among the 15 upper pairs in row order (as (14) numbers them)."""
+    z = lambda a, c: TABLE.concrete("z_{i,j}", (a, c))  # noqa: E731
+    if i == j:
+        return z(i, i)
+    a, c = min(i, j), max(i, j)
+    k = [(p, q) for p in range(1, 7) for q in range(p + 1, 7)].index((a, c)) + 1
+    return TABLE.concrete(r"\gamma_{i}", (k,)) * sp.sqrt(z(a, c) * z(c, a))
+
+
+def _zprime_reading(ctx: AuditContext) -> Finding | None:
+    """The printed Z' (rows and columns 1, 2, ..., 6 with ellipses) against Youla's construction."""
+    from hapticproof.parse import Elision
+
+    rel = ctx.statement.relations()[0]
+    M = sp.Matrix(rel.rhs)
+    index = [1, 2, None, 6]
+    problems = []
+    if rel.lhs != TABLE.lookup(r"\mathcal{Z}'"):
+        problems.append(f"the left side is {sp.sstr(rel.lhs)}, not Z'")
+    if M.shape != (4, 4):
+        problems.append(f"the printed matrix is {M.shape[0]}x{M.shape[1]}")
+    else:
+        for r in range(4):
+            for c in range(4):
+                entry, i, j = M[r, c], index[r], index[c]
+                if i is None or j is None:
+                    if not isinstance(entry, Elision):
+                        problems.append(f"printed entry ({r + 1},{c + 1}) should be an ellipsis, it is {sp.sstr(entry)}")
+                    continue
+                if isinstance(entry, Elision) or not is_identically_zero(entry - _zprime_entry(i, j)):
+                    problems.append(f"entry ({i},{j}) reads {sp.sstr(entry)} instead of {sp.sstr(_zprime_entry(i, j))}")
+    if not problems:
+        return None
+    return Finding(Verdict.TYPO, "the printed Z' is not Youla's z'_ii = z_ii, z'_ij = gamma sqrt(z_ij z_ji): " + "; ".join(problems),
+                   Evidence(Method.CANONICAL_FORM, facts={"problems": problems, "printed_form": sp.srepr(M)}))
+
+
 @PAPER.equation("14", kind="expression", printed=PRINTED["14"], section="4",
                 derivation="Youla's Z' for Table 1 (k_vmyz = 60): are the 15 signs gamma free?")
 def eq14(ctx: AuditContext) -> Finding:
+    reading = _zprime_reading(ctx)
+    if reading is not None:
+        return reading
     Y = _table1_symmetrization()
     Zp = Y.zprime()
     Z = table1_impedance(60)
@@ -818,16 +1083,70 @@ def eq14(ctx: AuditContext) -> Finding:
             "diagonal +-1 similarity; the roots must be analytic branches. For Table 1, flipping gamma of entry (1,4) alone "
             f"changes the principal minor on rows (1,2,4) at s = 1 from {mz} to {mf}",
             Evidence(Method.COUNTEREXAMPLE, witness={"entry": [1, 4], "rows": [1, 2, 4], "s": 1},
-                     facts={"minor_Z": mz, "minor_Zprime": mp, "minor_flipped": mf, "gamma": dict(Y.evidence.facts)["gamma"]}),
+                     facts={"minor_Z": mz, "minor_Zprime": mp, "minor_flipped": mf, "gamma": dict(Y.evidence.facts)["gamma"],
+                            "printed_form": "Youla's Z' with free signs gamma"}),
             corrected=(r"z'_{ij} = \gamma_{ij}\sqrt{z_{ij}z_{ji}},\ \gamma_{ij}\gamma_{jk}\gamma_{ki}\sqrt{z_{ij}z_{ji}}"
                        r"\sqrt{z_{jk}z_{kj}}\sqrt{z_{ki}z_{ik}} = z_{ij}z_{jk}z_{ki}"),
         )
     return Finding(Verdict.UNDECIDED, "sign test inconclusive", Evidence(Method.INSTANCES))
 
 
+PROSE_TABLE = TABLE.with_symbols({r"\mathbf{Z}_{\ell\ell}": sp.MatrixSymbol("Z_ll", 3, 3), r"\ell": sp.Symbol("ell")})
+
+
+def _prose_math(text: str) -> list[Any]:
+    """The mathematics of a prose condition (``\\text{...}`` removed): its expressions and the
+    values of its index ranges, in printed order."""
+    import re
+
+    fragments = [f.replace(r"\quad", " ").strip(" ,.;") for f in re.split(r"\\text\{[^}]*\}", text)]
+    joined = r", \quad ".join(f for f in fragments if f)
+    if not joined:
+        return []
+    statement = parse_printed(joined, PROSE_TABLE)
+    out = list(statement.expressions())
+    for r in getattr(statement, "ranges", ()):
+        out.append(tuple(r.values))
+    return out
+
+
+def _prose_reading(ctx: AuditContext, expected: list[Any], what: str) -> Finding | None:
+    found = _prose_math(ctx.equation.printed)
+    if found == expected:
+        return None
+    return Finding(Verdict.TYPO, f"{what} must refer to {', '.join(map(sp.sstr, expected))}; the text's mathematics is "
+                   f"{', '.join(map(sp.sstr, found)) or 'missing'}", Evidence(Method.PARSE, facts={"printed_form": [sp.srepr(x) for x in found]}))
+
+
+def _expected_prose(eq_id: str) -> list[Any]:
+    L = PROSE_TABLE.lookup
+    return {"14b": [L(r"\mathbf{Z}_{\ell\ell}"), (sp.Integer(1), sp.Integer(2))], "14c": [L(r"\mathcal{Z}")],
+            "14d": [L(r"\mathcal{Z}"), L(r"\mathcal{Z}")], "14e": [L(r"\omega"), L(r"\mathcal{Z}'")]}[eq_id]
+
+
 @PAPER.equation("14a", kind="condition", printed=PRINTED["14a"], section="4",
                 derivation="A and B vs Youla's equivalence (identical principal and block-compatible minors)")
 def condition_a(ctx: AuditContext) -> Finding:
+    from hapticproof.parse import expand_indexed, index_symbol
+
+    statement = ctx.statement
+    i, j, k = (index_symbol(x) for x in "ijk")
+    (rel,) = [r.as_sympy() for r in statement.relations()]
+    problems = []
+    ranges = [(tuple(map(str, r.indices)), tuple(map(str, r.values))) for r in getattr(statement, "ranges", ())]
+    if ranges != [(("i", "j", "k"), ("1", "2", r"\dots", "6"))]:
+        problems.append(f"the indices must run over 1..6, the display has {ranges}")
+    for triple in ((1, 2, 3), (1, 4, 2), (2, 5, 6), (3, 6, 4)):
+        got = expand_indexed((rel.lhs - rel.rhs).subs(dict(zip((i, j, k), triple))), 6, TABLE)
+        z = lambda a, c: TABLE.concrete("z_{i,j}", (a, c))  # noqa: E731
+        a, c, e = triple
+        cycle = z(a, c) * z(c, e) * z(e, a) - z(c, a) * z(e, c) * z(a, e)
+        if not (is_identically_zero(got - cycle) or is_identically_zero(got + cycle)):
+            problems.append(f"for (i, j, k) = {triple} it reads {sp.sstr(got)} = 0, not the triangle condition {sp.sstr(cycle)} = 0")
+            break
+    if problems:
+        return Finding(Verdict.TYPO, "condition A as printed is not Youla's triangle condition: " + "; ".join(problems),
+                       Evidence(Method.CANONICAL_FORM, facts={"problems": problems, "printed_form": sp.srepr(rel)}))
     Z = cycle_network()
     conditions = symmetrization_conditions(Z, ports=(3, 3))
     sym = symmetrize(Z, (3, 3))
@@ -839,7 +1158,8 @@ def condition_a(ctx: AuditContext) -> Finding:
             "with vanishing entries longer cycles matter: the network cycle_network() (couplings on the cycle 1-4-2-5 only, "
             "z_14 = 2, z_41 = 1/2, others 1) satisfies A and B, but its 4x4 minor on (1,2,4,5) cannot be matched by any Z' "
             f"({sym.reason}) and passive terminations 1/(10(s+1)) make it unstable (det(Z + T) = 0 at s ~ {roots[0].real:.4g})",
-            Evidence(Method.COUNTEREXAMPLE, witness={"Z": Z}, facts={"rhp_roots": [str(r) for r in roots], "symmetrization": sym.reason}),
+            Evidence(Method.COUNTEREXAMPLE, witness={"Z": Z}, facts={"rhp_roots": [str(r) for r in roots], "symmetrization": sym.reason,
+                                                                     "printed_form": "Youla's triangle condition"}),
             corrected=(r"z_{i_1 i_2} z_{i_2 i_3} \cdots z_{i_k i_1} = z_{i_2 i_1} z_{i_3 i_2} \cdots z_{i_1 i_k}"
                        r"\ \text{for every cycle } (i_1, \dots, i_k),\ k \geq 3"),
         )
@@ -849,6 +1169,9 @@ def condition_a(ctx: AuditContext) -> Finding:
 @PAPER.equation("14b", kind="condition", printed=PRINTED["14b"], section="4", parse=False,
                 derivation="det(Z + T) = det(Z' + T) for full block terminations T, one 2-DOF port, symbolic")
 def condition_b(ctx: AuditContext) -> Finding:
+    reading = _prose_reading(ctx, _expected_prose("14b"), "condition B")
+    if reading is not None:
+        return reading
     a, b, c, d = sp.symbols("a b c d", positive=True)
     t = sp.Matrix(2, 2, sp.symbols("t11 t12 t21 t22"))
     Z = sp.Matrix([[a, b], [c, d]])
@@ -868,6 +1191,9 @@ def condition_b(ctx: AuditContext) -> Finding:
 @PAPER.equation("14c", kind="condition", printed=PRINTED["14c"], section="4", parse=False,
                 derivation="open-port stability: an unstable z_ij invisible to Z'")
 def condition_c(ctx: AuditContext) -> Finding:
+    reading = _prose_reading(ctx, _expected_prose("14c"), "condition C")
+    if reading is not None:
+        return reading
     from hapticproof.rationalmatrix import pole_report
 
     Z = sp.Matrix([[1, 1 / (s - 1)], [0, 1]])
@@ -887,6 +1213,9 @@ def condition_c(ctx: AuditContext) -> Finding:
 @PAPER.equation("14d", kind="condition", printed=PRINTED["14d"], section="4", parse=False,
                 derivation="residue matrix of Z' at s = 0 for Table 1 (k_vmyz = 60), exact")
 def condition_d(ctx: AuditContext) -> Finding:
+    reading = _prose_reading(ctx, _expected_prose("14d"), "condition D")
+    if reading is not None:
+        return reading
     Zp = _table1_symmetrization().zprime()
     R = Zp.applyfunc(lambda e: sp.cancel(e * s).subs(s, 0))
     leading = [sp.nsimplify(sp.simplify(R[:k, :k].det())) for k in range(1, 7)]
@@ -910,6 +1239,9 @@ def condition_d(ctx: AuditContext) -> Finding:
 @PAPER.equation("14e", kind="condition", printed=PRINTED["14e"], section="4", parse=False,
                 derivation="leading minors >= 0 vs PSD; exact destabilizing terminations")
 def condition_e(ctx: AuditContext) -> Finding:
+    reading = _prose_reading(ctx, _expected_prose("14e"), "condition E")
+    if reading is not None:
+        return reading
     Z = leading_minor_network()
     leading = [Z[:k, :k].det() for k in range(1, 7)]
     roots, degree, passive = _certified("leading")
@@ -929,45 +1261,95 @@ def condition_e(ctx: AuditContext) -> Finding:
 @PAPER.equation("15a", kind="condition", printed=PRINTED["15a"], section="4",
                 derivation="1x1 principal minors of Re Z': z'_ii = z_ii by (14)")
 def eq15a(ctx: AuditContext) -> Finding:
+    from hapticproof.certify import as_sign_condition
+    from hapticproof.parse import expand_indexed, index_symbol
+
+    statement = ctx.statement
+    ranges = [tuple(map(str, r.values)) for r in getattr(statement, "ranges", ())]
+    (rel,) = [r.as_sympy() for r in statement.relations()]
+    condition = as_sign_condition(rel)
+    i = index_symbol("i")
+    read = [expand_indexed(condition.expr.subs(i, k), 6, TABLE) for k in range(1, 7)]
+    want = [sp.re(TABLE.concrete("z_{i,j}", (k, k))) for k in range(1, 7)]
+    problems = []
+    if ranges != [("1", "2", r"\dots", "6")]:
+        problems.append(f"the index must run over all six diagonal entries, the display has {ranges}")
+    if condition.op not in (">=",):
+        problems.append(f"a principal minor of a PSD matrix is >= 0, the display says {condition.op} 0")
+    if read != want:
+        problems.append(f"it reads {[sp.sstr(x) for x in read[:2]]}... >= 0 instead of Re z_ii >= 0")
+    if problems:
+        return Finding(Verdict.WRONG if condition.op != ">=" else Verdict.TYPO,
+                       "(15a) is not the 1x1 principal-minor condition Re z_ii >= 0, i = 1..6: " + "; ".join(problems),
+                       Evidence(Method.PARSE, facts={"problems": problems, "printed_form": sp.srepr(rel)}))
     Y = _table1_symmetrization()
     Z = table1_impedance(60)
     same = all(is_identically_zero(Y.zprime()[i, i] - Z[i, i]) for i in range(6))
     if not same:
         return Finding(Verdict.WRONG, "diagonal of Z' differs from Z", Evidence(Method.CANONICAL_FORM))
     return Finding(Verdict.CONFIRMED, "Re z'_ii = Re z_ii >= 0 are the 1x1 principal minors of Re Z' (necessary; all six, "
-                   "not only the leading one)", Evidence(Method.CANONICAL_FORM, facts={"checked_on": "Table 1"}))
+                   "not only the leading one)", Evidence(Method.CANONICAL_FORM, facts={"checked_on": "Table 1",
+                                                                                      "printed_form": "Re z_ii >= 0, i = 1..6"}))
 
 
 @PAPER.equation("15b", kind="condition", printed=PRINTED["15b"], section="4",
                 derivation="2nd leading minor of Re Z' with (20): Re z11 Re z22 - (|z12 z21| + Re z12 z21)/2")
 def eq15b(ctx: AuditContext) -> Finding:
-    printed = ctx.relation()
-    printed_lhs = printed.lhs - printed.rhs
+    from hapticproof.certify import as_sign_condition
+
+    condition = as_sign_condition(ctx.relation())
+    printed_lhs = condition.expr
     z = {(i, j): TABLE.concrete("z_{i,j}", (i, j)) for i in (1, 2) for j in (1, 2)}
     p = z[(1, 2)] * z[(2, 1)]
     derived = sp.re(z[(1, 1)]) * sp.re(z[(2, 2)]) - (sp.Abs(p) + sp.re(p)) / 2
-    point = {z[(1, 1)]: 1, z[(2, 2)]: 1, z[(1, 2)]: 1 + sp.I, z[(2, 1)]: 1 + sp.I}
-    value_p, value_d = sp.simplify(printed_lhs.subs(point)), sp.simplify(derived.subs(point))
-    exact = sp.simplify(1 - sp.re(sp.sqrt(sp.Integer(2) * sp.I)) ** 2)  # Re Z' minor with z'12 = sqrt(2j)
-    if value_p != value_d and is_identically_zero(value_d - exact):
-        return Finding(Verdict.TYPO,
-                       "the printed numerator |Re(z12 z21)| + |Re(z12 z21)| repeats one term: (20) gives |z12 z21| + Re(z12 z21); "
-                       f"at z11 = z22 = 1, z12 = z21 = 1 + j the printed minor is {value_p}, the true one (1 - (Re sqrt(2j))^2) is {value_d}",
-                       Evidence(Method.COUNTEREXAMPLE, witness={"z11": 1, "z22": 1, "z12": "1+j", "z21": "1+j"},
-                                facts={"printed": value_p, "derived": value_d}),
-                       derived=sp.Ge(derived, 0),
-                       corrected=(r"\text{Re}(z_{1,1})\text{Re}(z_{2,2}) - \frac{|z_{1,2}z_{2,1}| + \text{Re}(z_{1,2}z_{2,1})}{2} \geq 0"))
-    return compare_expressions(printed_lhs, derived, what="the printed 2nd minor")
+    slip = sp.re(z[(1, 1)]) * sp.re(z[(2, 2)]) - sp.Abs(sp.re(p))           # |Re(z12 z21)| printed twice
+    point = {z[(1, 1)]: 2, z[(2, 2)]: 3, z[(1, 2)]: 1 + 2 * sp.I, z[(2, 1)]: 3 - sp.I}
+    value_p, value_d = sp.nsimplify(sp.simplify(printed_lhs.subs(point))), sp.nsimplify(sp.simplify(derived.subs(point)))
+    facts = {"printed": value_p, "derived": value_d, "printed_form": (condition.op, sp.srepr(sp.expand(printed_lhs)))}
+    corrected = r"\text{Re}(z_{1,1})\text{Re}(z_{2,2}) - \frac{|z_{1,2}z_{2,1}| + \text{Re}(z_{1,2}z_{2,1})}{2} \geq 0"
+    witness = {"z11": 2, "z22": 3, "z12": "1+2j", "z21": "3-j"}
+    if condition.op != ">=":
+        return Finding(Verdict.WRONG, f"a principal minor of a PSD matrix is >= 0; the display says {condition.op} 0 "
+                       f"(at the witness the printed expression is {value_p}, the minor {value_d})",
+                       Evidence(Method.COUNTEREXAMPLE, witness=witness, facts=facts), derived=sp.Ge(derived, 0), corrected=corrected)
+    if is_identically_zero(sp.expand(printed_lhs - derived)):
+        return Finding(Verdict.CONFIRMED, "the printed minor is Re z11 Re z22 - (|z12 z21| + Re z12 z21)/2, by (20)",
+                       Evidence(Method.CANONICAL_FORM, facts=facts), derived=sp.Ge(derived, 0))
+    cause = ("the printed numerator |Re(z12 z21)| + |Re(z12 z21)| repeats one term: (20) gives |z12 z21| + Re(z12 z21)"
+             if is_identically_zero(sp.expand(printed_lhs - slip)) else "it is not the 2nd minor given by (20)")
+    return Finding(Verdict.TYPO,
+                   f"{cause}; at z11 = 2, z22 = 3, z12 = 1 + 2j, z21 = 3 - j the printed minor is {value_p}, the true one "
+                   f"{value_d}", Evidence(Method.COUNTEREXAMPLE, witness=witness, facts=facts),
+                   derived=sp.Ge(derived, 0), corrected=corrected)
 
 
 @PAPER.equation("15c", kind="condition", printed=PRINTED["15c"], section="4",
                 derivation="the 6th principal minor of Re Z' (exact for Table 1)")
 def eq15c(ctx: AuditContext) -> Finding:
+    from hapticproof.certify import as_sign_condition
+
+    condition = as_sign_condition(ctx.relation())
+    Zp = TABLE.lookup(r"\mathcal{Z}'")
+    # the printed left side evaluated at test matrices A (in place of Z') against det Re A
+    rng = __import__("random").Random(15)
+    tests = []
+    for _ in range(3):
+        A = sp.Matrix(6, 6, lambda i, j: sp.Rational(rng.randint(-5, 5), rng.randint(1, 3))
+                      + sp.I * sp.Rational(rng.randint(-5, 5), rng.randint(1, 3)))
+        read = sp.nsimplify(sp.expand(condition.expr.subs(Zp, sp.ImmutableMatrix(A)).doit()))
+        tests.append((read, ((A + A.conjugate()) / 2).det()))
+    ratios = {sp.nsimplify(r / d) if d != 0 else None for r, d in tests}
+    facts = {"printed_over_det_re": [str(r) for r in ratios], "printed_form": (condition.op, sorted(map(str, ratios)))}
+    if len(ratios) != 1 or None in ratios or not list(ratios)[0].is_positive or condition.op not in (">=",):
+        return Finding(Verdict.WRONG, f"(15c) reads {sp.sstr(condition.expr)} {condition.op} 0, not det Re Z' >= 0 (the full "
+                       f"principal minor): at three test matrices the printed left side over det Re A is {sorted(map(str, ratios))}",
+                       Evidence(Method.COUNTEREXAMPLE, facts=facts), derived=sp.Ge(sp.Symbol("det_Re_Zp"), 0),
+                       corrected=r"\det(\text{Re}(\mathcal{Z}')) \geq 0")
     det = real_part_leading_minors()[5]
     return Finding(Verdict.CONFIRMED,
                    "det Re Z' >= 0 is a necessary condition (the full principal minor); under (38) it is identically "
                    f"{det} (Re Z' has rank 3), so it holds but says nothing -- the order-1..3 principal minors decide",
-                   Evidence(Method.CANONICAL_FORM, facts={"det_under_38": det}))
+                   Evidence(Method.CANONICAL_FORM, facts={**facts, "det_under_38": det, "printed_form": "det Re Z' >= 0"}))
 
 
 @PAPER.equation("thm9", kind="claim", after="15c", section="4",
@@ -1003,49 +1385,78 @@ def eq16(ctx: AuditContext) -> Finding:
     rel = ctx.statement.relations()[0]
     t = TABLE.lookup("t")
     h = sp.Function("h")
+    if rel.lhs != sp.Function("H")(s) or rel.ops != ("=",):
+        return Finding(Verdict.TYPO, f"the display must define H(s); it reads {sp.sstr(rel.lhs)} {rel.ops[0]} ...",
+                       Evidence(Method.PARSE, facts={"printed_form": sp.srepr(rel.lhs)}))
     value = rel.rhs.subs(h(t), sp.exp(-2 * t)).subs(s, 3).doit()
     if value == sp.Rational(1, 5):
         return Finding(Verdict.CONFIRMED, "the one-sided Laplace transform (for h = e^{-2t} at s = 3 it gives 1/(s+2) = 1/5)",
                        Evidence(Method.INSTANCES, instances=1))
-    return Finding(Verdict.TYPO, f"gives {value} for h = e^(-2t)", Evidence(Method.INSTANCES))
+    return Finding(Verdict.TYPO, f"gives {value} for h = e^(-2t) at s = 3, where the Laplace transform is 1/5",
+                   Evidence(Method.INSTANCES, facts={"printed_form": sp.srepr(rel.rhs)}))
 
 
 def _det_with_diagonal(M: sp.Matrix, t: list) -> sp.Expr:
     return (M + sp.diag(*t)).det(method="berkowitz")
 
 
-@PAPER.equation("17", kind="condition", printed=PRINTED["17"], section="4",
-                derivation="det(Z + diag t) = sum over S of det Z[S] prod_{i not in S} t_i; exact instances for Table 1 and its Z'")
-def eq17(ctx: AuditContext) -> Finding:
-    Z = table1_impedance(60)
-    Zp = _table1_symmetrization().zprime()
+def _det_identity(ctx: AuditContext, first: Any, second: Any, termination: Any, blocks: bool, label: str) -> Finding | None:
+    """The printed ``det(X + T) = det(Y + T)`` evaluated with X := Z, Y := Z' of Table 1 at exact
+    instances (diagonal or full block terminations T); a finding when it is not that identity."""
     import random
 
+    (rel,) = ctx.statement.relations()
+    symbols = rel.lhs.free_symbols | rel.rhs.free_symbols
+    if rel.ops != ("=",) or first not in rel.lhs.free_symbols | rel.rhs.free_symbols or second not in symbols \
+            or (first in rel.lhs.free_symbols) == (first in rel.rhs.free_symbols):
+        return Finding(Verdict.WRONG, f"{label} must equate det(Z + T) and det(Z' + T); it reads {sp.sstr(rel.as_sympy())}",
+                       Evidence(Method.PARSE, facts={"printed_form": sp.srepr(rel.as_sympy())}))
+    Z = table1_impedance(60)
+    Zp = _table1_symmetrization().zprime()
     rng = random.Random(17)
     for _ in range(3):
         point = sp.Rational(rng.randint(1, 9), rng.randint(1, 4))
-        t = [sp.Rational(rng.randint(0, 9), rng.randint(1, 5)) for _ in range(6)]
-        a = sp.nsimplify(sp.simplify(_det_with_diagonal(Z.subs(s, point), t)))
-        b = sp.nsimplify(sp.simplify(_det_with_diagonal(Zp.subs(s, point), t)))
-        if a != b:
-            return Finding(Verdict.WRONG, "determinants differ", Evidence(Method.COUNTEREXAMPLE, witness={"s": point, "t": t}))
+        if blocks:
+            T = sp.diag(*[sp.Matrix(3, 3, lambda i, j: sp.Rational(rng.randint(0, 9), rng.randint(1, 5))) for _ in range(2)])
+        else:
+            T = sp.diag(*[sp.Rational(rng.randint(0, 9), rng.randint(1, 5)) for _ in range(6)])
+        values = {first: sp.ImmutableMatrix(Z.subs(s, point)), second: sp.ImmutableMatrix(Zp.subs(s, point)),
+                  termination: sp.ImmutableMatrix(T)}
+        a, c = (sp.nsimplify(sp.simplify(side.xreplace(values).doit())) for side in (rel.lhs, rel.rhs))
+        if sp.simplify(a - c) != 0:
+            return Finding(Verdict.WRONG, f"{label} fails for Table 1 at s = {point}: {sp.sstr(a)} vs {sp.sstr(c)}",
+                           Evidence(Method.COUNTEREXAMPLE, witness={"s": point, "T": T}, facts={"printed_form": sp.srepr(rel.as_sympy())}))
+    return None
+
+
+@PAPER.equation("17", kind="condition", printed=PRINTED["17"], section="4",
+                derivation="det(Z + diag t) = sum over S of det Z[S] prod_{i not in S} t_i; exact instances for Table 1 and its Z'")
+def eq17(ctx: AuditContext) -> Finding:
+    L = TABLE.lookup
+    failure = _det_identity(ctx, L("Z_1"), L("Z_2"), L("T_0"), False, "(17)")
+    if failure is not None:
+        return failure
     return Finding(Verdict.CONFIRMED,
                    "det(Z + T_0) expands into principal minors of Z times products of the t_i, so identical principal minors "
                    "give equal determinants for every diagonal T_0 (checked exactly on 3 instances for Table 1 and its Z')",
-                   Evidence(Method.INSTANCES, instances=3))
+                   Evidence(Method.INSTANCES, instances=3, facts={"printed_form": "det(Z + T) = det(Z' + T), T diagonal"}))
 
 
 @PAPER.equation("18", kind="condition", printed=PRINTED["18"], section="4",
                 derivation="all block-compatible minors of Z and Z' (Table 1, k_vmyz = 60), exact")
 def eq18(ctx: AuditContext) -> Finding:
+    L = TABLE.lookup
+    failure = _det_identity(ctx, L(r"\mathcal{Z}'"), L(r"\mathcal{Z}"), L(r"\mathcal{T}"), True, "(18)")
+    if failure is not None:
+        return failure
     Y = _table1_symmetrization()
     if Y.symmetrizable == Decision.PROVED:
         count = Y.evidence.facts.get("block_compatible_minors_checked")
         return Finding(Verdict.CONFIRMED,
                        "for 3-DOF block terminations det(Z + T) = det(Z' + T) holds iff every minor of Z with the same number of "
-                       f"rows and columns in each port equals that of Z'; verified exactly for Table 1 ({count} minors). "
-                       "A and B alone do not guarantee it (see 14a)",
-                       Y.evidence)
+                       f"rows and columns in each port equals that of Z'; verified exactly for Table 1 ({count} minors) and on 3 "
+                       "exact block terminations. A and B alone do not guarantee it (see 14a)",
+                       Evidence(Y.evidence.method, facts={**dict(Y.evidence.facts), "printed_form": "det(Z' + T) = det(Z + T)"}))
     return Finding(Verdict.WRONG, Y.reason, Y.evidence)
 
 
@@ -1055,6 +1466,18 @@ def eq19(ctx: AuditContext) -> Finding:
     import mpmath
 
     Y = _table1_symmetrization()
+    Zp_sym = Y.zprime()
+    table = TABLE.with_functions({r"\mathcal{Z}'": lambda a: sp.ImmutableMatrix(Zp_sym.subs(s, a))})
+    (rel,) = parse_printed(ctx.equation.printed, table).relations()
+    w_sym = TABLE.lookup(r"\omega")
+    residual = 0.0
+    for w in (1, 3):
+        gap = sp.Matrix(rel.lhs - rel.rhs).subs(w_sym, w).evalf(30)
+        residual = max(residual, float(gap.norm()))
+    if rel.ops != ("=",) or residual > 1e-12:
+        return Finding(Verdict.WRONG, f"the printed identity does not hold for Table 1's Z': |lhs - rhs| = {residual:.3g} at "
+                       "w = 1 or 3", Evidence(Method.COUNTEREXAMPLE, witness={"omega": [1, 3]},
+                                               facts={"residual": residual, "printed_form": sp.srepr(rel.as_sympy())}))
     positive = all(c > 0 for c in Y.c.values())
     Zp = Y.zprime()
     worst = mpmath.mpf(0)
@@ -1071,7 +1494,8 @@ def eq19(ctx: AuditContext) -> Finding:
                        "is symmetric with real coefficients, Z'^T(-jw) = conj Z'(jw) and the Hermitian part is 2 Re Z'(jw) "
                        "(numerically re-checked at w = 1, 3); when some z_ij z_ji is a negative constant times a square, Z' has "
                        "imaginary entries and Z'^H(jw) must replace Z'^T(-jw)",
-                       Evidence(Method.STRUCTURAL, facts={"c": {f"{i},{j}": v for (i, j), v in Y.c.items()}, "max_residual": float(worst)}))
+                       Evidence(Method.STRUCTURAL, facts={"c": {f"{i},{j}": v for (i, j), v in Y.c.items()}, "max_residual": float(worst),
+                                                          "printed_form": "Z'(jw) + Z'^T(-jw) = 2 Re Z'(jw)"}))
     return Finding(Verdict.WRONG, "identity fails", Evidence(Method.COUNTEREXAMPLE, facts={"max_residual": float(worst)}))
 
 
@@ -1105,19 +1529,42 @@ def eq20(ctx: AuditContext) -> Finding:
 # ---------------------------------------------------------------------------------------------
 
 
-for _id, _what in (("21a", "master dynamics Z_m V_h = F_h + F_cm with Z_m = M_m s"),
-                   ("21b", "slave dynamics Z_s V_e = F_e + F_cs with Z_s = M_s s"),
-                   ("23a", "master position-position law"),
-                   ("23b", "slave position-position law")):
-    def _check(ctx: AuditContext, _what=_what) -> Finding:
-        return _definition(ctx, "defines the " + _what + " (used in (25))")
+def _model_definitions() -> dict[str, tuple[str, Any, Any]]:
+    """The case study's model (the convention of :func:`case_study_impedance`): device forces
+    balance the port force and the controller force; position-position controllers."""
+    L = TABLE.lookup
+    Zm, Zs, Cm, Cs = (L(k) for k in (r"\mathbf{Z}_m", r"\mathbf{Z}_s", r"\mathbf{C}_m", r"\mathbf{C}_s"))
+    Vh, Ve, Fh, Fe, Fcm, Fcs = (L(k) for k in ("V_h", "V_e", "F_h", "F_e", "F_{cm}", "F_{cs}"))
+    return {
+        "21a": ("master dynamics Z_m V_h = F_h + F_cm with Z_m = M_m s", Zm * Vh, Fh + Fcm),
+        "21b": ("slave dynamics Z_s V_e = F_e + F_cs with Z_s = M_s s", Zs * Ve, Fe + Fcs),
+        "23a": ("master position-position law", Fcm, -Cm * Vh + Cm * Ve),
+        "23b": ("slave position-position law", Fcs, -Cs * Ve + Cs * Vh),
+    }
+
+
+for _id in ("21a", "21b", "23a", "23b"):
+    def _check(ctx: AuditContext) -> Finding:
+        what, lhs, rhs = _model_definitions()[ctx.equation.id]
+        return _definition(ctx, "defines the " + what + " (used in (25))", lhs, rhs)
     PAPER.equation(_id, kind="expression", printed=PRINTED[_id], section="5.1", derivation="model definition")(_check)
 
 
 @PAPER.equation("22", kind="expression", printed=PRINTED["22"], section="5.1",
                 derivation="general inertia matrix; which of its entries the symmetrization conditions see")
 def eq22(ctx: AuditContext) -> Finding:
+    rel = ctx.statement.relations()[0]
     M = _rhs_matrix(ctx)
+    expected = sp.Matrix(3, 3, lambda a, c: TABLE.lookup(f"m_{{i{AXES[a]}{AXES[c]}}}"))
+    if rel.lhs != TABLE.lookup(r"\mathbf{M}_i") or M.shape != (3, 3):
+        return Finding(Verdict.TYPO, f"the display must define the 3x3 inertia matrix M_i; it reads {_line(rel.lhs)} = "
+                       f"{M.shape[0]}x{M.shape[1]} matrix", Evidence(Method.PARSE, facts={"printed_form": sp.srepr(rel.lhs)}))
+    misplaced = [(a, c) for a in range(3) for c in range(3) if M[a, c] != expected[a, c]]
+    if misplaced:
+        listing = "; ".join(f"({AXES[a]},{AXES[c]}): {sp.sstr(M[a, c])}" for a, c in misplaced)
+        return Finding(Verdict.TYPO, f"entry (a, b) of M_i must be m_iab; the display has {listing}",
+                       Evidence(Method.CANONICAL_FORM, facts={"printed_form": sp.srepr(M)}), corrected=tex(sp.Eq(
+                           TABLE.lookup(r"\mathbf{M}_i"), expected, evaluate=False)))
     general = case_study_impedance(gain_matrix("pm"), gain_matrix("vm"), gain_matrix("ps"), gain_matrix("vs"),
                                    gain_matrix("mm"), gain_matrix("ms"))
     extra = [c for c in symmetrization_conditions(general, ports=(3, 3)) if c.kind == "B"]
@@ -1125,10 +1572,16 @@ def eq22(ctx: AuditContext) -> Finding:
     return Finding(Verdict.CONFIRMED,
                    "a general 3x3 inertia matrix (9 entries); with m_ixy != m_iyx condition B would carry the extra terms "
                    "j w (m_iyx - m_ixy) absent from (26)-(31) -- the audit takes M_i symmetric, as inertia matrices are",
-                   Evidence(Method.PARSE, facts={"entries": len(M.free_symbols), "mass_terms_in_B_if_asymmetric": mass_terms}))
+                   Evidence(Method.PARSE, facts={"entries": len(M.free_symbols), "mass_terms_in_B_if_asymmetric": mass_terms,
+                                                 "printed_form": sp.srepr(M)}))
 
 
 def _printed_gain_matrix(ctx: AuditContext, kind: str) -> Finding:
+    rel = ctx.statement.relations()[0]
+    name = TABLE.lookup(r"\mathbf{C}_" + kind)
+    if rel.lhs != name:
+        return Finding(Verdict.TYPO, f"the display must define {sp.sstr(name)}; it defines {sp.sstr(rel.lhs)}",
+                       Evidence(Method.PARSE, facts={"printed_form": sp.srepr(rel.lhs)}))
     printed = _rhs_matrix(ctx)
     derived = (gain_matrix("p" + kind) + gain_matrix("v" + kind) * s) / s
     bad = [(i, j) for i in range(3) for j in range(3) if not is_identically_zero(printed[i, j] - derived[i, j])]
@@ -1152,24 +1605,29 @@ def eq24(ctx: AuditContext) -> Finding:
     return _printed_gain_matrix(ctx, "s")
 
 
-@PAPER.equation("25", kind="expression", printed=PRINTED["25"], section="5.1", derivation="substitute (23) into (21)")
+@PAPER.equation("25", kind="expression", printed=PRINTED["25"], section="5.1", derivation="substitute (23) into (21)", quotes=('21a', '21b', '23a', '23b'))
 def eq25(ctx: AuditContext) -> Finding:
-    rel = ctx.statement.relations()[0]
-    Zm, Zs, Cm, Cs = (TABLE.lookup(k) for k in (r"\mathbf{Z}_m", r"\mathbf{Z}_s", r"\mathbf{C}_m", r"\mathbf{C}_s"))
-    Vh, Ve, Fh, Fe = (TABLE.lookup(k) for k in ("V_h", "V_e", "F_h", "F_e"))
-    lhs = rel.lhs.blocks
-    product = rel.rhs.args                      # block impedance times block velocity
-    block_rhs = product[0].blocks if hasattr(product[0], "blocks") else sp.Matrix(product[0])
-    velocity = product[1].blocks if hasattr(product[1], "blocks") else sp.Matrix(product[1])
-    rhs = [sp.MatAdd(*[block_rhs[k, m] * velocity[m, 0] for m in range(2)]).doit() for k in range(2)]
-    Fcm = -Cm * Vh + Cm * Ve      # (23a)
-    Fcs = -Cs * Ve + Cs * Vh      # (23b)
-    derived = {Fh: Zm * Vh - Fcm, Fe: Zs * Ve - Fcs}   # (21) solved for the port forces
-    ok = all(sp.expand((derived[lhs[k, 0]] - rhs[k]).doit()) == sp.ZeroMatrix(3, 1) for k in range(2))
-    if ok:
-        return Finding(Verdict.CONFIRMED, "F_h = (C_m + Z_m) V_h - C_m V_e and F_e = -C_s V_h + (C_s + Z_s) V_e follow from (21) and (23)",
-                       Evidence(Method.CANONICAL_FORM))
-    return Finding(Verdict.TYPO, "does not follow from (21) and (23)", Evidence(Method.CANONICAL_FORM))
+    L = TABLE.lookup
+    Fh, Fe, Fcm, Fcs = (L(k) for k in ("F_h", "F_e", "F_{cm}", "F_{cs}"))
+    unknowns = [e for M in (Fh, Fe, Fcm, Fcs) for e in M.as_explicit()]
+    equations = []
+    for eq_id in ("21a", "21b", "23a", "23b"):
+        (rel,) = parse_printed(PAPER.get(eq_id).printed, TABLE).relations()
+        equations += list(_explicit(rel.lhs) - _explicit(rel.rhs))
+    solution = sp.solve(equations, unknowns, dict=True)
+    if len(solution) != 1 or any(u not in solution[0] for u in unknowns[:6]):
+        return Finding(Verdict.UNDECIDED, "(21) and (23) as printed do not determine the port forces",
+                       Evidence(Method.CANONICAL_FORM, facts={"ids": ["21a", "21b", "23a", "23b"]}))
+    rel = ctx.statement.relations()[0].as_sympy()
+    difference = (_explicit(rel.lhs) - _explicit(rel.rhs)).applyfunc(lambda e: sp.expand(e.xreplace(solution[0])))
+    bad = [k for k, e in enumerate(difference) if e != 0]
+    if not bad:
+        return Finding(Verdict.CONFIRMED, "F_h = (C_m + Z_m) V_h - C_m V_e and F_e = -C_s V_h + (C_s + Z_s) V_e follow from the "
+                       "printed (21) and (23)", Evidence(Method.CANONICAL_FORM, facts={"printed_form": ("follows from (21), (23)",)}))
+    row = bad[0]
+    return Finding(Verdict.TYPO, f"does not follow from (21) and (23): row {row + 1} of the printed system differs from them by "
+                   f"{sp.sstr(difference[row])}", Evidence(Method.COUNTEREXAMPLE, facts={"rows": [k + 1 for k in bad],
+                                                                                          "printed_form": sp.srepr(difference)}))
 
 
 # ---------------------------------------------------------------------------------------------

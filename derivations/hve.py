@@ -432,7 +432,7 @@ def eq20(ctx: AuditContext) -> Finding:
 
 @PAPER.equation("20-colgate", kind="claim", after="20", section="3.1.1",
                 printed="This is identical to Colgate's condition.",
-                derivation="(20) vs (3) as printed, and vs Colgate's frequency form")
+                derivation="(20) vs (3) as printed, and vs Colgate's frequency form", quotes=('20', '3'))
 def identical_to_colgate(ctx: AuditContext) -> Finding:
     mine = ctx.parse(PAPER.get("20").printed).relations()[0].as_sympy()
     theirs = ctx.parse(PAPER.get("3").printed).relations()[0].as_sympy()
@@ -814,7 +814,7 @@ def eq27(ctx: AuditContext) -> Finding:
 @PAPER.equation("26-extends", kind="claim", after="26", section="3.1.1",
                 printed="Evidently, the proposed condition (27) extends the condition in [3] by both allowing the operator "
                         "to be active and for the delay to exist, and extends the condition in [7] by allowing the operator to be active.",
-                derivation="(27) at z_a = 0, t_d = 0 vs (3); (27) at z_a = 0 vs (5)")
+                derivation="(27) at z_a = 0, t_d = 0 vs (3); (27) at z_a = 0 vs (5)", quotes=('27', '3'))
 def extends(ctx: AuditContext) -> Finding:
     p27 = ctx.parse(PAPER.get("27").printed).relations()[0].as_sympy()
     p3 = ctx.parse(PAPER.get("3").printed).relations()[0].as_sympy()
@@ -1061,7 +1061,7 @@ def eq36(ctx: AuditContext) -> Finding:
 
 @PAPER.equation("36-agree", kind="claim", after="36", section="3.1",
                 printed="It is shown that both methods result in the same stability conditions for single-user HVE systems.",
-                derivation="b - z_a - RHS(36) vs Re G^-1 (forward difference, delay n, active operator), identity")
+                derivation="b - z_a - RHS(36) vs Re G^-1 (forward difference, delay n, active operator), identity", quotes=('36',))
 def methods_agree(ctx: AuditContext) -> Finding:
     printed36 = ctx.parse(PAPER.get("36").printed).relations()[0].as_sympy()
     try:
@@ -1096,7 +1096,7 @@ def methods_agree(ctx: AuditContext) -> Finding:
 @PAPER.equation("36-reduces", kind="claim", after="36", section="3.1.2",
                 printed="For the virtual wall H(z) = K + B(z-1)/(Tz) and assuming that B is small enough, this stability "
                         "condition will again reduce to (27)",
-                derivation="(36) is Re G^-1 >= 0 (36-agree); its exact worst case vs (27)")
+                derivation="(36) is Re G^-1 >= 0 (36-agree); its exact worst case vs (27)", quotes=('27',))
 def reduces_to_27(ctx: AuditContext) -> Finding:
     inner = AuditContext(PAPER, PAPER.get("27"))
     finding = _delayed_condition_check(inner, active=True)

@@ -325,11 +325,27 @@ def _damping_integrals() -> sp.Expr:
     return out
 
 
+def _positive(rel: Any, what: str, strict_only: bool = False) -> Finding | None:
+    """A printed passivity condition must say ``expression > 0`` (or ``>= 0``): None when it
+    does, else the finding for a reversed or different relation."""
+    ops = (">",) if strict_only else (">", ">=")
+    if rel.ops == ops[:1] or (len(rel.ops) == 1 and rel.ops[0] in ops):
+        if rel.rhs == 0:
+            return None
+    return Finding(Verdict.WRONG, f"{what} must read (integral) > 0; the display relates it by {' '.join(rel.ops)} to "
+                   f"{sp.sstr(rel.rhs)[:60]}", Evidence(Method.PARSE, facts={"ops": list(rel.ops), "printed_form": sp.srepr(rel.rhs)}))
+
+
 def _alias_typo_finding(ctx: AuditContext, derived: sp.Expr, what: str, lhs_only: bool = False) -> Finding:
     """Verdict for a display whose alias sums may print ``jn omega`` for ``jn omega_s``."""
     statement = ctx.statement
     exprs = statement.expressions()
     printed = exprs[0] if lhs_only or len(exprs) == 1 else exprs[0]
+    relations = statement.relations()
+    if relations and not lhs_only:
+        bad = _positive(relations[0], what)
+        if bad is not None:
+            return bad
     defect = _alias_defect(printed)
     if defect is None:
         if _same_form(printed, derived):
@@ -423,6 +439,11 @@ def eq3(ctx: AuditContext) -> Finding:
 def eq4(ctx: AuditContext) -> Finding:
     (rel,) = _relations(ctx.statement)
     printed_sum = rel.rhs
+    expected = (FUN["X^*"](s), FUN["L"](FUN["x^*"](t)))
+    if tuple(rel.terms[:-1]) != expected[:len(rel.terms) - 1] or len(rel.terms) != 3:
+        return Finding(Verdict.TYPO, f"the chain must read X^*(s) = L{{x^*(t)}} = ...; it reads "
+                       f"{' = '.join(sp.sstr(t_) for t_ in rel.terms[:-1])} = ...",
+                       Evidence(Method.PARSE, facts={"printed_form": [sp.srepr(t_) for t_ in rel.terms[:-1]]}))
     tt = sp.Symbol("t_", positive=True)
     term = sp.laplace_transform(sp.DiracDelta(tt - k_idx * T), tt, s, noconds=True)
     derived = sp.Sum(FUN["x"](k_idx * T) * term, (k_idx, 0, sp.oo))
@@ -442,9 +463,16 @@ def eq4(ctx: AuditContext) -> Finding:
 def eq5(ctx: AuditContext) -> Finding:
     zoh = classics.zoh_transfer(s, T)
     ratios = []
-    for lhs, rhs in _line_pairs(ctx.statement):
-        sample = [f for f in (FUN["F_m^*"](s), FUN["F_s^*"](s)) if rhs.has(f)]
-        ratios.append(sp.cancel(rhs / sample[0]))
+    for (lhs, rhs), (held, sampled) in zip(_line_pairs(ctx.statement), ((FUN["F_m"](s), FUN["F_m^*"](s)),
+                                                                         (FUN["F_s"](s), FUN["F_s^*"](s)))):
+        if lhs != held or not rhs.has(sampled):
+            return Finding(Verdict.TYPO, f"the hold must map {sp.sstr(sampled)} to {sp.sstr(held)}: the display reads "
+                           f"{sp.sstr(lhs)} = {sp.sstr(rhs)}", Evidence(Method.PARSE, facts={"printed_form": sp.srepr(rhs)}))
+        ratios.append(sp.cancel(rhs / sampled))
+    if not is_identically_zero(ratios[0] - ratios[1]):
+        return Finding(Verdict.TYPO, f"the two holds differ: {sp.sstr(ratios[0])} for the master, {sp.sstr(ratios[1])} for the "
+                       f"slave (derived {sp.sstr(zoh)} for both)", Evidence(Method.COUNTEREXAMPLE, facts={"ratios": ratios}),
+                       derived=zoh)
     printed = ratios[0]
     finding = compare_expressions(printed, zoh, what="the printed ZOH transfer function",
                                   corrected=r"F_m(s) = \frac{1 - e^{-sT}}{s} F_m^*(s), F_s(s) = \frac{1 - e^{-sT}}{s} F_s^*(s)")
@@ -463,7 +491,7 @@ def eq5(ctx: AuditContext) -> Finding:
 
 
 @PAPER.equation("6", kind="expression", printed=PRINTED["6"], section="II", assumptions=ASSUME,
-                derivation="(31) at alpha = 1")
+                derivation="(31) at alpha = 1", quotes=('31',))
 def eq6(ctx: AuditContext) -> Finding:
     (rel,) = _parse(ctx, ERROR_TABLE).relations()            # e is the error here, not Euler's number
     (rel31,) = _parse(ctx, ERROR_TABLE, PAPER.get("31").printed).relations()
@@ -479,6 +507,7 @@ def _restoring_forces(gain: sp.Expr, error: sp.Expr) -> tuple[sp.Expr, sp.Expr]:
     return sp.diff(potential, X_M), sp.diff(potential, X_S)
 
 
+@functools.lru_cache(maxsize=1)
 def _printed_sign_is_unstable() -> dict:
     """Exact ZOH loop of the paper's teleoperator at Table I's stable point (K = 0.4, T = 7 ms,
     free/free) with the restoring sign and with (7)'s sign (controller -C)."""
@@ -497,6 +526,9 @@ def _printed_sign_is_unstable() -> dict:
                 derivation="restoring controllers under (1): forces = gradient of the spring potential C e^2/2, e = x_m - x_s")
 def eq7(ctx: AuditContext) -> Finding:
     (lm, rm), (ls, rs) = _line_pairs(ctx.statement)
+    if (lm, ls) != (FUN["F_m^*"](s), FUN["F_s^*"](s)):
+        return Finding(Verdict.TYPO, f"the lines must define F_m^*(s) and F_s^*(s); they define {sp.sstr(lm)} and {sp.sstr(ls)}",
+                       Evidence(Method.PARSE, facts={"printed_form": [sp.srepr(lm), sp.srepr(ls)]}))
     cm, cs = CONTROLLERS["C_m"](sp.exp(s * T)), CONTROLLERS["C_s"](sp.exp(s * T))
     xm, xs = FUN["X_m^*"](s), FUN["X_s^*"](s)
     grad_m, grad_s = _restoring_forces(1, X_M - X_S)           # (x_m - x_s, x_s - x_m)
@@ -506,7 +538,12 @@ def eq7(ctx: AuditContext) -> Finding:
     if ratio_m == 1 and ratio_s == 1:
         return Finding(Verdict.CONFIRMED, "both controller laws are restoring under (1)", Evidence(Method.CANONICAL_FORM))
     loops = _printed_sign_is_unstable()
-    assert loops["rho_printed_sign"] > 1 > loops["rho_restoring"]
+    opposite = is_identically_zero(ratio_m + 1) and is_identically_zero(ratio_s + 1)
+    if not (opposite and loops["rho_printed_sign"] > 1 > loops["rho_restoring"]):
+        return Finding(Verdict.WRONG, f"the printed controller laws are {sp.sstr(ratio_m)} and {sp.sstr(ratio_s)} times the "
+                       "restoring ones (f_m = C_m (x_m - x_s), f_s = C_s (x_s - x_m))",
+                       Evidence(Method.CANONICAL_FORM, facts={"ratio_master": ratio_m, "ratio_slave": ratio_s}),
+                       derived=sp.And(sp.Eq(FUN["F_m^*"](s), derived_m), sp.Eq(FUN["F_s^*"](s), derived_s)))
     return Finding(
         Verdict.TYPO,
         f"with (1)'s convention (f_m, f_s subtracted) restoring controllers are f_m = C_m (x_m - x_s), f_s = C_s (x_s - x_m) "
@@ -551,7 +588,10 @@ def _time_form(expr: sp.Expr) -> sp.Expr:
                 derivation="energy supplied through the two ports, from (1): int f_h x_m' + int f_e x_s' >= 0 at rest")
 def eq8(ctx: AuditContext) -> Finding:
     (rel,) = _parse(ctx, TIME_TABLE).relations()
-    same = _time_form(rel.lhs) == _time_form(_port_energy()) and rel.rhs == 0
+    bad = _positive(rel, "the supplied energy (8)")
+    if bad is not None:
+        return bad
+    same = _time_form(rel.lhs) == _time_form(_port_energy())
     if same:
         return Finding(Verdict.CONFIRMED, "(8) is passivity of the 2-port at rest: the energy supplied through both ports is "
                        "non-negative (the power f_h x_m' enters with (1)'s sign); compared up to the boundary (> vs >=: both "
@@ -570,8 +610,12 @@ def eq9(ctx: AuditContext) -> Finding:
         text = text.replace(old, new)       # the velocities at the upper limit t
     (rel,) = _parse(ctx, TIME_TABLE, text).relations()
     kinetic = sp.Rational(1, 2) * (m_m * TIME["xdot_m(t)"](t) ** 2 + m_s * TIME["xdot_s(t)"](t) ** 2)
+    if rel.ops != (">",) and rel.ops != (">=",):
+        return Finding(Verdict.WRONG, f"(9) must bound the supplied energy from below; it relates it by {rel.ops[0]}",
+                       Evidence(Method.PARSE, facts={"ops": list(rel.ops)}))
     if _time_form(rel.lhs) != _time_form(_port_energy()) or not is_identically_zero(rel.rhs - kinetic):
-        return Finding(Verdict.WRONG, "(9) is not (8) with the kinetic energies", Evidence(Method.CANONICAL_FORM))
+        return Finding(Verdict.WRONG, f"(9) is not (8) with the kinetic energies: its right side is {sp.sstr(rel.rhs)}",
+                       Evidence(Method.CANONICAL_FORM, facts={"printed_form": sp.srepr(rel.rhs)}))
     return Finding(Verdict.CONFIRMED, "(9) is (8) with the right-hand side raised by the kinetic energies m_i x_i'^2/2 >= 0, so "
                    "(9) implies (8) (sufficient; not necessary whenever a robot moves); the velocities on the right are read at "
                    "the upper limit t", Evidence(Method.STRUCTURAL, facts={"added": kinetic}),
@@ -593,19 +637,29 @@ def eq10(ctx: AuditContext) -> Finding:
                 derivation="(9) with f_h from (10): int m x'' x' = m x'(t)^2/2 at rest (SymPy integration)")
 def eq11(ctx: AuditContext) -> Finding:
     (rel,) = _parse(ctx, TIME_TABLE).relations()
-    u = sp.Function("u")
-    stored = sp.integrate(m_m * u(tau).diff(tau) * u(tau), (tau, 0, t)).subs(u(0), 0)
-    assert is_identically_zero(stored - m_m * u(t) ** 2 / 2)
+    bad = _positive(rel, "(11)")
+    if bad is not None:
+        return bad
+    stored, u = _kinetic_integral()
     # f_h = f_m + m x'' + b x' (10): the m x'' x' part integrates to the kinetic energy of (9)
     derived = 0
     for ctrl, vel, damping in ((TIME["f_m(t)"], TIME["xdot_m(t)"], b_m), (TIME["f_s(t)"], TIME["xdot_s(t)"], b_s)):
         derived += sp.Integral(ctrl(tau) * vel(tau), (tau, 0, t)) + sp.Integral(damping * vel(tau) ** 2, (tau, 0, t))
-    if _time_form(rel.lhs) == _time_form(derived) and rel.rhs == 0:
+    if not is_identically_zero(stored - m_m * u(t) ** 2 / 2):
+        return Finding(Verdict.UNDECIDED, f"int m x'' x' came out as {sp.sstr(stored)}", Evidence(Method.CANONICAL_FORM))
+    if _time_form(rel.lhs) == _time_form(derived):
         return Finding(Verdict.CONFIRMED, "substituting f_h and f_e from (1) into (9), the mass terms integrate exactly to the "
                        "kinetic energies and cancel; what remains is (11)",
                        Evidence(Method.CANONICAL_FORM, facts={"int m x'' x'": stored}), derived=sp.Gt(derived, 0))
     return Finding(Verdict.WRONG, "(11) is not (9) after eliminating f_h, f_e", Evidence(Method.CANONICAL_FORM),
                    derived=sp.Gt(derived, 0))
+
+
+@functools.lru_cache(maxsize=1)
+def _kinetic_integral() -> tuple[sp.Expr, Any]:
+    """int_0^t m u' u dtau at rest (SymPy integration; shared by the checks)."""
+    u = sp.Function("u")
+    return sp.integrate(m_m * u(tau).diff(tau) * u(tau), (tau, 0, t)).subs(u(0), 0), u
 
 
 @PAPER.equation("12", kind="condition", printed=PRINTED["12"], section="III", assumptions=ASSUME,
@@ -614,7 +668,10 @@ def eq12(ctx: AuditContext) -> Finding:
     (rel,) = _parse(ctx, FREQ_TABLE).relations()
     derived = (_energy_spectrum(SPECTRA["Fw_m"](omega, SIG), "V_m") + _energy_spectrum(SPECTRA["Fw_s"](omega, SIG), "V_s")
                + _damping_integrals())
-    if _same_form(rel.lhs, derived) and rel.rhs == 0:
+    bad = _positive(rel, "(12)")
+    if bad is not None:
+        return bad
+    if _same_form(rel.lhs, derived):
         return Finding(Verdict.CONFIRMED, "each time integral of (11) becomes (1/2 pi) int F V^c d omega; the printed display omits "
                        "the common positive factor 1/(2 pi), which does not change the sign (signals truncated at t)",
                        Evidence(Method.CANONICAL_FORM, facts={"omitted_factor": 1 / (2 * sp.pi)}),
@@ -633,17 +690,24 @@ def eq13(ctx: AuditContext) -> Finding:
     statement = _parse(ctx, FREQ_TABLE)
     fm, fs = _derived_forces()
     ratios = []
+    lhs_names = [lhs for lhs, _ in _line_pairs(statement)]
+    if lhs_names != [SPECTRA["Fw_m"](omega, SIG), SPECTRA["Fw_s"](omega, SIG)]:
+        return Finding(Verdict.TYPO, f"the lines must give F_m(jw) and F_s(jw); they give {[sp.sstr(x) for x in lhs_names]}",
+                       Evidence(Method.PARSE, facts={"printed_form": [sp.srepr(x) for x in lhs_names]}))
     for (lhs, rhs), derived in zip(_line_pairs(statement), (fm, fs)):
         printed = _kernel_to_controller(rhs)
         ratios.append(sp.simplify(sp.cancel(sp.expand(printed) / sp.expand(derived))))
     if all(r == 1 for r in ratios):
         return Finding(Verdict.CONFIRMED, "both forces equal the derived ZOH forces", Evidence(Method.CANONICAL_FORM))
     witness = {"T": 2}
+    known = is_identically_zero(ratios[0] - 1 / T) and is_identically_zero(ratios[1] + 1 / T)
+    why = ("the factor 1/T is (5)'s ZOH scale (already counted by (15)'s 1/T), and the slave keeps (7)'s non-restoring sign "
+           "while the master has the restoring one; the corrected forms give (16) exactly" if known else
+           "they are not the ZOH forces of the restoring controllers")
     return Finding(
         Verdict.TYPO,
         f"with (14) substituted the printed forces are {sp.sstr(ratios[0])} (master) and {sp.sstr(ratios[1])} (slave) times the "
-        "derived ones: the factor 1/T is (5)'s ZOH scale (already counted by (15)'s 1/T), and the slave keeps (7)'s "
-        "non-restoring sign while the master has the restoring one; the corrected forms give (16) exactly",
+        f"derived ones: {why}",
         Evidence(Method.COUNTEREXAMPLE, witness=witness,
                  facts={"ratio_master": ratios[0], "ratio_slave": ratios[1],
                         "ratio_master_at_witness": ratios[0].subs(T, 2), "ratio_slave_at_witness": ratios[1].subs(T, 2)}),
@@ -657,7 +721,10 @@ def eq13(ctx: AuditContext) -> Finding:
                 derivation="kernel C(w) = -j w ZOH(j w) C(e^{jwT})/T that turns int F V^c into (16) (classics.sampling_kernel)")
 def eq14(ctx: AuditContext) -> Finding:
     out = []
-    for (lhs, rhs), name in zip(_line_pairs(ctx.statement), ("C_m", "C_s")):
+    for (lhs, rhs), name, bar in zip(_line_pairs(ctx.statement), ("C_m", "C_s"), ("Cbar_m", "Cbar_s")):
+        if lhs != SPECTRA[bar](omega, SIG):
+            return Finding(Verdict.TYPO, f"the kernel of {name} must define {bar}(jw); the line defines {sp.sstr(lhs)}",
+                           Evidence(Method.PARSE, facts={"printed_form": sp.srepr(lhs)}))
         out.append(compare_expressions(rhs, _kernel(name), what=f"the kernel of {name}"))
     bad = [f for f in out if f.verdict != Verdict.CONFIRMED]
     if bad:
@@ -692,7 +759,10 @@ def _alias_sum_check(points: int = 3) -> float:
                 derivation="impulse sampling (4): X^*(jw) = (1/T) sum_n X(jw + jn w_s), X = V/(jw) at rest")
 def eq15(ctx: AuditContext) -> Finding:
     out = []
-    for (lhs, rhs), name in zip(_line_pairs(ctx.statement), ("V_m", "V_s")):
+    for (lhs, rhs), name, sampled in zip(_line_pairs(ctx.statement), ("V_m", "V_s"), ("Xs_m", "Xs_s")):
+        if lhs != SPECTRA[sampled](omega, SIG):
+            return Finding(Verdict.TYPO, f"the line for {name} must define X^*(jw) of that robot; it defines {sp.sstr(lhs)}",
+                           Evidence(Method.PARSE, facts={"printed_form": sp.srepr(lhs)}))
         derived = _sampled(name)
         (printed_sum,) = rhs.atoms(sp.Sum)
         (derived_sum,) = derived.atoms(sp.Sum)
@@ -721,7 +791,7 @@ def eq16(ctx: AuditContext) -> Finding:
 
 
 @PAPER.equation("17", kind="expression", printed=PRINTED["17"], section="III", assumptions=ASSUME,
-                derivation="(30) at alpha = 1")
+                derivation="(30) at alpha = 1", quotes=('30',))
 def eq17(ctx: AuditContext) -> Finding:
     (rel,) = _relations(ctx.statement)
     (rel30,) = _parse(ctx, TABLE, PAPER.get("30").printed).relations()
@@ -748,9 +818,12 @@ def eq18(ctx: AuditContext) -> Finding:
 
 
 @PAPER.equation("19", kind="expression", printed=PRINTED["19"], section="III", assumptions=ASSUME,
-                derivation="the combination of V_m, V_s for which (16) with (17) is the single integral (18)")
+                derivation="the combination of V_m, V_s for which (16) with (17) is the single integral (18)", quotes=('16',))
 def eq19(ctx: AuditContext) -> Finding:
     (rel,) = _relations(ctx.statement)
+    if rel.lhs != SPECTRA["V"](omega, SIG):
+        return Finding(Verdict.TYPO, f"the display must define V(jw); it defines {sp.sstr(rel.lhs)}",
+                       Evidence(Method.PARSE, facts={"printed_form": sp.srepr(rel.lhs)}))
     p16 = _equal_controllers(_parse(ctx, TABLE, PAPER.get("16").printed).expressions()[0])
     target = _generic_integral(SPECTRA["Cbar"](omega, SIG))
     substituted = target.replace(SPECTRA["V"], lambda w, sig: rel.rhs.subs(omega, w))
@@ -783,6 +856,10 @@ def eq21(ctx: AuditContext) -> Finding:
 
 def _part_check(ctx: AuditContext, positive: bool) -> Finding:
     (rel,) = _relations(ctx.statement)
+    target = SPECTRA["Cbar^+" if positive else "Cbar^-"](omega, SIG)
+    if rel.lhs != target:
+        return Finding(Verdict.TYPO, f"the display must define {sp.sstr(target)}; it defines {sp.sstr(rel.lhs)}",
+                       Evidence(Method.PARSE, facts={"printed_form": sp.srepr(rel.lhs)}))
     re_cbar = sp.re(SPECTRA["Cbar"](omega, SIG))
     values = [sp.Integer(-2), sp.Rational(-1, 2), sp.Integer(0), sp.Rational(1, 3), sp.Integer(5)]
     part = (lambda x: sp.Max(x, 0)) if positive else (lambda x: sp.Min(x, 0))
@@ -792,7 +869,10 @@ def _part_check(ctx: AuditContext, positive: bool) -> Finding:
         return Finding(Verdict.CONFIRMED, f"the {name} part of Re Cbar ({'max' if positive else 'min'}(Re Cbar, 0)); with the "
                        "other part it sums to Re Cbar, as (21) needs", Evidence(Method.INSTANCES, instances=len(values),
                                                                                  facts={"values": dict(zip(map(str, values), got))}))
-    return Finding(Verdict.WRONG, "not the sign part of Re Cbar", Evidence(Method.COUNTEREXAMPLE, facts={"values": got}))
+    wrong_at = [(v, g) for v, g in zip(values, got) if g != part(v)]
+    return Finding(Verdict.WRONG, f"not the {'positive' if positive else 'negative'} part of Re Cbar: at Re Cbar = "
+                   f"{sp.sstr(wrong_at[0][0])} it gives {sp.sstr(wrong_at[0][1])}",
+                   Evidence(Method.COUNTEREXAMPLE, witness={"Re Cbar": wrong_at[0][0]}, facts={"values": got}))
 
 
 @PAPER.equation("22", kind="expression", printed=PRINTED["22"], section="III", assumptions=ASSUME,
@@ -830,7 +910,10 @@ def eq25(ctx: AuditContext) -> Finding:
 def eq26(ctx: AuditContext) -> Finding:
     (rel,) = _relations(ctx.statement)
     derived = _lemma3_bound(CMINUS) + _damping_integrals()
-    if _same_form(rel.lhs, derived) and rel.rhs == 0:
+    bad = _positive(rel, "(26)")
+    if bad is not None:
+        return bad
+    if _same_form(rel.lhs, derived):
         return Finding(Verdict.CONFIRMED, "replacing the first integral of (24) by its lower bound (25) gives a stronger, hence "
                        "sufficient, condition", Evidence(Method.CANONICAL_FORM), derived=sp.Gt(derived, 0))
     return Finding(Verdict.WRONG, "(26) is not (24) with (25)", Evidence(Method.CANONICAL_FORM))
@@ -864,7 +947,7 @@ def eq28(ctx: AuditContext) -> Finding:
 
 @PAPER.equation("28-less", kind="claim", after="28", section="III",
                 printed="Applying Lemma 4 in Appendix to the last integral in (27), it can be said that (27) is less than (28)",
-                derivation="(27) - (28) as one integrand")
+                derivation="(27) - (28) as one integrand", quotes=('27', '28'))
 def less_claim(ctx: AuditContext) -> Finding:
     p27 = _parse(ctx, TABLE, PAPER.get("27").printed).expressions()[0]
     p28 = _parse(ctx, TABLE, PAPER.get("28").printed).expressions()[0]
@@ -907,8 +990,17 @@ def _controller_instances() -> list[tuple[str, sp.Expr]]:
 
 def _bound_check(ctx: AuditContext, alpha_value: sp.Expr | None) -> Finding:
     """(29) (alpha_value = 1) or (32) (symbolic alpha): generic controller, then instances."""
+    relations = ctx.statement.relations()
     lines = _line_pairs(ctx.statement)
     al = alpha if alpha_value is None else alpha_value
+    for rel, damping in zip(relations, (b_m, b_s)):
+        if len(rel.terms) != 2 or rel.lhs != damping or rel.ops[0] not in (">", ">="):
+            return Finding(Verdict.WRONG, f"each line must bound a robot's damping from below ({damping} > ...); the display "
+                           f"reads {sp.sstr(rel.lhs)} {' '.join(rel.ops)} ...",
+                           Evidence(Method.PARSE, facts={"printed_form": [sp.srepr(rel.lhs), list(rel.ops)]}))
+    if len(relations) != 2:
+        return Finding(Verdict.WRONG, f"expected the two lines b_m > ..., b_s > ...; found {len(relations)}",
+                       Evidence(Method.PARSE))
     generic_ok = []
     u, v = sp.symbols("u v", real=True)         # C(e^{jwT}) = u + jv: a general controller value
     for (lhs, rhs), name in zip(lines, ("C_m", "C_s")):
@@ -917,7 +1009,9 @@ def _bound_check(ctx: AuditContext, alpha_value: sp.Expr | None) -> Finding:
         diff = sp.expand_complex(sp.expand((rhs - derived).subs(value, u + sp.I * v)))
         generic_ok.append(is_identically_zero(diff))
     if not all(generic_ok):
-        return Finding(Verdict.WRONG, "the printed bound differs from the derived leak bound for a general controller",
+        which = [name for name, ok in zip(("b_m", "b_s"), generic_ok) if not ok]
+        return Finding(Verdict.WRONG, f"the printed bound on {', '.join(which)} differs from the derived leak bound "
+                       f"(alpha + 1) L_C for a general controller C(e^(jwT)) = u + jv",
                        Evidence(Method.CANONICAL_FORM, facts={"lines_match": generic_ok}))
     instances = {}
     for label, controller in _controller_instances():
@@ -953,11 +1047,19 @@ def eq29(ctx: AuditContext) -> Finding:
 
 
 @PAPER.equation("30", kind="expression", printed=PRINTED["30"], section="III-A", assumptions=ASSUME,
-                derivation="scaled controllers; consistent with the text's C_m < C_s and x_m > x_s (both mean alpha < 1)")
+                derivation="scaled controllers; consistent with the text's C_m < C_s and x_m > x_s (both mean alpha < 1)", quotes=('31',))
 def eq30(ctx: AuditContext) -> Finding:
     (rel,) = _relations(ctx.statement)
     (rel31,) = _parse(ctx, ERROR_TABLE, PAPER.get("31").printed).relations()
-    cm = sp.solve(sp.Eq(rel.terms[0], rel.terms[1]), CONTROLLERS["C_m"](sp.I * omega))[0]
+    if len(rel.terms) != 3 or rel.terms[2] != CONTROLLERS["C"](sp.I * omega) or not is_identically_zero(
+            rel.terms[1] - CONTROLLERS["C_s"](sp.I * omega)):
+        return Finding(Verdict.WRONG, f"(30) must read C_m/alpha = C_s = C; it reads {' = '.join(map(sp.sstr, rel.terms))}",
+                       Evidence(Method.PARSE, facts={"printed_form": [sp.srepr(x) for x in rel.terms]}))
+    solved = sp.solve(sp.Eq(rel.terms[0], rel.terms[1]), CONTROLLERS["C_m"](sp.I * omega))
+    if len(solved) != 1:
+        return Finding(Verdict.WRONG, f"(30) does not determine C_m: {sp.sstr(rel.terms[0])} = {sp.sstr(rel.terms[1])}",
+                       Evidence(Method.PARSE))
+    cm = solved[0]
     ratio = sp.cancel(cm / CONTROLLERS["C_s"](sp.I * omega))
     tracking = sp.solve(sp.Eq(rel31.rhs, 0), X_S)[0] / X_M            # x_s/x_m when the error vanishes
     if not (is_identically_zero(ratio - alpha) and is_identically_zero(tracking - alpha)):
@@ -1010,13 +1112,17 @@ def eq32(ctx: AuditContext) -> Finding:
                 derivation="sympy.physics.control.backward_diff of K + Bs")
 def eq33(ctx: AuditContext) -> Finding:
     (rel,) = _relations(ctx.statement)
+    if tuple(rel.terms[:-1]) != (CONTROLLERS["C_s"](Z_SYM), CONTROLLERS["C_m"](Z_SYM)):
+        return Finding(Verdict.TYPO, f"(33) must give both controllers, C_s(z) = C_m(z) = ...; it reads "
+                       f"{' = '.join(map(sp.sstr, rel.terms[:-1]))} = ...",
+                       Evidence(Method.PARSE, facts={"printed_form": [sp.srepr(x) for x in rel.terms[:-1]]}))
     return compare_expressions(rel.terms[-1], tele.discretize_pd("backward"),
                                what="the PD controller (33)", note="it is the backward-difference discretisation of K + Bs")
 
 
 @PAPER.equation("33-bilinear", kind="claim", after="33", section="III-B",
                 printed="a PD controller K + Bs, which can be discretized using bilinear transformation method as (33)",
-                derivation="sympy.physics.control.bilinear of K + Bs vs (33)")
+                derivation="sympy.physics.control.bilinear of K + Bs vs (33)", quotes=('33',))
 def bilinear_claim(ctx: AuditContext) -> Finding:
     (rel,) = _relations(_parse(ctx, TABLE, PAPER.get("33").printed))
     finding = compare_expressions(rel.terms[-1], tele.discretize_pd("bilinear"), what="(33)", on_mismatch=Verdict.WRONG)
@@ -1073,7 +1179,7 @@ def eq35(ctx: AuditContext) -> Finding:
                 printed="the passivity condition (35) for the teleoperation system with equal PD controllers (33) for the master "
                         "and the slave has coincided with the passivity condition for a system involving haptic interaction with "
                         "a discretely-simulated virtual wall as investigated by Colgate and Schenkel [7]",
-                derivation="(35) vs Colgate's virtual-wall condition derived by classics.colgate_wall")
+                derivation="(35) vs Colgate's virtual-wall condition derived by classics.colgate_wall", quotes=('35',))
 def colgate_claim(ctx: AuditContext) -> Finding:
     p35 = ctx.parse(PAPER.get("35").printed).relations()[0].as_sympy()
     colgate = classics.colgate_wall(B=B)
@@ -1237,7 +1343,7 @@ def intro_routh(ctx: AuditContext) -> Finding:
 
 @PAPER.equation("intro-less-conservative", kind="claim", after="0", section="I",
                 printed="$b > KT/2 - B$, which is clearly less conservative than the passivity condition",
-                derivation="difference of the two quoted bounds; exact passivity implies exact stability")
+                derivation="difference of the two quoted bounds; exact passivity implies exact stability", quotes=('intro-colgate',))
 def intro_less(ctx: AuditContext) -> Finding:
     passive = intro_condition("colgate")
     stable = _single_relation(ctx.parse(_quoted(ctx.equation.printed, last=False)))
@@ -1287,8 +1393,9 @@ def _pd_limits() -> dict[str, sp.Basic]:
     out = {}
     for var in (K, B, T):
         sol = sp.solve(b - bound, var)[0]
-        out[str(var)] = sp.Lt(var, sol)             # b > bound  <=>  var < sol  (bound increasing in var)
-        assert sp.diff(bound, var).is_positive
+        increasing = sp.diff(bound, var).is_positive
+        # b > bound  <=>  var < sol when the bound increases with var, var > sol when it decreases
+        out[str(var)] = sp.Lt(var, sol) if increasing else sp.Gt(var, sol)
     out["b"] = sp.Gt(b, bound)
     return out
 
@@ -1331,34 +1438,52 @@ def _ff_radius(Kv: sp.Rational, Tv: sp.Rational) -> float:
     return float(spectral_radius(Teleoperator.symmetric(m=PHANTOM["m"], b=PHANTOM["b"], T=Tv, K=Kv), "mp", 30))
 
 
+def _table_entries(text: str) -> dict[tuple[int, str], bool]:
+    """``(T in ms, K) -> reported stable`` read from the quoted table text."""
+    import re
+
+    out = {}
+    for block in re.split(r"T = ", text)[1:]:
+        head = re.match(r"(\d+) ms:", block)
+        if head is None:
+            continue
+        for gains, outcome in re.findall(r"K = ([\d., ]+?)\s*(stable|Unstable)", block):
+            for k in re.findall(r"\d+(?:\.\d+)?", gains):
+                out[(int(head.group(1)), k)] = outcome == "stable"
+    return out
+
+
 @PAPER.equation("table1-stable", kind="claim", after="40", section="V-F",
                 printed="TABLE I: T = 7 ms: K = 0.4, 1.0, 2.0, 2.4 stable; T = 15 ms: K = 0.4, 1.0 stable, K = 2.0, 2.4 Unstable",
                 derivation="exact ZOH loop of the free/free teleoperator (m = 0.015, b = 0.01822, B = 0) and condition (35)")
 def table1(ctx: AuditContext) -> Finding:
+    entries = _table_entries(ctx.equation.printed)
     facts, mismatches = {}, []
-    for (Tms, Kt), entry in TABLE_I.items():
+    for (Tms, Kt), reported_stable in entries.items():
         Kv, Tv = sp.Rational(Kt), sp.Rational(Tms, 1000)
         rho = _ff_radius(Kv, Tv)
         passive = PHANTOM["b"] > Kv * Tv
-        reported_stable = entry != "Unstable"
-        facts[f"T={Tms}ms,K={Kt}"] = {"rho": rho, "passive_(35)": passive, "reported": entry}
+        facts[f"T={Tms}ms,K={Kt}"] = {"rho": rho, "passive_(35)": passive, "reported_stable": reported_stable}
         if (rho < 1) != reported_stable or passive != reported_stable:
             mismatches.append((Tms, Kt))
+    if not entries:
+        return Finding(Verdict.UNDECIDED, "no table entries could be read from the text", Evidence(Method.PARSE))
     if mismatches:
         return Finding(Verdict.INCONSISTENT, f"the model disagrees with Table I at {mismatches}",
-                       Evidence(Method.SPECTRAL, instances=len(TABLE_I), facts=facts))
-    return Finding(Verdict.CONFIRMED, "all 8 reported outcomes agree with the exact ZOH model (spectral radius < 1 exactly for "
-                   "the stable entries) and with (35) (K T < b there); the MSE values are hardware data and are not reproduced",
-                   Evidence(Method.SPECTRAL, instances=len(TABLE_I), facts={**facts, "plot": _table1_plot(facts)}))
+                       Evidence(Method.SPECTRAL, instances=len(entries), facts=facts))
+    return Finding(Verdict.CONFIRMED, f"all {len(entries)} reported outcomes agree with the exact ZOH model (spectral radius < 1 "
+                   "exactly for the stable entries) and with (35) (K T < b there); the MSE values are hardware data and are not "
+                   "reproduced", Evidence(Method.SPECTRAL, instances=len(entries), facts={**facts, "plot": _table1_plot(facts)}))
 
 
 def _table1_plot(facts: dict[str, dict[str, Any]]) -> Plot:
     """Table I's spectral radii against K, one series per T (evidence data for the reports)."""
+    read = [tuple(key.split(",")) for key in facts if key.startswith("T=")]
     series = []
-    for Tms in sorted({Tms for Tms, _ in TABLE_I}):
-        gains = sorted((Kt for T_, Kt in TABLE_I if T_ == Tms), key=float)
-        series.append(Series(f"T = {Tms} ms", [float(k) for k in gains],
-                             [facts[f"T={Tms}ms,K={k}"]["rho"] for k in gains], "points"))
+    for Tms in sorted({t for t, _ in read}, key=lambda t: float(t[2:-2])):
+        gains = sorted((k[2:] for t, k in read if t == Tms), key=float)
+        series.append(Series(f"T = {Tms[2:-2]} ms", [float(k) for k in gains],
+                             [facts[f"{Tms},K={k}"]["rho"] for k in gains], "points"))
     return Plot("Table I: spectral radius of the exact ZOH loop (above 1: unstable)", "K (N/m)", "spectral radius",
                 tuple(series), hline=1.0)
 
@@ -1489,6 +1614,9 @@ def eq37(ctx: AuditContext) -> Finding:
                 derivation="Cauchy-Schwarz over the aliases with sum_n 1/(w + n w_s)^2 = T^2/(2(1 - cos wT))")
 def eq38(ctx: AuditContext) -> Finding:
     (rel,) = _relations(ctx.statement)
+    if rel.ops not in ((">",), (">=",)):
+        return Finding(Verdict.WRONG, f"Lemma 3 bounds the C^- integral from below; the display relates the sides by {rel.ops[0]}",
+                       Evidence(Method.PARSE, facts={"ops": list(rel.ops)}))
     rhs_ok = _same_form(rel.rhs, _lemma3_bound(CMINUS))
     defect = _alias_defect(rel.lhs)
     error = classics.check_alias_weight([(1, "0.1"), ("0.3", 2), ("-2", "0.5")])
@@ -1525,7 +1653,10 @@ def lemma4(ctx: AuditContext) -> Finding:
 def eq39(ctx: AuditContext) -> Finding:
     (rel,) = _relations(ctx.statement)
     derived = _lemma3_bound(CMINUS) + _damping_integrals()
-    if _same_form(rel.lhs, derived) and rel.rhs == 0:
+    bad = _positive(rel, "(39)")
+    if bad is not None:
+        return bad
+    if _same_form(rel.lhs, derived):
         return Finding(Verdict.CONFIRMED, "(39) is (26)", Evidence(Method.CANONICAL_FORM), derived=sp.Gt(derived, 0))
     return Finding(Verdict.INCONSISTENT, "(39) differs from (26)", Evidence(Method.CANONICAL_FORM, facts={"ids": ["39", "26"]}))
 

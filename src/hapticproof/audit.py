@@ -78,6 +78,9 @@ class Equation:
     derivation: str = ""
     parse: bool = True
     after: str = ""
+    #: other displays whose content this check is about (``"20"`` or ``"paper:id"``): the
+    #: mutation test audits this check against their mutants too (:mod:`hapticproof.mutate`)
+    quotes: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         if self.kind not in KINDS:
@@ -130,9 +133,11 @@ class Paper:
         derivation: str = "",
         parse: bool | None = None,
         after: str = "",
+        quotes: tuple[str, ...] | list[str] = (),
     ) -> Callable[[Check], Check]:
         """Register a printed equation (decorator). ``parse`` defaults to True for expressions
-        and conditions, False for claims (whose printed text is a quoted sentence)."""
+        and conditions, False for claims (whose printed text is a quoted sentence). ``quotes``
+        names the other displays whose content the check compares (``"20"``, ``"hve:3"``)."""
 
         def register(check: Check) -> Check:
             if id in self.equations:
@@ -147,6 +152,7 @@ class Paper:
                 derivation=derivation,
                 parse=(kind != "claim") if parse is None else parse,
                 after=after,
+                quotes=tuple(quotes),
             )
             return check
 

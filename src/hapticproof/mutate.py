@@ -660,12 +660,8 @@ def run_mutant(mutant: Mutant, original: Any, registry: dict[str, Paper] | None 
     mutated = dataclasses.replace(target, printed=mutant.printed)
     start = time.perf_counter()
     try:
-        with _time_limit(limit):
-            if target is equation:
-                result = _audit(paper, mutated)
-            else:
-                with _installed(target_paper, mutated):
-                    result = _audit(paper, equation)
+        with _time_limit(limit), _installed(target_paper, mutated):
+            result = _audit(paper, mutated if target is equation else equation)
     except Exception as err:  # noqa: BLE001 - a traceback is the finding
         seconds = time.perf_counter() - start
         tb = traceback.format_exception(type(err), err, err.__traceback__)
@@ -691,19 +687,29 @@ def run_mutant(mutant: Mutant, original: Any, registry: dict[str, Paper] | None 
     return MutantResult(mutant, "survived", verdict, result.detail, "same verdict, detail and correction", seconds)
 
 
+class QuoteError(ValueError):
+    """An equation declares that it quotes a display its check never reads."""
+
+
+def _quote_key(paper: Paper, quote: str) -> str:
+    return quote if ":" in quote else f"{paper.id}:{quote}"
+
+
 def mutants_of(paper: Paper, equation: Equation, registry: dict[str, Paper] | None = None) -> list[Mutant]:
     """Own mutants of a display (or of a claim's quoted mathematics, when its check reads it)
-    and dependent mutants of the displays its check reads."""
+    and dependent mutants of the displays it declares it quotes (``Equation.quotes``)."""
     from hapticproof.registry import get_paper
 
-    reads = dependencies(paper, equation, registry)
     own_key = f"{paper.id}:{equation.id}"
+    quoted = [_quote_key(paper, q) for q in equation.quotes]
+    reads = dependencies(paper, equation, registry) if (equation.kind == "claim" or quoted) else [own_key]
+    missing = [q for q in quoted if q not in reads]
+    if missing:
+        raise QuoteError(f"{own_key} declares it quotes {missing} but its check does not read them")
     out: list[Mutant] = []
     if equation.kind != "claim" or own_key in reads:
         out.extend(generate(equation, paper))
-    for key in reads:
-        if key == own_key:
-            continue
+    for key in quoted:
         pid, _, eid = key.partition(":")
         other_paper = (registry or {}).get(pid) or (paper if pid == paper.id else get_paper(pid))
         other = other_paper.get(eid)
