@@ -228,6 +228,6 @@ def identical_25(ctx: AuditContext) -> Finding:
                 printed="For the virtual wall H(z) = K + B(z-1)/(Tz) and assuming that B is small enough, this stability "
                         "condition will again reduce to (27), where if z_a = 0 the condition will be identical to that "
                         "reported in [7].",
-                derivation="(27) at z_a = 0 vs the quote (5) and vs the derived Gil et al. 2009 condition", quotes=('27', '5'))
+                derivation="(27) at z_a = 0 vs the quote (5) and vs the derived Gil et al. 2009 condition", quotes=('5',))
 def identical_36(ctx: AuditContext) -> Finding:
     return _identical_to_7(ctx, "27", {z_a: 0})

@@ -907,7 +907,7 @@ def _worst_choice_claim(ctx: AuditContext, m: int, condition_id: str, scene: Mul
 @PAPER.equation("44-worst", kind="claim", after="44", section=SECTION,
                 printed="The worst-case for (43)-(44) occurs when $\\cos(\\omega T) = -1$. With $b = \\min(b_1, b_2)$, "
                         "$B_0 = \\max(B_{01}, B_{02})$ and $K_0 = \\min(K_{01}, K_{02})$, the above two conditions will hold if",
-                derivation="Loewner order: M(c) = 2diag(b) - T Kmat + 2c Bmat; smaller b, larger K, B decrease M", quotes=('46',))
+                derivation="Loewner order: M(c) = 2diag(b) - T Kmat + 2c Bmat; smaller b, larger K, B decrease M")
 def worst44(ctx: AuditContext) -> Finding:
     scene = _numeric(b=[2, 2], T=1, K0=[1, 3], K=1, B0=[0, 0], B=0)
     return _worst_choice_claim(ctx, 2, "46", scene)
@@ -1308,7 +1308,7 @@ def minors51(ctx: AuditContext) -> Finding:
                 printed="The worst-case for the above conditions occurs when $\\cos(\\omega T) = -1$. With $B = \\min(B_{12}, "
                         "B_{13}, B_{23})$, $B_0 = \\max(B_{01}, B_{02}, B_{03})$, $K_0 = \\min(K_{01}, K_{02}, K_{03})$, "
                         "$K = \\min(K_{12}, K_{13}, K_{23})$ and $b = \\min(b_1, b_2, b_3)$, the above two conditions will hold if",
-                derivation="Loewner order: the worst case needs the maxima of K_0i, K_ij, B_0i, B_ij", quotes=('53',))
+                derivation="Loewner order: the worst case needs the maxima of K_0i, K_ij, B_0i, B_ij")
 def worst51(ctx: AuditContext) -> Finding:
     scene = _numeric(b=[3, 3, 3], T=1, K0=[1, 1, 1], K={(0, 1): 1, (0, 2): 1, (1, 2): 3}, B0=0, B=0)
     return _worst_choice_claim(ctx, 3, "53", scene)
@@ -1619,7 +1619,7 @@ def _same_condition(a: sp.Basic, other: sp.Basic) -> bool:
 @PAPER.equation("54-colgate", kind="claim", after="54", section=SECTION,
                 printed="As it can be seen from (54), when only one user is involved, the condition will reduce to Colgate's "
                         "condition for sampled-data, single-user HVE system.",
-                derivation="(54) for m = 1 vs (20)", quotes=('54', '20'))
+                derivation="(54) for m = 1 vs (20)", quotes=('20',))
 def colgate54(ctx: AuditContext) -> Finding:
     rel = _display("54")
     one = _single_user(_align(_instance(rel, 1)))
@@ -1681,7 +1681,7 @@ def eq55(ctx: AuditContext) -> Finding:
 
 @PAPER.equation("55-26", kind="claim", after="55", section=SECTION,
                 printed="Again, for only one operator, (55) will reduce to (26).",
-                derivation="(55) for m = 1 (j != i restored, empty max = 0) vs (26)", quotes=('55', '26'))
+                derivation="(55) for m = 1 (j != i restored, empty max = 0) vs (26)", quotes=('26',))
 def reduce55(ctx: AuditContext) -> Finding:
     rel = _display("55")
     one = _single_user(_align(_instance(rel, 1)))
@@ -1970,7 +1970,7 @@ def eq59(ctx: AuditContext) -> Finding:
                 printed="Assuming that $t_d/T = n$ is an integer and B_{0i} and B_{ij} are sufficiently small and with "
                         "$b = \\min(b_1, b_2)$, $B_0 = \\min(B_{01}, B_{02})$, and $K_0 = \\max(K_{01}, K_{02})$ the worst-case "
                         "for (57) and (59) occurs when *S* has its maximum value.",
-                derivation="uniform modes: single-user delayed walls K_0 + lambda K, B_0 + lambda B; small-damping thresholds kappa_n", quotes=('61',))
+                derivation="uniform modes: single-user delayed walls K_0 + lambda K, B_0 + lambda B; small-damping thresholds kappa_n")
 def worst59(ctx: AuditContext) -> Finding:
     from hapticproof.delayed import small_damping_threshold
 
@@ -2295,7 +2295,7 @@ def eq62(ctx: AuditContext) -> Finding:
 
 @PAPER.equation("62-27", kind="claim", after="62", section=SECTION,
                 printed="Again, for a single-user system, condition (62) will reduce to (27).",
-                derivation="(62) for m = 1 (empty pair extrema = 0) vs (25) and (27)", quotes=('62', '25', '27'))
+                derivation="(62) for m = 1 (empty pair extrema = 0) vs (25) and (27)", quotes=('25', '27'))
 def reduce62(ctx: AuditContext) -> Finding:
     rel = _display("62")
     one = _single_user(_align(_instance(rel, 1)))
@@ -2344,7 +2344,7 @@ def eq63(ctx: AuditContext) -> Finding:
 @PAPER.equation("63-55", kind="claim", after="63", section=SECTION,
                 printed="Finally, with the addition of active operators to the delayed system and assuming that $t_d/T = n$ "
                         "is an integer and B_{0i} and B_{1i} are small enough, the stability condition will be",
-                derivation="(63) at t_d = 0, B = 0 vs (55) at B = 0 (delayed vs undelayed)", quotes=('63', '55'))
+                derivation="(63) at t_d = 0, B = 0 vs (55) at B = 0 (delayed vs undelayed)")
 def vs55(ctx: AuditContext) -> Finding:
     r63, r55 = _display("63"), _display("55")
     facts, same = {}, {}
@@ -2367,7 +2367,7 @@ def vs55(ctx: AuditContext) -> Finding:
 @PAPER.equation("56-small-B", kind="claim", after="56", section=SECTION,
                 printed="For a delayed *m*-user HVE system, assuming that $t_{di}/T = n_i$ is an integer and B_{0i} and B_{ij} "
                         "are small enough, the stability condition will be derived below.",
-                derivation="the exact small-damping region per uniform mode (kappa_n of hapticproof.delayed)", quotes=('61', '46'))
+                derivation="the exact small-damping region per uniform mode (kappa_n of hapticproof.delayed)")
 def small_b(ctx: AuditContext) -> Finding:
     from hapticproof.delayed import small_damping_threshold
 
@@ -2461,7 +2461,7 @@ def _section4(delay: int, mass: str, damping: str, printed_key: str) -> dict[str
 
 @PAPER.equation("sec4-dual", kind="claim", after="63", section="4", printed=SEC4_DUAL,
                 derivation="printed borderlines (55), (63) at the stated parameters vs the exact PR condition and the exact "
-                           "ZOH sampled-data stability boundary (operator -z_a + 1/s, hapticproof.sampled)", quotes=('55', '63'))
+                           "ZOH sampled-data stability boundary (operator -z_a + 1/s, hapticproof.sampled)")
 def sec4_dual(ctx: AuditContext) -> Finding:
     undelayed = _section4(0, "0.015", "0.01822", "55")
     delayed = _section4(5, "0.15", "0.1822", "63")

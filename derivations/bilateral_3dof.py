@@ -34,6 +34,7 @@ are; Section 5.2 lists only one off-diagonal entry per pair); gains are real.
 from __future__ import annotations
 
 import itertools
+from dataclasses import dataclass
 from fractions import Fraction
 from functools import lru_cache
 from collections.abc import Callable
@@ -678,7 +679,7 @@ def diagonal_passive(ctx: AuditContext) -> Finding:
                    Evidence(results[bad].evidence.method, witness=results[bad].evidence.witness, facts=facts))
 
 
-@PAPER.equation("1-nonpassive", kind="claim", after="1", section="2", quotes=("1", "1-diagonal"),
+@PAPER.equation("1-nonpassive", kind="claim", after="1", section="2",
                 printed="the coupled 3-DOF termination \\mathbf{T}_1 is non-passive",
                 derivation="Definition 3 for the printed T_1 (and for the text's diagonal)")
 def t1_nonpassive(ctx: AuditContext) -> Finding:
@@ -802,7 +803,7 @@ def eq5(ctx: AuditContext) -> Finding:
 
 @PAPER.equation("5-llewellyn", kind="claim", after="5", section="2",
                 printed="the subsystems involving \\mathbf{Z}_x , \\mathbf{Z}_y , and \\mathbf{Z}_z always satisfy Llewellyn's criterion",
-                derivation="Llewellyn's criterion decided exactly for (5)", quotes=('5',))
+                derivation="Llewellyn's criterion decided exactly for (5)")
 def subsystems_llewellyn(ctx: AuditContext) -> Finding:
     Z = printed_matrix("5")
     bad = _not_in_s(Z, "the subsystem (5)")
@@ -826,7 +827,7 @@ def subsystems_llewellyn(ctx: AuditContext) -> Finding:
 
 @PAPER.equation("5-unstable", kind="claim", after="5", section="2",
                 printed="the coupled 3-DOF teleoperator (2) is not absolutely stable",
-                derivation="search for passive 3-DOF terminations with a zero of det(Z + T) in Re s > 0, verified exactly", quotes=('3a',))
+                derivation="search for passive 3-DOF terminations with a zero of det(Z + T) in Re s > 0, verified exactly")
 def coupled_unstable(ctx: AuditContext) -> Finding:
     roots, degree, passive = _certified("unit")
     sym = symmetrize(RationalMatrix.from_sympy(section2_network()), (3, 3))
@@ -1649,14 +1650,18 @@ def _b_check(ctx: AuditContext) -> Finding:
     rel = ctx.relation()
     printed = sp.expand(rel.lhs - rel.rhs)
     derived = cond.at_frequency(omega)
+    if not isinstance(rel, sp.Eq) or printed == 0:
+        return Finding(Verdict.WRONG, f"condition B is an equation z_ji - z_ij = 0; the display reads {sp.sstr(rel)}",
+                       Evidence(Method.PARSE, facts={"printed_form": sp.srepr(rel)}), derived=sp.Eq(derived, 0))
     ratio = sp.cancel(derived / printed)
-    if ratio != 0 and ratio.free_symbols <= {omega}:
+    if ratio != 0 and ratio.free_symbols <= {omega} and not ratio.has(sp.zoo, sp.nan):
         a, b = (AXES[i % 3] for i in pair)
         return Finding(Verdict.CONFIRMED,
                        f"equivalent to z_{{{pair[1] + 1},{pair[0] + 1}}} = z_{{{pair[0] + 1},{pair[1] + 1}}} at s = j omega "
                        f"(the derived numerator is {sp.sstr(sp.factor(ratio))} times the printed expression); with a non-symmetric "
                        f"inertia matrix the term j omega (m_{b}{a} - m_{a}{b}) would be missing",
-                       Evidence(Method.CANONICAL_FORM, facts={"ratio": ratio}), derived=sp.Eq(derived, 0))
+                       Evidence(Method.CANONICAL_FORM, facts={"ratio": ratio, "printed_form": ("B", pair)}),
+                       derived=sp.Eq(derived, 0))
     return compare_expressions(printed, derived, what="the printed B-condition")
 
 
@@ -1694,6 +1699,10 @@ def _omega_form(expr: sp.Expr) -> str:
 def _a_check(ctx: AuditContext) -> Finding:
     rel = ctx.relation()
     printed = canonical(sp.expand(rel.lhs - rel.rhs))
+    if not isinstance(rel, sp.Eq) or printed == 0:
+        return Finding(Verdict.WRONG, f"condition A is an equation (... = 0); the display reads {sp.sstr(rel)}",
+                       Evidence(Method.PARSE, facts={"printed_form": sp.srepr(rel)}))
+    form = ("A with gains identified by B", sp.srepr(sp.expand(printed)))
     best = None
     for cond, derived in _a_candidates():
         for sign in (1, -1):
@@ -1707,7 +1716,8 @@ def _a_check(ctx: AuditContext) -> Finding:
         return Finding(Verdict.CONFIRMED,
                        f"equals {'minus ' if sign < 0 else ''}condition A for (i, j, k) = {tuple(triple)} reduced by B "
                        "(z_jk z_ki = z_kj z_ik) at s = j omega, with gains identified by B (k_yx = k_xy)",
-                       Evidence(Method.CANONICAL_FORM, facts={"triple": triple}), derived=sp.Eq(target, 0))
+                       Evidence(Method.CANONICAL_FORM, facts={"triple": triple, "printed_form": ("A", tuple(triple), sign)}),
+                       derived=sp.Eq(target, 0))
     printed_only = [t for t in sp.Add.make_args(sp.expand(printed)) if t not in sp.Add.make_args(target)]
     derived_only = [t for t in sp.Add.make_args(target) if t not in sp.Add.make_args(sp.expand(printed))]
     point = {sym: sp.Integer(k + 2) for k, sym in enumerate(sorted(printed.free_symbols | target.free_symbols, key=str)) if sym != omega}
@@ -1718,7 +1728,7 @@ def _a_check(ctx: AuditContext) -> Finding:
                    f"{[sp.sstr(t) for t in derived_only]} (an index slip, e.g. k_psyx for k_psyy)",
                    Evidence(Method.COUNTEREXAMPLE, witness={str(k): v for k, v in point.items()},
                             facts={"printed_value": sp.expand(printed.subs(point)), "derived_value": sp.expand(target.subs(point)),
-                                   "triple": triple}),
+                                   "triple": triple, "printed_form": form}),
                    derived=sp.Eq(target, 0), corrected=_omega_form(target))
 
 
@@ -1782,14 +1792,36 @@ def _symmetry_equalities() -> set[frozenset]:
     return out
 
 
+def _equality_pair(rel: sp.Basic) -> frozenset | None:
+    """``k_a = k_b`` as the pair {k_a, k_b}; None when the relation is not such an equality
+    (another relation, coefficients, more or fewer gains)."""
+    if not isinstance(rel, sp.Eq):
+        return None
+    difference = sp.expand(rel.lhs - rel.rhs)
+    terms = sp.Add.make_args(difference)
+    if len(terms) != 2 or not all(t.free_symbols and len(t.free_symbols) == 1 for t in terms):
+        return None
+    coefficients = sorted(t.as_coeff_Mul()[0] for t in terms)
+    if coefficients != [-1, 1] or not all(isinstance(t.as_coeff_Mul()[1], sp.Symbol) for t in terms):
+        return None
+    return frozenset(t.as_coeff_Mul()[1] for t in terms)
+
+
 def _38ab_check(ctx: AuditContext) -> Finding:
-    printed = [frozenset(r.as_sympy().free_symbols) for r in ctx.statement.relations()]
+    relations = [r.as_sympy() for r in ctx.statement.relations()]
+    pairs = [_equality_pair(r) for r in relations]
     which = "m" if ctx.equation.id == "38a" else "s"
     derived = {e for e in _symmetry_equalities() if any(str(x).startswith(f"k_p{which}") or str(x).startswith(f"k_v{which}") for x in e)}
+    not_equalities = [sp.sstr(r) for r, p in zip(relations, pairs) if p is None]
+    if not_equalities:
+        return Finding(Verdict.WRONG, f"{not_equalities} are not equalities of two gains (B requires k_ab = k_ba)",
+                       Evidence(Method.PARSE, facts={"printed_form": [sp.srepr(r) for r in relations]}))
+    printed = pairs
     wrong = [p for p in printed if p not in derived]
     missing = [d for d in derived if d not in printed]
     if wrong:
-        return Finding(Verdict.WRONG, f"printed equalities not implied: {wrong}", Evidence(Method.CANONICAL_FORM))
+        return Finding(Verdict.WRONG, f"printed equalities not implied by B: {[' = '.join(sorted(map(str, w))) for w in wrong]}",
+                       Evidence(Method.CANONICAL_FORM, facts={"printed_form": sorted(sorted(map(str, p)) for p in printed)}))
     if not missing:
         return Finding(Verdict.CONFIRMED, "all symmetry equalities listed", Evidence(Method.CANONICAL_FORM))
     first = sorted(missing, key=lambda e: sorted(map(str, e)))[0]
@@ -1802,7 +1834,9 @@ def _38ab_check(ctx: AuditContext) -> Finding:
                    f"lists {len(printed)} of the {len(derived)} symmetry equalities that B requires for all w "
                    f"(each of (26)-(31) needs both k_p and k_v symmetric); missing: "
                    f"{[' = '.join(sorted(map(str, e))) for e in missing]}; with only the printed ones, {a} = 1, {b} = 2 violates B",
-                   Evidence(Method.COUNTEREXAMPLE, witness={str(k): v for k, v in witness.items()}, facts={"missing": [sorted(map(str, e)) for e in missing]}),
+                   Evidence(Method.COUNTEREXAMPLE, witness={str(k): v for k, v in witness.items()},
+                            facts={"missing": [sorted(map(str, e)) for e in missing],
+                                   "printed_form": sorted(sorted(map(str, p)) for p in printed)}),
                    corrected=corrected)
 
 
@@ -1840,14 +1874,21 @@ def eq38c(ctx: AuditContext) -> Finding:
     literal = [sp.nsimplify(t.subs(values)) for t in terms]
     subs = _ratio_chain_substitution()
     vanish = all(sp.expand(c.expr.xreplace(subs)) == 0 for c in derived_conditions())
+    mismatched = []
+    for t in terms:
+        num, den = sp.fraction(sp.together(t))
+        if den != 1 and not (str(num)[-2:] == str(den)[-2:] and str(num).startswith("k_pm") and str(den).startswith("k_ps")):
+            mismatched.append(f"{sp.sstr(num)}/{sp.sstr(den)}")
+    reading = " = ".join(sp.sstr(t) for t in terms)
+    facts = {"literal_at_table1": literal, "repaired_chain_solves_all": vanish, "printed_form": sp.srepr(tuple(terms)),
+             "mismatched_ratios": mismatched}
     if len(set(literal)) > 1 and vanish:
         return Finding(Verdict.TYPO,
-                       "garbled: read literally it equates the velocity gains to each other and to the position-gain ratios "
-                       f"(Table 1 gives {literal[:6]} for the first six terms); the intended chain, as in (46), is equal ratios "
-                       "k_vm/k_vs = k_pm/k_ps for all six gain pairs (with k_psyy, k_psyz for the printed k_psyx), which makes "
-                       "all 24 conditions A and B vanish identically",
-                       Evidence(Method.CANONICAL_FORM, facts={"literal_at_table1": literal, "repaired_chain_solves_all": vanish}),
-                       corrected=CORRECTED_38C)
+                       f"garbled: read literally it is the chain {reading}, which equates the velocity gains to each other and "
+                       f"to the position-gain ratios (Table 1 gives {literal}); ratios whose indices do not match: {mismatched}; "
+                       "the intended chain, as in (46), is equal ratios k_vm/k_vs = k_pm/k_ps for all six gain pairs, which "
+                       "makes all 24 conditions A and B vanish identically",
+                       Evidence(Method.CANONICAL_FORM, facts=facts), corrected=CORRECTED_38C)
     return Finding(Verdict.UNDECIDED, "literal and repaired readings not separated", Evidence(Method.INSTANCES))
 
 
@@ -1920,32 +1961,66 @@ def _low_order_minors(which: str) -> dict:
     return out
 
 
+#: The principal minors (0-based rows of the 6x6 residue or real part of Z') each display lists.
+EXPECTED_MINORS = {"39a": [(0,), (1,), (2,)], "39b": [(3,), (4,), (5,)], "39c": [(0, 1)], "39d": [(0, 1, 2)],
+                   "41a": [(0,), (1,), (2,)], "41b": [(3,), (4,), (5,)], "42": [(0, 1)], "43": [(0, 1, 2)]}
+
+
+def _minor_of(expr: sp.Expr, minors: dict) -> tuple[tuple[int, ...] | None, sp.Expr | None]:
+    """The principal minor a printed expression is, up to a positive factor (exact match first)."""
+    best = None
+    for S, m in minors.items():
+        if m == 0:
+            continue
+        ratio = sp.cancel(expr / m)
+        if ratio == 1:
+            return S, ratio
+        if best is None and ratio.free_symbols <= {rho} and ratio.is_positive:
+            best = (S, ratio)
+    return best if best is not None else (None, None)
+
+
 def _minor_check(ctx: AuditContext, which: str, what: str) -> Finding:
-    """Each printed relation '... >= 0' must be a principal minor (up to a positive factor)."""
+    """Each printed relation must say 'a principal minor >= 0' (up to a positive factor), and
+    together they must be the minors the display stands for (:data:`EXPECTED_MINORS`)."""
+    from hapticproof.certify import as_sign_condition
+
     minors = _low_order_minors(which)
-    unmatched = []
-    matched = []
+    unmatched, matched, reversed_ = [], [], []
     for rel in _residue_relations(ctx):
-        lhs = _as_master(rel.lhs - rel.rhs)
-        hit = None
-        for S, m in minors.items():
-            if m == 0:
+        condition = as_sign_condition(rel)
+        S, _ = _minor_of(_as_master(condition.expr), minors)
+        if S is None:
+            S_neg, _ = _minor_of(-_as_master(condition.expr), minors)
+            if S_neg is not None:
+                reversed_.append(sp.sstr(rel))
                 continue
-            ratio = sp.cancel(lhs / m)
-            if ratio.free_symbols <= {rho} and ratio.is_positive:
-                hit = S
-                break
-        (matched if hit else unmatched).append((sp.sstr(rel), hit))
+        if condition.op not in (">=", ">"):
+            reversed_.append(sp.sstr(rel))
+            continue
+        (matched if S is not None else unmatched).append((sp.sstr(rel), S))
+    expected = EXPECTED_MINORS.get(ctx.equation.id)
+    listed = sorted(S for _, S in matched)
+    form = ("minors", tuple(listed), tuple(u for u, _ in unmatched), tuple(reversed_))
+    if reversed_:
+        return Finding(Verdict.WRONG, f"{reversed_} bound a principal minor of the {what} from above: a principal minor of a PSD "
+                       "matrix is >= 0", Evidence(Method.COUNTEREXAMPLE, facts={"printed_form": form}))
     if unmatched:
+        why = ("the printed k_psyx is the xy gain; the yy gain k_psyy belongs here" if ctx.equation.id == "39b"
+               else f"it is not of the form (principal minor) >= 0")
         return Finding(Verdict.TYPO,
-                       f"{[u for u, _ in unmatched]} is not a principal minor of the {what} (the printed k_psyx is the xy gain; "
-                       "the yy gain k_psyy belongs here)",
-                       Evidence(Method.CANONICAL_FORM, facts={"matched": matched}),
+                       f"{[u for u, _ in unmatched]} is not a principal minor of the {what} ({why})",
+                       Evidence(Method.CANONICAL_FORM, facts={"matched": matched, "printed_form": form}),
                        corrected=_corrected_39b() if ctx.equation.id == "39b" else None)
+    if expected is not None and listed != sorted(expected):
+        missing = [[i + 1 for i in S] for S in expected if S not in listed]
+        return Finding(Verdict.TYPO, f"the display lists the principal minors {[[i + 1 for i in S] for S in listed]} of the {what}; "
+                       f"it stands for {[[i + 1 for i in S] for S in expected]} (missing {missing})",
+                       Evidence(Method.CANONICAL_FORM, facts={"printed_form": form}))
     return Finding(Verdict.CONFIRMED,
                    f"each is a principal minor of the {what} under (38) ({[[i + 1 for i in S] for _, S in matched]}); "
                    "necessary conditions -- sufficiency needs all principal minors (see the claims after them)",
-                   Evidence(Method.CANONICAL_FORM, facts={"minors": [[i + 1 for i in S] for _, S in matched]}))
+                   Evidence(Method.CANONICAL_FORM, facts={"minors": [[i + 1 for i in S] for _, S in matched], "printed_form": form}))
 
 
 def _corrected_39b() -> str:
@@ -1973,46 +2048,79 @@ def residues_39(ctx: AuditContext) -> Finding:
     holds = []
     for text in statements:
         for rel in parse_printed(text, TABLE).relations():
-            holds.append(bool(_as_master(rel.lhs - rel.rhs).subs(point) >= 0))
+            value = rel.as_sympy()
+            value = value.func(_as_master(value.lhs), _as_master(value.rhs)).subs(point)
+            holds.append(bool(value) if value in (sp.true, sp.false) else False)
     psd, negative = matrix_psd(R.subs(point))
+    Kbad = sp.Matrix(3, 3, lambda i, j: gain("pm", AXES[min(i, j)], AXES[max(i, j)])).subs(bad)
+    failing = {f"{AXES[i]}{AXES[j]}": Kbad.extract([i, j], [i, j]).det() for i in range(3) for j in range(i + 1, 3)
+               if Kbad.extract([i, j], [i, j]).det() < 0}
     if structure and all(holds) and not psd:
         return Finding(
             Verdict.WRONG,
             "under (38) the residue of Z' at s = 0 is u u^T (x) K_pm with u = (1, -1/sqrt(rho)), PSD iff K_pm is PSD, i.e. all "
-            "seven principal minors of K_pm >= 0; (39) lists only the diagonal, the leading 2x2 and the determinant: "
-            "K_pm = [[0,0,0],[0,1,2],[0,2,1]] satisfies (39a)-(39d) but k_pmyy k_pmzz - k_pmyz^2 = -3 < 0 (D as printed, "
-            "leading minors of the 6x6 residue > 0, can never hold: the residue has rank <= 3)",
-            Evidence(Method.COUNTEREXAMPLE, witness={"K_pm": sp.Matrix([[0, 0, 0], [0, 1, 2], [0, 2, 1]]), "rho": 1},
+            f"seven principal minors of K_pm >= 0; the printed (39a)-(39d) all hold at K_pm = {_line(Kbad)}, whose 2x2 "
+            f"principal minor(s) {failing} are negative (D as printed, leading minors of the 6x6 residue > 0, can never "
+            "hold: the residue has rank <= 3)",
+            Evidence(Method.COUNTEREXAMPLE, witness={"K_pm": Kbad, "rho": 1},
                      facts={"negative_minors": negative}),
             corrected=r"\mathbf{K}_{pm} \succeq 0:\ \text{all principal minors of } \mathbf{K}_{pm} \geq 0",
         )
-    return Finding(Verdict.UNDECIDED, "residue structure not established", Evidence(Method.CANONICAL_FORM))
+    return Finding(Verdict.UNDECIDED, f"the printed (39) {'fails' if not all(holds) else 'holds'} at the witness K_pm = "
+                   f"{_line(Kbad)} (non-PSD); residue structure {'established' if structure else 'not established'}",
+                   Evidence(Method.CANONICAL_FORM, facts={"holds": holds}))
 
 
-@PAPER.equation("40", kind="condition", printed=PRINTED["40"], section="5.1", derivation="restates (39c)")
+@PAPER.equation("40", kind="condition", printed=PRINTED["40"], section="5.1", derivation="restates (39c)", quotes=('39c',))
 def eq40(ctx: AuditContext) -> Finding:
+    from hapticproof.certify import compare_sign_conditions
+
     rel = ctx.relation()
-    same = is_identically_zero((rel.lhs - rel.rhs) - (gain("pm", "x", "x") * gain("pm", "y", "y") - gain("pm", "x", "y") ** 2))
-    if same:
-        return Finding(Verdict.CONFIRMED, "the same inequality as (39c) (2x2 leading minor of K_pm)", Evidence(Method.CANONICAL_FORM))
-    return Finding(Verdict.TYPO, "differs from (39c)", Evidence(Method.CANONICAL_FORM))
+    (other,) = [r.as_sympy() for r in parse_printed(PAPER.get("39c").printed, TABLE).relations()]
+    cmp = compare_sign_conditions(rel.func(_as_master(rel.lhs), _as_master(rel.rhs), evaluate=False),
+                                  other.func(_as_master(other.lhs), _as_master(other.rhs), evaluate=False), what="(40)")
+    if cmp.verdict == Verdict.CONFIRMED:
+        return Finding(Verdict.CONFIRMED, "the same inequality as (39c) (2x2 leading minor of K_pm)",
+                       Evidence(Method.CANONICAL_FORM, facts={"printed_form": "same as (39c)"}))
+    return Finding(Verdict.TYPO, f"differs from (39c): {cmp.detail}", Evidence(cmp.evidence.method, witness=cmp.evidence.witness,
+                                                                              facts={"ids": ["40", "39c"]}))
 
 
 @PAPER.equation("40-claim", kind="claim", after="40", section="5.1",
                 printed="the condition set (39) holds if (40) and condition (39d) hold",
                 derivation="(39a), (39b) follow from nonnegative gains (stated with (46)); without them they do not")
 def claim_40(ctx: AuditContext) -> Finding:
+    import random
+
+    printed = {k: [r.as_sympy() for r in parse_printed(PAPER.get(k).printed, TABLE).relations()]
+               for k in ("39a", "39b", "39c", "39d", "40")}
+
+    def all_hold(conditions: list, values: dict) -> bool:
+        return all(c.subs(values) is sp.true for c in conditions)
+
+    # with the paper's nonnegative gains: (40) and (39d) must imply all of (39)
+    rng = random.Random(40)
+    names = sorted({x for conds in printed.values() for c in conds for x in c.free_symbols}, key=str)
+    counter = None
+    for _ in range(300):
+        values = {x: sp.Rational(rng.randint(0, 12), rng.randint(1, 3)) for x in names}
+        if all_hold(printed["40"] + printed["39d"], values) and not all_hold(
+                [c for k in ("39a", "39b", "39c", "39d") for c in printed[k]], values):
+            counter = values
+            break
+    facts = {"ids": ["40", "39a", "39b", "39c", "39d"]}
+    if counter is not None:
+        failing = [k for k in ("39a", "39b", "39c", "39d") if not all_hold(printed[k], counter)]
+        return Finding(Verdict.WRONG, f"with nonnegative gains (40) and (39d) hold at the witness while {failing} fail",
+                       Evidence(Method.COUNTEREXAMPLE, witness={str(k): v for k, v in counter.items()}, facts=facts))
     point = {gain("pm", "x", "x"): -1, gain("pm", "y", "y"): -1, gain("pm", "z", "z"): 1,
              gain("pm", "x", "y"): 0, gain("pm", "x", "z"): 0, gain("pm", "y", "z"): 0}
-    c40 = parse_printed(PAPER.get("40").printed, TABLE).relations()[0].as_sympy().subs(point)
-    c39d = parse_printed(PAPER.get("39d").printed, TABLE).relations()[0].as_sympy().subs(point)
-    c39a = [r.as_sympy().subs(point) for r in parse_printed(PAPER.get("39a").printed, TABLE).relations()]
-    if bool(c40) and bool(c39d) and not all(bool(x) for x in c39a):
-        return Finding(Verdict.CONFIRMED,
-                       "true because the paper takes all gains nonnegative (stated with (46)): then (39a), (39b) hold and (39) "
-                       "reduces to (40) and (39d); without that assumption K_pm = diag(-1, -1, 1) meets (40), (39d) but not (39a)",
-                       Evidence(Method.COUNTEREXAMPLE, witness={"K_pm": "diag(-1, -1, 1)"}))
-    return Finding(Verdict.UNDECIDED, "check inconclusive", Evidence(Method.INSTANCES))
+    without = all_hold(printed["40"] + printed["39d"], point) and not all_hold(printed["39a"], point)
+    return Finding(Verdict.CONFIRMED,
+                   "true because the paper takes all gains nonnegative (stated with (46)): then (39a), (39b) hold and (39) "
+                   "reduces to (40) and (39d) (no counterexample among 300 exact nonnegative gain sets)"
+                   + ("; without that assumption K_pm = diag(-1, -1, 1) meets (40), (39d) but not (39a)" if without else ""),
+                   Evidence(Method.INSTANCES, instances=300, facts=facts))
 
 
 TABLE1_PRINTED = (
@@ -2060,9 +2168,12 @@ for _id in ("41a", "41b", "42", "43"):
 @PAPER.equation("44", kind="condition", printed=PRINTED["44"], section="5.1", assumptions=ASSUME_CASE,
                 derivation="the 4th leading principal minor of Re Z'(j omega) under (38)")
 def eq44(ctx: AuditContext) -> Finding:
+    from hapticproof.certify import as_sign_condition
+
     rel = ctx.relation()
     capital = TABLE.lookup("K_{vmxx}")
-    printed = _as_master((rel.lhs - rel.rhs).subs(capital, gain("vm", "x", "x")))
+    condition = as_sign_condition(rel)
+    printed = _as_master(condition.expr.subs(capital, gain("vm", "x", "x")))
     fourth = real_part_leading_minors()[3]
     R = real_part_zprime()
     Kvm = gain_matrix("vm", True)
@@ -2071,14 +2182,19 @@ def eq44(ctx: AuditContext) -> Finding:
     values = {gain("vm", AXES[i], AXES[j]): table1_gains(60)["vm"][i, j] for i in range(3) for j in range(i, 3)}
     values[rho] = sp.Rational(1, 2)
     at_table = sp.nsimplify(sp.simplify(printed.subs(values)))
-    if fourth == 0 and structure and at_table < 0:
+    holds = {">": at_table > 0, ">=": at_table >= 0, "=": at_table == 0, "!=": at_table != 0}[condition.op] \
+        if at_table.is_real else None
+    form = (condition.op, sp.srepr(sp.expand(printed)))
+    if fourth == 0 and structure and holds is not None:
+        fails = ("although that teleoperator is absolutely stable, the printed condition fails there" if not holds else
+                 "so it separates nothing there")
         return Finding(Verdict.WRONG,
                        "under (38) Re Z'(j omega) = u u^T (x) K_vm with u = (1, -1/sqrt(rho)) has rank <= 3, so its 4th (and 5th, "
-                       "6th) leading minor is identically 0: the condition is void. The printed expression is not a minor of Re Z' "
-                       f"(it also writes K_vmxx for k_vmxx); at the Table 1 gains with k_vmyz = 60 it is {at_table} < 0 although "
-                       "that teleoperator is absolutely stable",
+                       "6th) leading minor is identically 0: the condition is void. The printed expression "
+                       f"({condition.op} 0) is not a minor of Re Z' (it also writes K_vmxx for k_vmxx); at the Table 1 gains with "
+                       f"k_vmyz = 60 it is {at_table}: {fails}",
                        Evidence(Method.CANONICAL_FORM, witness={"gains": "Table 1, k_vmyz = 60"},
-                                facts={"fourth_leading_minor": fourth, "printed_at_table1": at_table}),
+                                facts={"fourth_leading_minor": fourth, "printed_at_table1": at_table, "printed_form": form}),
                        derived=sp.Ge(fourth, 0), corrected=r"\det\left(\text{Re}\,\mathcal{Z}'\right)_{4\times 4} = 0 \geq 0")
     return Finding(Verdict.UNDECIDED, "4th minor not established", Evidence(Method.CANONICAL_FORM, facts={"fourth": fourth}))
 
@@ -2088,17 +2204,21 @@ def eq44(ctx: AuditContext) -> Finding:
 def eq45(ctx: AuditContext) -> Finding:
     rel = ctx.relation()
     values = {gain("vm", AXES[i], AXES[j]): table1_gains(60)["vm"][i, j] for i in range(3) for j in range(3)}
-    holds = bool(rel.subs(values))
+    at = rel.subs(values)
+    holds = bool(at) if at in (sp.true, sp.false) else None
     verdict = table1_verdict(60)
-    if not holds and verdict.decision == Decision.PROVED:
+    sides = (sp.nsimplify(rel.lhs.subs(values)), sp.nsimplify(rel.rhs.subs(values)))
+    if holds is False and verdict.decision == Decision.PROVED:
         return Finding(Verdict.WRONG,
-                       "not a necessary condition (it only follows from the wrong (44)): Table 1 with k_vmyz = 60 violates it "
-                       "(3600 < 80 * 80 = 6400) yet is absolutely stable (Z' positive real, minors verified); under (38) the exact "
-                       "real-part condition is K_vm PSD, which requires the opposite-looking k_vmyy k_vmzz >= k_vmyz^2",
+                       f"not a necessary condition (it only follows from the wrong (44)): Table 1 with k_vmyz = 60 violates it "
+                       f"({sp.sstr(rel)} reads {sides[0]} vs {sides[1]}) yet is absolutely stable (Z' positive real, minors "
+                       "verified); under (38) the exact real-part condition is K_vm PSD, which requires the opposite-looking "
+                       "k_vmyy k_vmzz >= k_vmyz^2",
                        Evidence(Method.COUNTEREXAMPLE, witness={"gains": "Table 1", "k_vmyz": 60},
-                                facts={"absolute_stability": verdict.reason}),
+                                facts={"absolute_stability": verdict.reason, "printed_form": sp.srepr(canonical(rel))}),
                        corrected=r"\mathbf{K}_{vm} \succeq 0:\ \text{all principal minors of } \mathbf{K}_{vm} \geq 0")
-    return Finding(Verdict.UNDECIDED, "Table 1 does not separate (45)", Evidence(Method.INSTANCES))
+    return Finding(Verdict.UNDECIDED, f"Table 1 does not separate (45): {sp.sstr(rel)} reads {sides[0]} vs {sides[1]} there",
+                   Evidence(Method.INSTANCES, facts={"printed_form": sp.srepr(canonical(rel))}))
 
 
 @PAPER.equation("45-minors56", kind="claim", after="45", section="5.1",
@@ -2124,41 +2244,109 @@ CORRECTED_46 = (
 )
 
 
-def compact_set_holds(g: dict[str, sp.Matrix]) -> dict[str, bool]:
-    """Every line of (46) (OCR damage repaired: ratios with k_vs, k_psyy, k_psyz) at numeric gains."""
-    Kpm, Kvm, Kps, Kvs = g["pm"], g["vm"], g["ps"], g["vs"]
-    ratios = {sp.Rational(a, b) for M, N in ((Kvm, Kvs), (Kpm, Kps)) for a, b in zip(M, N) if b != 0}
-    return {
-        "symmetric": all(M == M.T for M in (Kpm, Kvm, Kps, Kvs)),
-        "ratios": len(ratios) == 1,
-        "kpm2": Kpm[0, 0] * Kpm[1, 1] >= Kpm[0, 1] ** 2,
-        "kvm2": Kvm[0, 0] * Kvm[1, 1] >= Kvm[0, 1] ** 2,
-        "kvm3": Kvm.det() >= 0,
-        "45": Kvm[1, 2] ** 2 >= Kvm[0, 0] * Kvm[1, 1],
-        "nonnegative": all(v >= 0 for M in (Kpm, Kvm, Kps, Kvs) for v in M),
-    }
+def _repair_ratio(term: sp.Expr) -> tuple[sp.Expr, str | None]:
+    """A ratio k_{vm ab}/k_{vs ??} (or k_{pm ab}/k_{ps ??}) of (46): a denominator whose indices are
+    not those of its numerator (the OCR damage k_vsx, k_vsy, k_vsz and the slave's k_psyx at the
+    yy, yz places) takes the numerator's indices; returns the term and the repair made."""
+    num, den = sp.fraction(sp.together(term))
+    if den == 1 or not (isinstance(num, sp.Symbol) and isinstance(den, sp.Symbol)):
+        return term, None
+    n, d = str(num), str(den)
+    kinds = {"k_vm": "k_vs", "k_pm": "k_ps"}
+    if len(n) != 6 or n[:4] not in kinds or not d.startswith(kinds[n[:4]]):
+        return term, None
+    if sorted(d[4:]) == sorted(n[4:]):
+        return term, None
+    want = gain(kinds[n[:4]][2:], n[4], n[5])
+    return num / want, f"{d} -> {want}"
+
+
+@dataclass(frozen=True)
+class _RatioChain:
+    """``a_1/b_1 = a_2/b_2 = ...`` read as proportionality: the ratios with b_i != 0 are equal and
+    a_i = 0 where b_i = 0 (the gain matrices are proportional, zero entries included)."""
+
+    terms: tuple
+
+    def holds(self, values: dict) -> bool:
+        ratios, ok = set(), True
+        for t in self.terms:
+            num, den = (sp.sympify(x).xreplace(values) for x in sp.fraction(sp.together(t)))
+            if den == 0:
+                ok = ok and num == 0
+            else:
+                ratios.add(sp.nsimplify(num / den))
+        return ok and len(ratios) <= 1
+
+    def __str__(self) -> str:
+        return " = ".join(sp.sstr(t) for t in self.terms)
+
+
+def _read_46(text: str) -> tuple[list[Any], list[str]]:
+    """The printed (46) as a list of conditions (ratio chains as proportionality, damaged ratio
+    denominators repaired by the index rule) and the repairs made."""
+    conditions, repairs = [], []
+    for rel in parse_printed(text, TABLE).relations():
+        terms = []
+        for t in rel.terms:
+            fixed, repair = _repair_ratio(t)
+            terms.append(fixed)
+            if repair:
+                repairs.append(repair)
+        if len(terms) > 2 and set(rel.ops) == {"="} and all(sp.fraction(sp.together(t))[1] != 1 for t in terms):
+            conditions.append(_RatioChain(tuple(terms)))
+            continue
+        for a, op, c in zip(terms, rel.ops, terms[1:]):
+            conditions.append({"=": sp.Eq, ">=": sp.Ge, ">": sp.Gt, "<=": sp.Le, "<": sp.Lt, "!=": sp.Ne}[op](a, c, evaluate=False))
+    return conditions, repairs
+
+
+def _gain_values(g: dict[str, sp.Matrix]) -> dict[sp.Symbol, sp.Expr]:
+    return {gain(kind, AXES[i], AXES[j]): M[i, j] for kind, M in g.items() for i in range(3) for j in range(3)}
+
+
+def _failing(conditions: list[Any], g: dict[str, sp.Matrix]) -> list[str]:
+    values = _gain_values(g)
+    out = []
+    for c in conditions:
+        if isinstance(c, _RatioChain):
+            if not c.holds(values):
+                out.append(str(c))
+            continue
+        try:
+            at = c.xreplace(values)
+        except (TypeError, ZeroDivisionError):
+            at = None
+        if at is not sp.true:
+            out.append(sp.sstr(c))
+    return out
 
 
 @PAPER.equation("46", kind="condition", printed=PRINTED["46"], section="5.1", assumptions=ASSUME_CASE,
                 derivation="gains meeting every line of (46) whose Z' is not positive real; Table 1 against (46)")
 def eq46(ctx: AuditContext) -> Finding:
+    conditions, repairs = _read_46(ctx.equation.printed)
     g = compact_set_counterexample()
-    lines = compact_set_holds(g)
+    at_counter = _failing(conditions, g)
+    at_table = _failing(conditions, table1_gains(60))
+    nonnegative = all(v >= 0 for M in g.values() for v in M)
     verdict = absolute_stability(_compact_impedance(), ports=(3, 3), search=False)
-    table = compact_set_holds(table1_gains(60))
-    if all(lines.values()) and verdict.decision == Decision.DISPROVED:
-        extra = ""
+    reading = "; ".join(str(c) if isinstance(c, _RatioChain) else sp.sstr(c) for c in conditions)
+    facts = {"reading": reading, "repairs": repairs, "failing_at_counterexample": at_counter,
+             "failing_at_table1": at_table, "youla": verdict.reason, "printed_form": reading}
+    if not at_counter and nonnegative and verdict.decision == Decision.DISPROVED:
         return Finding(
             Verdict.WRONG,
-            "not sufficient: K_pm = [[1,0,1],[0,1,1],[1,1,1]], K_vm = [[1,0,0],[0,1,1],[0,1,1]], K_ps = 2K_pm, K_vs = 2K_vm "
-            f"satisfy every line of (46) with nonnegative gains, but {verdict.reason}{extra}: (46) dropped det K_pm >= 0 "
-            "(39d) and both sets of non-leading minors; it also excludes Table 1's stable gains (they violate its last line). "
-            "Exact condition: K_pm and K_vm PSD",
-            Evidence(Method.COUNTEREXAMPLE, witness={k: v for k, v in g.items()},
-                     facts={"lines_hold": lines, "youla": verdict.reason, "table1_lines": table}),
+            f"not sufficient: read as {reading} (OCR repaired: {', '.join(repairs) or 'none'}), every line holds at K_pm = "
+            f"{_line(g['pm'])}, K_vm = {_line(g['vm'])}, K_ps = 2K_pm, K_vs = 2K_vm (nonnegative gains), but {verdict.reason}: "
+            "(46) dropped det K_pm >= 0 (39d) and both sets of non-leading minors; Table 1's stable gains violate "
+            f"{at_table or 'no line'}. Exact condition: K_pm and K_vm PSD",
+            Evidence(Method.COUNTEREXAMPLE, witness={k: v for k, v in g.items()}, facts=facts),
             corrected=CORRECTED_46,
         )
-    return Finding(Verdict.UNDECIDED, "counterexample did not verify", verdict.evidence)
+    return Finding(Verdict.UNDECIDED, f"read as {reading}, (46) fails at the prepared counterexample ({at_counter}); its "
+                   f"sufficiency was not refuted (Table 1 violates {at_table or 'no line'})",
+                   Evidence(Method.INSTANCES, facts=facts))
 
 
 # ---------------------------------------------------------------------------------------------
@@ -2174,39 +2362,70 @@ MASSES_PRINTED = ("$M_{mxx} = 1.7$, $M_{mxy} = 0.2$, $M_{myy} = 1.9$, $M_{mxz} =
 def masses(ctx: AuditContext) -> Finding:
     import re
 
-    names = {m.group(1) for m in re.finditer(r"M_\{(\w+)\}", ctx.equation.printed)}
-    missing = sorted({"syy", "szz"} - names)
-    literal = case_study_impedance(*(table1_gains(60)[k] for k in ("pm", "vm", "ps", "vs")), section52_masses()[0],
-                                   sp.Matrix([[sp.Rational(13, 10), sp.Rational(1, 2), sp.Rational(1, 10)],
-                                              [sp.Rational(8, 5), sp.Symbol("m_syy"), sp.Rational(3, 10)],
-                                              [sp.Rational(3, 2), sp.Rational(3, 10), sp.Symbol("m_szz")]]))
-    b_fails = any(c.kind == "B" for c in symmetrization_conditions(literal, ports=(3, 3)))
-    Ms = section52_masses()[1]
-    pd = all(Ms[:k, :k].det() > 0 for k in (1, 2, 3))
-    if missing and b_fails and pd:
+    from hapticproof.audit import quoted_math
+    from hapticproof.parse import SymbolTable, parse_expression
+
+    printed: dict[str, sp.Expr] = {}
+    for quote in quoted_math(ctx.equation.printed):
+        name, _, value = quote.partition("=")
+        match = re.fullmatch(r"\s*M_\{(\w+)\}\s*", name)
+        if match is None or not value.strip():
+            return Finding(Verdict.MALFORMED, f"'{quote}' is not a mass entry M_{{..}} = value", Evidence(Method.PARSE))
+        printed[match.group(1)] = parse_expression(value, SymbolTable())
+    missing = sorted({"syy", "szz"} - set(printed))
+    symbol = {"syy": sp.Symbol("m_syy"), "szz": sp.Symbol("m_szz")}
+
+    def entry(which: str, a: str, b: str) -> sp.Expr:
+        return printed.get(f"{which}{a}{b}", printed.get(f"{which}{b}{a}", symbol.get(f"{which}{a}{b}", sp.Symbol(f"m_{which}{a}{b}"))))
+
+    # literal reading: each printed entry at its printed place; what is not printed stays symbolic
+    literal_s = sp.Matrix(3, 3, lambda i, j: entry("s", AXES[i], AXES[j]))
+    Mm = sp.Matrix(3, 3, lambda i, j: entry("m", AXES[min(i, j)], AXES[max(i, j)]))
+    gains = [table1_gains(60)[k] for k in ("pm", "vm", "ps", "vs")]
+    b_fails = any(c.kind == "B" for c in symmetrization_conditions(case_study_impedance(*gains, Mm, literal_s), ports=(3, 3)))
+    # repaired reading: the printed yx and zx entries of M_s are its missing yy and zz entries
+    repaired = dict(printed)
+    if missing == ["syy", "szz"] and "syx" in printed and "szx" in printed:
+        repaired["syy"], repaired["szz"] = repaired.pop("syx"), repaired.pop("szx")
+    Ms = sp.Matrix(3, 3, lambda i, j: repaired.get(f"s{AXES[min(i, j)]}{AXES[max(i, j)]}", sp.Symbol("missing")))
+    pd = {name: all(M[:k, :k].det() > 0 for k in (1, 2, 3)) if not M.free_symbols else False for name, M in (("M_m", Mm), ("M_s", Ms))}
+    facts = {"printed": {k: str(v) for k, v in printed.items()}, "B_fails_literally": b_fails, "pd": pd,
+             "printed_form": sorted((k, str(v)) for k, v in printed.items())}
+    if missing and b_fails and all(pd.values()):
         return Finding(Verdict.TYPO,
-                       "M_syy and M_szz are never given while M_syx = 1.6 and M_szx = 1.5 are: read literally M_s is not "
-                       "symmetric (M_sxy = 0.5 != M_syx = 1.6), which violates condition B, and has no yy, zz entries; read as "
-                       "M_syy = 1.6, M_szz = 1.5 it is symmetric positive definite",
-                       Evidence(Method.STRUCTURAL, witness={"missing": missing}, facts={"B_fails_literally": b_fails, "M_s_pd": pd}),
-                       corrected=r"M_{syy} = 1.6,\quad M_{szz} = 1.5")
-    return Finding(Verdict.CONFIRMED, "masses consistent", Evidence(Method.STRUCTURAL))
+                       f"{', '.join('M_' + m for m in missing)} are never given while M_syx = {printed.get('syx')} and M_szx = "
+                       f"{printed.get('szx')} are: read literally M_s = {_line(literal_s)} is not symmetric, which violates "
+                       f"condition B, and lacks those entries; read as M_syy = {repaired.get('syy')}, M_szz = {repaired.get('szz')} "
+                       f"it is {_line(Ms)}, symmetric positive definite (and M_m = {_line(Mm)} is positive definite)",
+                       Evidence(Method.STRUCTURAL, witness={"missing": missing}, facts=facts),
+                       corrected=rf"M_{{syy}} = {float(repaired['syy']):g},\quad M_{{szz}} = {float(repaired['szz']):g}")
+    if not all(pd.values()):
+        return Finding(Verdict.WRONG, f"the printed masses do not give positive definite inertia matrices: M_m = {_line(Mm)}, "
+                       f"M_s (repaired) = {_line(Ms)}", Evidence(Method.COUNTEREXAMPLE, facts=facts))
+    return Finding(Verdict.CONFIRMED, f"masses consistent: M_m = {_line(Mm)}, M_s = {_line(Ms)}", Evidence(Method.STRUCTURAL, facts=facts))
 
 
 @PAPER.equation("47", kind="expression", printed=PRINTED["47"], section="5.2",
                 derivation="Definition 3 for the printed termination (the text calls it passive)")
 def eq47(ctx: AuditContext) -> Finding:
     T = _rhs_matrix(ctx)
+    bad = _not_in_s(T, "T_1 of (47)")
+    if bad is not None:
+        return bad
     result = positive_real(T)
+    high = T.applyfunc(lambda e: sp.limit(e * s, s, sp.oo))          # the 1/s coefficient at high frequency
+    symmetric = high == high.T
+    facts = {**_pr_facts(result), "one_over_s_coefficient": high, "printed_form": sp.srepr(T)}
     if result.decision == Decision.DISPROVED:
-        w = result.hermitian.witness
+        w = result.hermitian.witness or {}
+        why = (f"the 1/s coefficient of T_1, {_line(high)}, is not symmetric, so at high frequency the Hermitian part is "
+               "dominated by an indefinite skew term j(.)/w; exactly, " if not symmetric else "")
         return Finding(Verdict.WRONG,
-                       "'which are passive' is false: the 1/s coefficient of T_1, [[8, -2, -1], [-1, 9, 2], [-1, 2, 5]], is not "
-                       "symmetric, so at high frequency the Hermitian part is dominated by an indefinite skew term j(.)/w; exactly, "
-                       "T_1(jw) + T_1(jw)^H has a negative principal minor at "
+                       f"'which are passive' is false: {why}T_1(jw) + T_1(jw)^H has a negative principal minor at "
                        f"w = {w.get('omega', w)} (exact)",
-                       Evidence(Method.ROOT_ISOLATION, witness=dict(w), facts=_pr_facts(result)))
-    return Finding(Verdict.CONFIRMED, "T_1 is passive", result.evidence)
+                       Evidence(Method.ROOT_ISOLATION, witness=dict(w), facts=facts))
+    return Finding(Verdict.CONFIRMED if result.decision == Decision.PROVED else Verdict.UNDECIDED,
+                   f"T_1 of (47) is {_pr_text(result)} (1/s coefficient {_line(high)})", Evidence(Method.ROOT_ISOLATION, facts=facts))
 
 
 def fig3_plot(traces: dict[int, Any]) -> Plot:
@@ -2220,18 +2439,30 @@ def fig3_plot(traces: dict[int, Any]) -> Plot:
 FIG3_PRINTED_46 = ("if the control gains are selected according to (46), e.g., as listed in Table 1, with $K_{vmyz} = 60$")
 
 
+def _quoted_kvmyz(text: str) -> int | None:
+    """The value of k_vmyz a Fig. 3 claim quotes (``K_{vmyz} = 60`` or ``K_{vmyz} to 6``)."""
+    import re
+
+    match = re.search(r"K_\{vmyz\}\s*(?:=|to)\s*(\d+)", text)
+    return int(match.group(1)) if match else None
+
+
 @PAPER.equation("fig3-46", kind="claim", after="47", section="5.2", printed=FIG3_PRINTED_46,
-                derivation="every line of (46) at the Table 1 gains")
+                derivation="every line of (46) at the Table 1 gains", quotes=('46',))
 def fig3_46(ctx: AuditContext) -> Finding:
-    lines = compact_set_holds(table1_gains(60))
-    failing = [k for k, v in lines.items() if not v]
+    kvmyz = _quoted_kvmyz(ctx.equation.printed)
+    if kvmyz is None:
+        return Finding(Verdict.UNDECIDED, "the claim quotes no value of k_vmyz", Evidence(Method.PARSE))
+    conditions, repairs = _read_46(PAPER.get("46").printed)
+    failing = _failing(conditions, table1_gains(kvmyz))
+    facts = {"failing": failing, "k_vmyz": kvmyz}
     if failing:
         return Finding(Verdict.INCONSISTENT,
-                       f"Table 1 with k_vmyz = 60 violates line(s) {failing} of (46) ((45): 60^2 = 3600 < 80 * 80 = 6400), "
-                       "so it is not 'selected according to (46)'; it is nevertheless absolutely stable (see fig3-60): (45)/(46) "
-                       "are wrong, not the gains",
-                       Evidence(Method.COUNTEREXAMPLE, witness={"k_vmyz": 60}, facts={"lines": lines}))
-    return Finding(Verdict.CONFIRMED, "Table 1 satisfies (46)", Evidence(Method.INSTANCES, facts={"lines": lines}))
+                       f"Table 1 with k_vmyz = {kvmyz} violates line(s) {failing} of (46), so it is not 'selected according to "
+                       "(46)'; it is nevertheless absolutely stable (see fig3-60): (45)/(46) are wrong, not the gains",
+                       Evidence(Method.COUNTEREXAMPLE, witness={"k_vmyz": kvmyz}, facts=facts))
+    return Finding(Verdict.CONFIRMED, f"Table 1 with k_vmyz = {kvmyz} satisfies every line of (46)",
+                   Evidence(Method.INSTANCES, facts=facts))
 
 
 @PAPER.equation("fig3-60", kind="claim", after="47", section="5.2",
@@ -2239,9 +2470,12 @@ def fig3_46(ctx: AuditContext) -> Finding:
                         "absolute stability of the bilateral teleoperator",
                 derivation="Youla verdict for Table 1; positive realness of the master-port impedance with (47); simulation")
 def fig3_60(ctx: AuditContext) -> Finding:
-    verdict = table1_verdict(60)
-    zin = positive_real(master_input_impedance(60))
-    trace = fig3_energy(60)
+    kvmyz = _quoted_kvmyz(ctx.equation.printed)
+    if kvmyz is None:
+        return Finding(Verdict.UNDECIDED, "the claim quotes no value of k_vmyz", Evidence(Method.PARSE))
+    verdict = table1_verdict(kvmyz)
+    zin = positive_real(master_input_impedance(kvmyz))
+    trace = fig3_energy(kvmyz)
     if verdict.decision == Decision.PROVED and zin.decision == Decision.PROVED and trace.minimum >= -1e-9:
         return Finding(Verdict.CONFIRMED,
                        "absolutely stable (Z' positive real, principal and block-compatible minors verified); with the slave "

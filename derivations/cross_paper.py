@@ -205,7 +205,7 @@ def hve25(ctx: AuditContext) -> Finding:
 
 @PAPER.equation("hve27-5", kind="claim", after="9",
                 printed="HVE (27) 'extends the condition in [7] by allowing the operator to be active': (27) at z_a = 0 vs (5)",
-                derivation="HVE (27) at z_a = 0 vs HVE (5), and vs classics gil-2009", quotes=('hve:27', 'hve:5', 'classics:gil-2009'))
+                derivation="HVE (27) at z_a = 0 vs HVE (5), and vs classics gil-2009", quotes=('hve:5', 'classics:gil-2009'))
 def hve27(ctx: AuditContext) -> Finding:
     return _vs_quote5("27", {z_a: 0}, "HVE (27) at z_a = 0")
 
@@ -213,7 +213,7 @@ def hve27(ctx: AuditContext) -> Finding:
 @PAPER.equation("hve36-5", kind="claim", after="10",
                 printed="HVE (36) for the virtual wall and small B 'reduces to (27), where if z_a = 0 the condition will be "
                         "identical to that reported in [7]'",
-                derivation="the reduction (36) -> (27) is audited in hve 36-reduces; here (27) at z_a = 0 vs (5)", quotes=('hve:27', 'hve:5', 'classics:gil-2009'))
+                derivation="the reduction (36) -> (27) is audited in hve 36-reduces; here (27) at z_a = 0 vs (5)", quotes=('hve:5', 'classics:gil-2009'))
 def hve36(ctx: AuditContext) -> Finding:
     finding = _vs_quote5("27", {z_a: 0}, "HVE (36) via (27) at z_a = 0")
     return Finding(finding.verdict, finding.detail.replace("hve:27", "hve:36 (via 27)"), finding.evidence)
@@ -221,14 +221,14 @@ def hve36(ctx: AuditContext) -> Finding:
 
 @PAPER.equation("hve26-za0-20", kind="claim", after="11",
                 printed="HVE (26) is (20) 'after replacing b by b - z_a': (26) at z_a = 0 vs (20)",
-                derivation="HVE (26) at z_a = 0 vs HVE (20)", quotes=('hve:26', 'hve:20'))
+                derivation="HVE (26) at z_a = 0 vs HVE (20)", quotes=('hve:20',))
 def hve26(ctx: AuditContext) -> Finding:
     return _compare(_relation("hve", "26").subs(z_a, 0), _relation("hve", "20"), ["hve:26", "hve:20"], "HVE (26) at z_a = 0")
 
 
 @PAPER.equation("hve27-za0-25", kind="claim", after="12",
                 printed="HVE (27) is (25) 'after replacing b by b - z_a': (27) at z_a = 0 vs (25)",
-                derivation="HVE (27) at z_a = 0 vs HVE (25)", quotes=('hve:27', 'hve:25'))
+                derivation="HVE (27) at z_a = 0 vs HVE (25)", quotes=('hve:25',))
 def hve27_25(ctx: AuditContext) -> Finding:
     return _compare(_relation("hve", "27").subs(z_a, 0), _relation("hve", "25"), ["hve:27", "hve:25"], "HVE (27) at z_a = 0")
 

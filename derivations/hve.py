@@ -814,7 +814,7 @@ def eq27(ctx: AuditContext) -> Finding:
 @PAPER.equation("26-extends", kind="claim", after="26", section="3.1.1",
                 printed="Evidently, the proposed condition (27) extends the condition in [3] by both allowing the operator "
                         "to be active and for the delay to exist, and extends the condition in [7] by allowing the operator to be active.",
-                derivation="(27) at z_a = 0, t_d = 0 vs (3); (27) at z_a = 0 vs (5)", quotes=('27', '3'))
+                derivation="(27) at z_a = 0, t_d = 0 vs (3); (27) at z_a = 0 vs (5)", quotes=('3',))
 def extends(ctx: AuditContext) -> Finding:
     p27 = ctx.parse(PAPER.get("27").printed).relations()[0].as_sympy()
     p3 = ctx.parse(PAPER.get("3").printed).relations()[0].as_sympy()
