@@ -1551,10 +1551,16 @@ def eq54(ctx: AuditContext) -> Finding:
                        K=sp.Rational(1, 100), B0=0, B=0)
     facts = {**_structural_facts(), "exact_instances": counts, "uniform_equal_m_1_to_8": True,
              "printed_form": form, **_decision_facts(witness)}
-    if checks[3].holds(witness) or not _pr(witness):
-        return Finding(Verdict.CONFIRMED if checks[3].holds(witness) else Verdict.UNDECIDED,
-                       "(54) is exact for uniform parameters and sufficient on every instance tried; the non-uniform witness "
-                       "did not show it is not necessary", Evidence(Method.STRUCTURAL, facts=facts))
+    if not _pr(witness):
+        return Finding(Verdict.UNDECIDED,
+                       "(54) is exact for uniform parameters and sufficient on every instance tried, but the non-uniform "
+                       "witness is not PR (exact decision), so it cannot show that (54) is not necessary",
+                       Evidence(Method.STRUCTURAL, witness=_witness_json(witness), facts=facts))
+    if checks[3].holds(witness):
+        return Finding(Verdict.UNDECIDED,
+                       "(54) is exact for uniform parameters and sufficient on every instance tried; it also holds at the "
+                       "non-uniform witness (PR), so it is not shown conservative, and equivalence in general is not proved",
+                       Evidence(Method.STRUCTURAL, witness=_witness_json(witness), facts=facts))
     return Finding(
         Verdict.CONSERVATIVE,
         "proved for every m and every coupling graph from the structure (worst case c = -1 in the Loewner order, "
@@ -1871,10 +1877,17 @@ def eq58(ctx: AuditContext) -> Finding:
             f"(58) reads {condition}, not the (1,1) entry of M/2 > 0: {cause}; the printed condition holds where that entry "
             f"is negative ({at_witness})",
             Evidence(Method.COUNTEREXAMPLE, witness=witness, facts=facts), derived=sp.Gt(derived, 0), corrected=corrected)
-    return Finding(Verdict.TYPO if not fixed_ok else Verdict.WRONG,
+    if fixed_ok:
+        return Finding(Verdict.TYPO,
+                       f"(58) reads {condition}: the damping term must be B cos(w(t_d + T)), not cos(w(t_d - T)); with that "
+                       f"local fix it equals the (1,1) entry of M/2 for every integer n ({at_witness})",
+                       Evidence(Method.CANONICAL_FORM, witness=witness, facts=facts), derived=sp.Gt(derived, 0),
+                       corrected=corrected)
+    return Finding(Verdict.UNDECIDED,
                    f"(58) reads {condition}, not the (1,1) entry of M/2 > 0 (printed - derived = {gap} in the canonical "
-                   f"theta-form; {at_witness})",
-                   Evidence(Method.COUNTEREXAMPLE, witness=witness, facts=facts), derived=sp.Gt(derived, 0), corrected=corrected)
+                   f"theta-form), but it agrees with the exact entry at the witness ({at_witness}); no exact "
+                   "counterexample found", Evidence(Method.CANONICAL_FORM, witness=witness, facts=facts),
+                   derived=sp.Gt(derived, 0))
 
 
 P59 = (r"det(G(e^{j\omega T}) + G^{T}(e^{-j\omega T})) = (b_{1} + B_{01}\cos(\omega(t_{d} - T)) - \frac{K_{01}T}{2}\cos(\omega t_{d}) - "
@@ -2501,6 +2514,18 @@ def sec4_dual(ctx: AuditContext) -> Finding:
             Evidence(Method.SPECTRAL, witness={"T": sp.Rational(1, 1000), "t_d": sp.Rational(5, 1000), "b": sp.Rational("0.1822"),
                                                "m": sp.Rational("0.15"), "K": Kw, "z_a": 0}, facts=facts),
         )
-    return Finding(Verdict.CONFIRMED if safe and not unsafe else Verdict.UNDECIDED,
-                   f"printed borderlines compared with the exact sampled-data boundaries: {text}",
+    if not safe:
+        above = [str(r["z_a/b"]) for r in undelayed["rows"] if r["printed/boundary"] is None or r["printed/boundary"] > 1]
+        return Finding(Verdict.UNDECIDED,
+                       f"the no-delay borderline (55) is not below the exact stability boundary (z_a/b = {', '.join(above)}), "
+                       f"so the claimed agreement with simulation is not reproduced: {text}",
+                       Evidence(Method.SPECTRAL, facts=facts))
+    if all(r["printed/boundary"] is not None and r["printed/boundary"] <= 1 for r in delayed["rows"]):
+        return Finding(Verdict.CONFIRMED,
+                       f"the printed borderlines lie below the exact sampled-data stability boundaries, with or without "
+                       f"delay: {text}", Evidence(Method.SPECTRAL, facts=facts))
+    return Finding(Verdict.UNDECIDED,
+                   f"the delayed borderline (63) does not lie below the exact stability boundary in every run, but the "
+                   f"unstable witness K = {Kw} (spectral radius {float(radius_op):.6f}) "
+                   f"{'is not below the printed borderline' if not witness_allowed else 'does not apply to every run'}: {text}",
                    Evidence(Method.SPECTRAL, facts=facts))

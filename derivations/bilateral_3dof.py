@@ -1280,9 +1280,15 @@ def eq15a(ctx: AuditContext) -> Finding:
     if read != want:
         problems.append(f"it reads {[sp.sstr(x) for x in read[:2]]}... >= 0 instead of Re z_ii >= 0")
     if problems:
-        return Finding(Verdict.WRONG if condition.op != ">=" else Verdict.TYPO,
-                       "(15a) is not the 1x1 principal-minor condition Re z_ii >= 0, i = 1..6: " + "; ".join(problems),
-                       Evidence(Method.PARSE, facts={"problems": problems, "printed_form": sp.srepr(rel)}))
+        if condition.op != ">=":
+            return Finding(Verdict.WRONG,
+                           "(15a) is not the 1x1 principal-minor condition Re z_ii >= 0, i = 1..6: " + "; ".join(problems),
+                           Evidence(Method.PARSE, facts={"problems": problems, "printed_form": sp.srepr(rel)}))
+        return Finding(Verdict.TYPO,
+                       "(15a) has the relation of a 1x1 principal-minor condition but not its entries or range: "
+                       + "; ".join(problems),
+                       Evidence(Method.PARSE, facts={"problems": problems, "printed_form": sp.srepr(rel)}),
+                       corrected=r"\text{Re}(z_{i,i}) \geq 0, \quad i = 1, 2, \dots, 6")
     Y = _table1_symmetrization()
     Z = table1_impedance(60)
     same = all(is_identically_zero(Y.zprime()[i, i] - Z[i, i]) for i in range(6))

@@ -589,17 +589,43 @@ def eq23(ctx: AuditContext) -> Finding:
                 printed=r"\lim_{\cos(\omega T)\to 1} KTS = \lim_{\cos(\omega T)\to 1} KT \frac{\sin(\omega t_d)\sin(\omega T)}{2(1-\cos(\omega T))} = Kt_d",
                 derivation="limit theta -> 0 of KT sin(n theta) sin(theta) / (2(1 - cos theta)), t_d = nT")
 def eq23a(ctx: AuditContext) -> Finding:
+    from hapticproof.parse import PrintedLimit
+
     theta = sp.Symbol("theta", positive=True)
     limit = sp.limit(K * T * sp.sin(n * theta) * sp.sin(theta) / (2 * (1 - sp.cos(theta))), theta, 0)
     derived = sp.simplify(limit.subs(n, t_d / T))
-    terms = ctx.statement.terms
-    final = compare_expressions(terms[-1], derived, what="the printed limit Kt_d")
-    if final.verdict != Verdict.CONFIRMED:
-        return final
-    middle_is_S = is_identically_zero(terms[0].expr - terms[1].expr)
-    return Finding(Verdict.CONFIRMED if middle_is_S else Verdict.TYPO,
-                   "the limit is KTn = Kt_d (SymPy limit of the exact expression, theta -> 0) and the middle member is KTS written out",
-                   Evidence(Method.CANONICAL_FORM, facts={"limit": limit}), derived=sp.Eq(sp.Symbol("lim"), derived))
+    terms = list(ctx.statement.terms)
+    values = []
+    for i, term in enumerate(terms):
+        if not isinstance(term, PrintedLimit):
+            values.append(term)
+            continue
+        # where the printed variable reaches its target: the smallest omega >= 0 (omega T -> 0 for cos -> 1)
+        roots = sorted(r for r in sp.solve(sp.Eq(term.variable.subs(omega, theta / T), term.target), theta)
+                       if r.is_real and r.is_nonnegative) if omega in term.variable.free_symbols else []
+        if not roots:
+            return Finding(Verdict.UNDECIDED, f"member {i + 1}: cannot locate where {sp.sstr(term.variable)} -> "
+                           f"{sp.sstr(term.target)} as a function of omega", Evidence(Method.CANONICAL_FORM))
+        value = sp.limit(term.expr.subs({omega: theta / T, t_d: n * T}), theta, roots[0], "+")
+        values.append(sp.simplify(value.subs(n, t_d / T)))
+    facts = {"limit": limit, "printed_form": tuple(sp.srepr(sp.simplify(v)) for v in values),
+             "member_limits": [sp.sstr(v) for v in values]}
+    for i, value in enumerate(values):
+        member = compare_expressions(value, derived, what=f"member {i + 1} of the printed chain")
+        if member.verdict != Verdict.CONFIRMED:
+            return Finding(Verdict.WRONG if member.verdict in (Verdict.WRONG, Verdict.TYPO) else member.verdict,
+                           f"member {i + 1} of the chain tends to {sp.sstr(value)}, not Kt_d = {sp.sstr(derived)} "
+                           f"(the SymPy limit of KT sin(n theta) sin(theta)/(2(1 - cos theta)), theta -> 0, t_d = nT)",
+                           Evidence(Method.COUNTEREXAMPLE, witness=member.evidence.witness, facts=facts),
+                           derived=sp.Eq(sp.Symbol("lim"), derived))
+    middle_is_S = len(terms) > 1 and isinstance(terms[1], PrintedLimit) and is_identically_zero(terms[1].expr - K * T * S_EXPR)
+    facts["middle_is_KTS"] = middle_is_S
+    return Finding(Verdict.CONFIRMED,
+                   f"all {len(values)} members tend to {sp.sstr(derived)} (SymPy limits at the point where the printed "
+                   "variable reaches its target), the limit of KTn = Kt_d"
+                   + ("; the middle member is KTS written out" if middle_is_S else
+                      "; the middle member is not KTS written out, but has the same limit"),
+                   Evidence(Method.CANONICAL_FORM, facts=facts), derived=sp.Eq(sp.Symbol("lim"), derived))
 
 
 @functools.lru_cache(maxsize=None)

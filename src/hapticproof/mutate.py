@@ -820,9 +820,33 @@ def mutate_paper(
     start = time.perf_counter()
     equations = [paper.get(i) for i in only] if only else paper.ordered()
     everything: list[Mutant] = []
-    for eq in equations:
-        everything.extend(mutants_of(paper, eq, registry))
-    chosen = sample(everything, count, seed)
+    if count is None:
+        for eq in equations:
+            everything.extend(mutants_of(paper, eq, registry))
+        chosen = everything
+    else:
+        # a sample: equations drawn with the seed, one mutant each (operators in turn), so that a
+        # small sample spreads over the paper without generating every mutant
+        rng = random.Random(seed)
+        candidates = [eq for eq in equations if eq.kind != "claim" or "$" in eq.printed or eq.quotes]
+        rng.shuffle(candidates)
+        pools: dict[str, list[Mutant]] = {}
+        chosen = []
+        for rounds in range(4):
+            for k, eq in enumerate(candidates):
+                if len(chosen) >= count:
+                    break
+                if eq.id not in pools:
+                    pools[eq.id] = mutants_of(paper, eq, registry)
+                    everything.extend(pools[eq.id])
+                pool = [m for m in pools[eq.id] if m not in chosen]
+                if not pool:
+                    continue
+                wanted = OPERATORS[(k + rounds) % len(OPERATORS)]
+                preferred = [m for m in pool if m.operator == wanted] or pool
+                chosen.append(preferred[rng.randrange(len(preferred))])
+            if len(chosen) >= count:
+                break
     groups: dict[str, list[Mutant]] = {}
     for m in sorted(chosen, key=lambda m: (m.equation, m.target, m.position, m.operator, m.replacement)):
         groups.setdefault(m.equation, []).append(m)
