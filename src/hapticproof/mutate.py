@@ -32,10 +32,26 @@ The operators work on the tokens of :func:`hapticproof.parse._tokenize` (equatio
 ``symbol``    replace a name by another name of the display (or of the paper's table).
 
 Claims (quoted prose) are mutated inside their ``$...$`` math only, and only when their check
-reads its printed text. Claims that read *other* equations' displays (``20-colgate`` parses
-(20) and (3); the cross-paper checks parse displays of three papers) are audited against the
-mutants of those displays too (``dependent`` mutants), with the mutated equation installed in
-its paper for the duration of the check.
+reads its own printed text (found by running the check once with recording copies of every
+registered equation, :func:`dependencies`). A claim or display whose verdict is *about* other
+displays declares them in ``Equation.quotes`` (``20-colgate`` quotes (20) and (3); the
+cross-paper checks quote displays of three papers): it is audited against the mutants of those
+displays too (``dependent`` mutants), with the mutated display installed in its paper for the
+duration of the check. A declared quote that the check never reads is a :class:`QuoteError`.
+
+What counts as *proved* equivalent is decided by the check, not by this module: a check that
+proves a display equal to what it derives (``compare_expressions``, ``compare_bounds``,
+``compare_sign_conditions``) reports the canonical form of what it read in
+``evidence.facts["printed_form"]`` -- the derived form when it proved them equal, the printed
+one otherwise -- so a mutant that stays confirmed with the same canonical form was proved equal
+by the same exact computation. Data displays (a table of gains whose stated properties are all
+the paper uses) report the tuple of the properties they verified; a mutant that keeps every
+stated property is equivalent *as data* (see ``benchmarks/README.md``).
+
+A run generates every mutant (``count=None``) or a deterministic sample: equations are shuffled
+with ``seed`` and take one mutant each per round, operators in turn, until ``count`` mutants are
+chosen. Each mutant runs under a time limit (:data:`TIME_LIMIT`; a check that hangs is a crash).
+The test suite runs :func:`knob` mutants per paper (``HAPTICPROOF_MUTANTS=all`` runs every one).
 
 The mutation score of a paper is ``killed / (total - equivalent)``.
 
@@ -87,7 +103,9 @@ __all__ = [
     "mutants_of",
     "run_mutant",
     "mutate_paper",
-    "sample",
+    "knob",
+    "QuoteError",
+    "MutantTimeout",
     "ENV_KNOB",
 ]
 
@@ -410,6 +428,8 @@ def generate(equation: Equation, paper: Paper, *, text: str | None = None) -> li
     def add(operator: str, lo: int, hi: int, replacement: str) -> None:
         if re.search(r"\\[A-Za-z]+$", replacement) and text[hi:hi + 1].isalnum():
             replacement += " "      # '\omega' before 'T' must not become '\omegaT'
+        if not replacement and text[hi:hi + 1] == " " and (lo == 0 or text[lo - 1] in " {($&"):
+            hi += 1                 # a dropped term leaves one space, not two
         printed = text[:lo] + replacement + text[hi:]
         if printed == text or printed in found:
             return
@@ -719,25 +739,6 @@ def mutants_of(paper: Paper, equation: Equation, registry: dict[str, Paper] | No
     return out
 
 
-def sample(mutants: list[Mutant], count: int | None, seed: int = 0) -> list[Mutant]:
-    """A deterministic sample of ``count`` mutants (all when ``count`` is None), spread over the
-    operators and equations: shuffled with ``seed``, then taken round-robin by operator."""
-    if count is None or count >= len(mutants):
-        return list(mutants)
-    rng = random.Random(seed)
-    by_operator: dict[str, list[Mutant]] = {}
-    for m in sorted(mutants, key=lambda m: m.key):
-        by_operator.setdefault(m.operator, []).append(m)
-    for group in by_operator.values():
-        rng.shuffle(group)
-    chosen: list[Mutant] = []
-    while len(chosen) < count:
-        for op in OPERATORS:
-            if by_operator.get(op) and len(chosen) < count:
-                chosen.append(by_operator[op].pop())
-    return chosen
-
-
 @dataclass(frozen=True)
 class MutationReport:
     """The mutation run of one paper."""
@@ -817,7 +818,11 @@ def mutate_paper(
     """
     from hapticproof.audit import run_equation
 
+    from hapticproof.registry import papers as registered
+
     start = time.perf_counter()
+    if registry is None and registered().get(paper.id) is not paper:
+        registry = {paper.id: paper}          # a paper of one's own, not in the registry
     equations = [paper.get(i) for i in only] if only else paper.ordered()
     everything: list[Mutant] = []
     if count is None:
