@@ -1185,18 +1185,23 @@ def colgate_claim(ctx: AuditContext) -> Finding:
     colgate = classics.colgate_wall(B=B)
     cmp = compare_bounds(colgate, sp.Ge(p35.lhs, p35.rhs), b, what="Colgate's condition as a condition for (35)")
     doubled = classics.colgate_wall(K=2 * K, B=2 * B)
+    facts = {"ids": ["teleoperator:35", "hve:3", "classics:colgate-wall"], "colgate": colgate,
+             "colgate_doubled_gains": doubled, "printed_35": sp.sstr(p35)}
     if cmp.verdict == Verdict.CONFIRMED:
-        return Finding(Verdict.CONFIRMED, "(35) is Colgate's condition", cmp.evidence)
+        return Finding(Verdict.CONFIRMED, f"(35), {sp.sstr(p35)}, is Colgate's condition {sp.sstr(colgate)}", cmp.evidence)
+    twice = compare_bounds(p35, sp.Ge(doubled.lhs, doubled.rhs), b, what="(35) as Colgate's condition for 2K, 2B")
+    if twice.verdict == Verdict.CONFIRMED:
+        return Finding(
+            Verdict.INCONSISTENT,
+            f"(35) {sp.sstr(p35)} is Colgate & Schenkel's condition {sp.sstr(colgate)} (HVE (3)) for the doubled wall "
+            f"2K + 2B(z-1)/(Tz) ({sp.sstr(doubled)}), which is what the error coordinate of two equal robots sees, not "
+            f"Colgate's condition itself: {cmp.detail}",
+            Evidence(Method.COUNTEREXAMPLE, witness=cmp.evidence.witness, facts=facts), derived=colgate)
     return Finding(
         Verdict.INCONSISTENT,
-        f"(35) b > KT + 2B is twice Colgate & Schenkel's b > KT/2 + B (HVE (3)): for KT/2 + B < b <= KT + 2B the wall is "
-        f"passive but (35) fails (witness); (35) is Colgate's condition for the wall 2K + 2B(z-1)/(Tz) "
-        f"({sp.sstr(doubled.rhs)}), which is what the error coordinate of two equal robots sees",
-        Evidence(Method.COUNTEREXAMPLE, witness=cmp.evidence.witness,
-                 facts={"ids": ["teleoperator:35", "hve:3", "classics:colgate-wall"], "colgate": colgate,
-                        "colgate_doubled_gains": doubled}),
-        derived=colgate,
-    )
+        f"(35) {sp.sstr(p35)} is neither Colgate & Schenkel's condition {sp.sstr(colgate)} (HVE (3)) nor Colgate's "
+        f"condition for the doubled wall ({sp.sstr(doubled)}): {cmp.detail}",
+        Evidence(Method.COUNTEREXAMPLE, witness=cmp.evidence.witness, facts=facts), derived=colgate)
 
 
 @PAPER.equation("35-monotone", kind="claim", after="35", section="III-B",
@@ -1204,12 +1209,23 @@ def colgate_claim(ctx: AuditContext) -> Finding:
                         "closer to non-passivity",
                 derivation="derivatives of the worst-case bound KT + 2B")
 def monotone(ctx: AuditContext) -> Finding:
-    bound = tele.worst_case(tele.TeleoperatorScene.pd()).sup_master
+    (rel,) = ctx.parse(PAPER.get("35").printed).relations()
+    try:
+        condition = as_bound(rel.as_sympy(), b)
+    except NotABound as exc:
+        return Finding(Verdict.UNDECIDED, f"(35) is not a bound on b: {exc}", Evidence(Method.PARSE))
+    if not condition.lower:
+        return Finding(Verdict.WRONG, f"(35) reads {condition}, an upper bound on b: larger K, B, T do not require more "
+                       "damping by it", Evidence(Method.STRUCTURAL, facts={"condition": str(condition)}))
+    bound = condition.bound
     slopes = {str(v): sp.diff(bound, v) for v in (K, B, T)}
     if all(sp.sympify(d).is_positive for d in slopes.values()):
-        return Finding(Verdict.CONFIRMED, "the required damping KT + 2B increases with K, B and T (all partial derivatives "
-                       "positive)", Evidence(Method.STRUCTURAL, facts={"derivatives": slopes}))
-    return Finding(Verdict.WRONG, "the bound is not increasing", Evidence(Method.STRUCTURAL, facts={"derivatives": slopes}))
+        return Finding(Verdict.CONFIRMED, f"the damping (35) requires, {sp.sstr(bound)}, increases with K, B and T (all "
+                       "partial derivatives positive)", Evidence(Method.STRUCTURAL, facts={"derivatives": slopes}))
+    flat = [v for v, d in slopes.items() if not sp.sympify(d).is_positive]
+    return Finding(Verdict.WRONG, f"the damping (35) requires, {sp.sstr(bound)}, does not increase with {', '.join(flat)} "
+                   f"(partial derivatives {', '.join(f'{v}: {sp.sstr(slopes[v])}' for v in flat)})",
+                   Evidence(Method.STRUCTURAL, facts={"derivatives": slopes}))
 
 
 

@@ -103,6 +103,7 @@ __all__ = [
     "mutants_of",
     "run_mutant",
     "mutate_paper",
+    "choose",
     "knob",
     "QuoteError",
     "MutantTimeout",
@@ -641,23 +642,24 @@ def _time_limit(seconds: float | None) -> Iterator[None]:
     import signal
     import threading
 
-    if not seconds or threading.current_thread() is not threading.main_thread() or not hasattr(signal, "SIGALRM"):
+    if not seconds or threading.current_thread() is not threading.main_thread() or not hasattr(signal, "SIGPROF"):
         yield
         return
 
     def expire(signum: int, frame: Any) -> None:
-        raise MutantTimeout(f"the check ran longer than {seconds:g} s")
+        raise MutantTimeout(f"the check used more than {seconds:g} s of CPU time")
 
-    previous = signal.signal(signal.SIGALRM, expire)
-    signal.setitimer(signal.ITIMER_REAL, seconds)
+    # CPU time of this process (not wall time): a loaded machine must not turn slow checks into crashes
+    previous = signal.signal(signal.SIGPROF, expire)
+    signal.setitimer(signal.ITIMER_PROF, seconds)
     try:
         yield
     finally:
-        signal.setitimer(signal.ITIMER_REAL, 0)
-        signal.signal(signal.SIGALRM, previous)
+        signal.setitimer(signal.ITIMER_PROF, 0)
+        signal.signal(signal.SIGPROF, previous)
 
 
-#: Seconds a check may take on one mutant before it counts as a crash (a hanging check is a defect).
+#: CPU seconds a check may take on one mutant before it counts as a crash (a hanging check is a defect).
 TIME_LIMIT = 120.0
 
 
@@ -801,6 +803,48 @@ def _run_group(job: tuple[str, str, list[Mutant]]) -> list[MutantResult]:
     return [run_mutant(m, original) for m in group]
 
 
+def choose(
+    paper: Paper,
+    only: Iterable[str] | None = None,
+    *,
+    count: int | None = None,
+    seed: int = 0,
+    registry: dict[str, Paper] | None = None,
+) -> tuple[list[Mutant], int]:
+    """The mutants a run audits and how many were generated: every mutant of ``paper`` (or of
+    the equations ``only``) when ``count`` is None, else a deterministic sample of ``count``:
+    the equations that read a display are shuffled with ``seed`` and give one mutant each per
+    round, operators in turn, so that a small sample spreads over the paper without generating
+    every mutant."""
+    equations = [paper.get(i) for i in only] if only else paper.ordered()
+    everything: list[Mutant] = []
+    if count is None:
+        for eq in equations:
+            everything.extend(mutants_of(paper, eq, registry))
+        return everything, len(everything)
+    rng = random.Random(seed)
+    candidates = [eq for eq in equations if eq.kind != "claim" or "$" in eq.printed or eq.quotes]
+    rng.shuffle(candidates)
+    pools: dict[str, list[Mutant]] = {}
+    chosen: list[Mutant] = []
+    for rounds in range(len(OPERATORS)):
+        for k, eq in enumerate(candidates):
+            if len(chosen) >= count:
+                break
+            if eq.id not in pools:
+                pools[eq.id] = mutants_of(paper, eq, registry)
+                everything.extend(pools[eq.id])
+            pool = [m for m in pools[eq.id] if m not in chosen]
+            if not pool:
+                continue
+            wanted = OPERATORS[(k + rounds) % len(OPERATORS)]
+            preferred = [m for m in pool if m.operator == wanted] or pool
+            chosen.append(preferred[rng.randrange(len(preferred))])
+        if len(chosen) >= count:
+            break
+    return chosen, len(everything)
+
+
 def mutate_paper(
     paper: Paper,
     only: Iterable[str] | None = None,
@@ -811,52 +855,22 @@ def mutate_paper(
     progress: Callable[[MutantResult], None] | None = None,
     jobs: int = 1,
 ) -> MutationReport:
-    """Generate, sample and run the mutants of ``paper`` (or of the equations ``only``).
-
-    ``count`` mutants are sampled per paper (all when None); ``jobs > 1`` runs the equations'
-    groups of mutants in that many worker processes (registered papers only).
+    """Generate, sample (:func:`choose`) and run the mutants of ``paper`` (or of the equations
+    ``only``); ``jobs > 1`` runs the equations' groups of mutants in that many worker processes
+    (registered papers only).
     """
     from hapticproof.audit import run_equation
-
     from hapticproof.registry import papers as registered
 
     start = time.perf_counter()
     if registry is None and registered().get(paper.id) is not paper:
         registry = {paper.id: paper}          # a paper of one's own, not in the registry
-    equations = [paper.get(i) for i in only] if only else paper.ordered()
-    everything: list[Mutant] = []
-    if count is None:
-        for eq in equations:
-            everything.extend(mutants_of(paper, eq, registry))
-        chosen = everything
-    else:
-        # a sample: equations drawn with the seed, one mutant each (operators in turn), so that a
-        # small sample spreads over the paper without generating every mutant
-        rng = random.Random(seed)
-        candidates = [eq for eq in equations if eq.kind != "claim" or "$" in eq.printed or eq.quotes]
-        rng.shuffle(candidates)
-        pools: dict[str, list[Mutant]] = {}
-        chosen = []
-        for rounds in range(4):
-            for k, eq in enumerate(candidates):
-                if len(chosen) >= count:
-                    break
-                if eq.id not in pools:
-                    pools[eq.id] = mutants_of(paper, eq, registry)
-                    everything.extend(pools[eq.id])
-                pool = [m for m in pools[eq.id] if m not in chosen]
-                if not pool:
-                    continue
-                wanted = OPERATORS[(k + rounds) % len(OPERATORS)]
-                preferred = [m for m in pool if m.operator == wanted] or pool
-                chosen.append(preferred[rng.randrange(len(preferred))])
-            if len(chosen) >= count:
-                break
+    chosen, generated = choose(paper, only, count=count, seed=seed, registry=registry)
     groups: dict[str, list[Mutant]] = {}
     for m in sorted(chosen, key=lambda m: (m.equation, m.target, m.position, m.operator, m.replacement)):
         groups.setdefault(m.equation, []).append(m)
     results: list[MutantResult] = []
-    if jobs > 1 and registry is None and len(groups) > 1:
+    if jobs > 1 and len(groups) > 1 and registry is None:
         import multiprocessing
         from concurrent.futures import ProcessPoolExecutor
 
@@ -876,7 +890,7 @@ def mutate_paper(
                 if progress is not None:
                     progress(r)
     results.sort(key=lambda r: (r.mutant.equation, r.mutant.target, r.mutant.position, r.mutant.operator))
-    return MutationReport(paper.id, tuple(results), time.perf_counter() - start, len(everything))
+    return MutationReport(paper.id, tuple(results), time.perf_counter() - start, generated)
 
 
 def knob() -> int | None:
