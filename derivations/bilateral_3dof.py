@@ -630,6 +630,9 @@ def eq1(ctx: AuditContext) -> Finding:
     if bad is not None:
         return bad
     text = text_diagonal()
+    stray = _not_in_s(sp.Matrix([list(text)]), "the terminations the text names (1-diagonal)")
+    if stray is not None:
+        return Finding(Verdict.UNDECIDED, f"cannot compare the diagonal: {stray.detail}", Evidence(Method.PARSE))
     if T.shape != (3, 3) or len(text) != 3:
         return Finding(Verdict.MALFORMED, f"T_1 is {T.shape[0]}x{T.shape[1]} and the text names {len(text)} terminations",
                        Evidence(Method.PARSE, facts={"printed_form": sp.srepr(T)}))
@@ -670,7 +673,10 @@ def diagonal_passive(ctx: AuditContext) -> Finding:
             return bad
     results = {sp.sstr(t): positive_real(sp.Matrix([[t]])) for t in terms}
     facts = {k: v.reason for k, v in results.items()}
-    facts["printed_form"] = sorted(results)
+    # the claim is the proposition "each of the n named terminations is positive real": what the
+    # check proves about it (a mutant naming other PR terminations makes a claim proved the same way)
+    facts["printed_form"] = ("claim: each named termination is positive real",
+                             tuple(r.decision.value for r in results.values()))
     if all(r.decision == Decision.PROVED for r in results.values()):
         return Finding(Verdict.CONFIRMED, f"each named scalar termination ({', '.join(results)}) is positive real",
                        Evidence(Method.ROOT_ISOLATION, facts=facts))
@@ -689,16 +695,22 @@ def t1_nonpassive(ctx: AuditContext) -> Finding:
         return Finding(Verdict.UNDECIDED, bad.detail, bad.evidence)
     variant = T.copy()
     text = text_diagonal()
+    stray = _not_in_s(sp.Matrix([list(text)]), "the terminations the text names (1-diagonal)")
+    if stray is not None:
+        return Finding(Verdict.UNDECIDED, f"cannot build the text's variant: {stray.detail}", Evidence(Method.PARSE))
     for i in range(min(3, len(text), T.rows)):
         variant[i, i] = text[i]
     printed, altered = positive_real(T), positive_real(variant)
-    facts = {"as printed": _pr_facts(printed), "text diagonal": _pr_facts(altered)}
+    diagonal = [positive_real(sp.Matrix([[T[i, i]]])).decision == Decision.PROVED for i in range(min(T.rows, T.cols))]
+    facts = {"as printed": _pr_facts(printed), "text diagonal": _pr_facts(altered), "diagonal_entries_pr": diagonal}
     if printed.decision == Decision.DISPROVED and altered.decision == Decision.DISPROVED:
         w = printed.hermitian.witness
         return Finding(Verdict.CONFIRMED,
                        f"T_1 (1) is not positive real: T_1(jw) + T_1(jw)^H has a negative principal minor at w = {w.get('omega', w)}; "
                        "with the text's diagonal it is not passive either (already at w = "
-                       f"{altered.hermitian.witness.get('omega', altered.hermitian.witness)}), although every diagonal entry is",
+                       f"{altered.hermitian.witness.get('omega', altered.hermitian.witness)}), "
+                       + ("although every diagonal entry is" if all(diagonal) else
+                          f"and its diagonal entries {[i + 1 for i, ok in enumerate(diagonal) if not ok]} are not PR either"),
                        Evidence(Method.ROOT_ISOLATION, witness=dict(w), facts=facts))
     return Finding(Verdict.WRONG, f"T_1 as printed is {_pr_text(printed)}; with the text's diagonal it is {_pr_text(altered)}",
                    Evidence(printed.evidence.method, facts=facts))
@@ -747,8 +759,10 @@ def eq3a(ctx: AuditContext) -> Finding:
     facts = {"symmetrization": sym.reason, "axis_poles": [p.label() for p, _ in poles.axis], "rhp_roots_unit": [str(r) for r in roots],
              "printed_form": ("data display; the properties the paper states about it", properties)}
     if poles.rhp:
-        return Finding(Verdict.WRONG, f"an entry has a pole in Re s > 0 ({poles.rhp[0][0].label()}): the open-circuit network is "
-                       "unstable", Evidence(Method.ROOT_ISOLATION, facts=facts))
+        (i, j), root = poles.rhp[0]
+        where = root.label() if hasattr(root, "label") else str(root)
+        return Finding(Verdict.WRONG, f"entry ({i + 1}, {j + 1}) has a pole in Re s > 0 ({where}): the open-circuit network is "
+                       "unstable", Evidence(Method.ROOT_ISOLATION, witness={"entry": [i + 1, j + 1], "pole": where}, facts=facts))
     if len(subsystems) != 3:
         return Finding(Verdict.INCONSISTENT, f"the DOF subsystems of (3) extracted at (i, i), (i, i+3), (i+3, i), (i+3, i+3) "
                        f"agree with (5) only for {subsystems or 'no DOF'}", Evidence(Method.CANONICAL_FORM,
@@ -1477,14 +1491,20 @@ def eq19(ctx: AuditContext) -> Finding:
     table = TABLE.with_functions({r"\mathcal{Z}'": lambda a: sp.ImmutableMatrix(Zp_sym.subs(s, a))})
     (rel,) = parse_printed(ctx.equation.printed, table).relations()
     w_sym = TABLE.lookup(r"\omega")
+    variables = sorted(sp.Matrix(rel.lhs - rel.rhs).free_symbols, key=str)
+    if len(variables) != 1 or not variables[0].is_real:
+        return Finding(Verdict.WRONG, f"the printed identity is not one in a real frequency: its sides hold "
+                       f"{[str(v) for v in variables]}", Evidence(Method.PARSE, facts={"variables": [str(v) for v in variables]}))
+    (var,) = variables                      # the printed frequency (a renamed one is the same identity)
+    form = sp.srepr(rel.as_sympy().xreplace({var: w_sym}))
     residual = 0.0
     for w in (1, 3):
-        gap = sp.Matrix(rel.lhs - rel.rhs).subs(w_sym, w).evalf(30)
+        gap = sp.Matrix(rel.lhs - rel.rhs).subs(var, w).evalf(30)
         residual = max(residual, float(gap.norm()))
     if rel.ops != ("=",) or residual > 1e-12:
         return Finding(Verdict.WRONG, f"the printed identity does not hold for Table 1's Z': |lhs - rhs| = {residual:.3g} at "
-                       "w = 1 or 3", Evidence(Method.COUNTEREXAMPLE, witness={"omega": [1, 3]},
-                                               facts={"residual": residual, "printed_form": sp.srepr(rel.as_sympy())}))
+                       f"{var} = 1 or 3", Evidence(Method.COUNTEREXAMPLE, witness={str(var): [1, 3]},
+                                                    facts={"residual": residual, "printed_form": form}))
     positive = all(c > 0 for c in Y.c.values())
     Zp = Y.zprime()
     worst = mpmath.mpf(0)
@@ -1502,8 +1522,11 @@ def eq19(ctx: AuditContext) -> Finding:
                        "(numerically re-checked at w = 1, 3); when some z_ij z_ji is a negative constant times a square, Z' has "
                        "imaginary entries and Z'^H(jw) must replace Z'^T(-jw)",
                        Evidence(Method.STRUCTURAL, facts={"c": {f"{i},{j}": v for (i, j), v in Y.c.items()}, "max_residual": float(worst),
-                                                          "printed_form": "Z'(jw) + Z'^T(-jw) = 2 Re Z'(jw)"}))
-    return Finding(Verdict.WRONG, "identity fails", Evidence(Method.COUNTEREXAMPLE, facts={"max_residual": float(worst)}))
+                                                          "printed_form": form}))
+    return Finding(Verdict.UNDECIDED,
+                   f"the printed identity holds at w = 1, 3, but Table 1's Z' is not symmetric with real coefficients "
+                   f"(all c_ij > 0: {positive}; largest |z'_ij(jw) + z'_ji(-jw) - 2 Re z'_ij(jw)| = {float(worst):.3g})",
+                   Evidence(Method.COUNTEREXAMPLE, facts={"max_residual": float(worst), "printed_form": form}))
 
 
 @PAPER.equation("20", kind="condition", printed=PRINTED["20"], section="4",
@@ -2011,15 +2034,17 @@ def _minor_check(ctx: AuditContext, which: str, what: str) -> Finding:
     if reversed_:
         return Finding(Verdict.WRONG, f"{reversed_} bound a principal minor of the {what} from above: a principal minor of a PSD "
                        "matrix is >= 0", Evidence(Method.COUNTEREXAMPLE, facts={"printed_form": form}))
+    missing = [[i + 1 for i in S] for S in (expected or []) if S not in listed]
     if unmatched:
         why = ("the printed k_psyx is the xy gain; the yy gain k_psyy belongs here" if ctx.equation.id == "39b"
                else f"it is not of the form (principal minor) >= 0")
         return Finding(Verdict.TYPO,
-                       f"{[u for u, _ in unmatched]} is not a principal minor of the {what} ({why})",
+                       f"{[u for u, _ in unmatched]} is not a principal minor of the {what} ({why}); the others are the "
+                       f"minors {[[i + 1 for i in S] for S in listed]} (of {[[i + 1 for i in S] for S in expected or []]}; "
+                       f"missing {missing})",
                        Evidence(Method.CANONICAL_FORM, facts={"matched": matched, "printed_form": form}),
                        corrected=_corrected_39b() if ctx.equation.id == "39b" else None)
     if expected is not None and listed != sorted(expected):
-        missing = [[i + 1 for i in S] for S in expected if S not in listed]
         return Finding(Verdict.TYPO, f"the display lists the principal minors {[[i + 1 for i in S] for S in listed]} of the {what}; "
                        f"it stands for {[[i + 1 for i in S] for S in expected]} (missing {missing})",
                        Evidence(Method.CANONICAL_FORM, facts={"printed_form": form}))
@@ -2136,27 +2161,50 @@ TABLE1_PRINTED = (
 )
 
 
+#: Table 1's layout: the twelve gains of each robot in printed order (the slave's are named alike).
+TABLE1_LAYOUT = ("pxx", "pyy", "pzz", "vxx", "vyy", "vzz", "pxy", "pxz", "pyz", "vxy", "vxz", "vyz")
+
+
 @PAPER.equation("table1", kind="claim", after="40", section="5.1", printed=TABLE1_PRINTED,
                 derivation="literal names vs the ratio structure (38) of the values")
 def table1(ctx: AuditContext) -> Finding:
     import re
 
-    entries = re.findall(r"k_\{(\w+)\} (\d+)", ctx.equation.printed)
-    seen: dict[str, list] = {}
-    for name, value in entries:
-        seen.setdefault(name, []).append(int(value))
-    clashes = {k: v for k, v in seen.items() if len(set(v)) > 1}
-    g = table1_gains(60)
-    ratios = {sp.Rational(g["v" + w][i, j], g["v" + w.replace("m", "s")][i, j]) for w in ("m",) for i in range(3) for j in range(3)}
-    ratios |= {sp.Rational(g["pm"][i, j], g["ps"][i, j]) for i in range(3) for j in range(3)}
-    if clashes and ratios == {sp.Rational(1, 2)}:
+    text = ctx.equation.printed
+    master, _, slave = text.partition("||")
+    read = {}
+    clashes: dict[str, list[str]] = {}
+    misplaced: list[tuple[str, str]] = []
+    for robot, part in (("m", master), ("s", slave)):
+        entries = re.findall(r"k_\{(\w+)\} (\d+)", part)
+        if len(entries) != len(TABLE1_LAYOUT):
+            return Finding(Verdict.MALFORMED, f"the {'master' if robot == 'm' else 'slave'} column lists {len(entries)} gains, "
+                           f"not {len(TABLE1_LAYOUT)}", Evidence(Method.PARSE, facts={"entries": entries}))
+        for (name, value), place in zip(entries, TABLE1_LAYOUT):
+            expected = place[0] + robot + place[1:]
+            symmetric = place[0] + robot + place[2] + place[1]
+            read[expected] = sp.Integer(value)
+            if name not in (expected, symmetric):
+                clashes.setdefault(name, []).append(f"{value} at the {expected} place")
+                misplaced.append((expected, value))
+    ratios = {read[place[0] + "m" + place[1:]] / read[place[0] + "s" + place[1:]] for place in TABLE1_LAYOUT}
+    facts = {"gains": {k: str(v) for k, v in read.items()}, "ratios": sorted(ratios), "misnamed": clashes}
+    corrected = r",\quad ".join(f"k_{{{name}}} = {value}" for name, value in misplaced)
+    one_ratio = len(ratios) == 1
+    rho = next(iter(ratios)) if one_ratio else None
+    if not one_ratio:
+        return Finding(Verdict.INCONSISTENT,
+                       f"master/slave gain ratios {sorted(map(str, ratios))} are not one ratio rho, as (38) requires"
+                       + (f"; misnamed entries {sorted(clashes)}" if clashes else ""),
+                       Evidence(Method.STRUCTURAL, witness={"ratios": sorted(map(str, ratios))}, facts=facts))
+    if clashes:
         return Finding(Verdict.TYPO,
-                       f"the slave column names {sorted(clashes)} twice with different values {clashes}: the entries at the yy and yz "
-                       "places are k_psyy = 80 and k_psyz = 60; so read, every master gain is half the slave gain (one ratio "
-                       "rho = 1/2, as (38) requires) and k_vmyz = 60 gives rho = 1/2 too",
-                       Evidence(Method.STRUCTURAL, witness={"clashes": clashes}, facts={"ratios": sorted(ratios)}),
-                       corrected=r"k_{psyy} = 80,\quad k_{psyz} = 60")
-    return Finding(Verdict.CONFIRMED, "names and values consistent", Evidence(Method.STRUCTURAL))
+                       f"the table names entries at other places' names: {clashes}; read by their places, every master gain is "
+                       f"{sp.sstr(rho)} times the slave gain (one ratio rho = {sp.sstr(rho)}, as (38) requires)",
+                       Evidence(Method.STRUCTURAL, witness={"clashes": clashes}, facts=facts),
+                       corrected=corrected.replace(", ", r",\quad "))
+    return Finding(Verdict.CONFIRMED, f"names in their places and one master/slave ratio rho = {sp.sstr(rho)}, as (38) requires",
+                   Evidence(Method.STRUCTURAL, facts=facts))
 
 
 # ---------------------------------------------------------------------------------------------
@@ -2426,9 +2474,17 @@ def eq47(ctx: AuditContext) -> Finding:
         w = result.hermitian.witness or {}
         why = (f"the 1/s coefficient of T_1, {_line(high)}, is not symmetric, so at high frequency the Hermitian part is "
                "dominated by an indefinite skew term j(.)/w; exactly, " if not symmetric else "")
+        at = {s: sp.I * sp.Rational(w["omega"])} if "omega" in w else None
+        value = ""
+        if at is not None:
+            Tw = T.subs(at)
+            H = (Tw + Tw.H).applyfunc(sp.nsimplify)
+            smallest = min((sp.nsimplify(sp.re(H.extract(list(S), list(S)).det())), [i + 1 for i in S])
+                           for k in range(1, H.rows + 1) for S in itertools.combinations(range(H.rows), k))
+            value = f" (the minor on rows {smallest[1]} is {sp.sstr(smallest[0])})"
         return Finding(Verdict.WRONG,
                        f"'which are passive' is false: {why}T_1(jw) + T_1(jw)^H has a negative principal minor at "
-                       f"w = {w.get('omega', w)} (exact)",
+                       f"w = {w.get('omega', w)}{value} (exact)",
                        Evidence(Method.ROOT_ISOLATION, witness=dict(w), facts=facts))
     return Finding(Verdict.CONFIRMED if result.decision == Decision.PROVED else Verdict.UNDECIDED,
                    f"T_1 of (47) is {_pr_text(result)} (1/s coefficient {_line(high)})", Evidence(Method.ROOT_ISOLATION, facts=facts))
@@ -2445,27 +2501,64 @@ def fig3_plot(traces: dict[int, Any]) -> Plot:
 FIG3_PRINTED_46 = ("if the control gains are selected according to (46), e.g., as listed in Table 1, with $K_{vmyz} = 60$")
 
 
-def _quoted_kvmyz(text: str) -> int | None:
-    """The value of k_vmyz a Fig. 3 claim quotes (``K_{vmyz} = 60`` or ``K_{vmyz} to 6``)."""
+def _quoted_kvmyz(text: str) -> tuple[sp.Expr | None, str]:
+    """The value of k_vmyz a Fig. 3 claim quotes in its mathematics (``$K_{vmyz} = 60$``), read
+    as a relation and solved; ``(None, reason)`` when it quotes no such value."""
+    from hapticproof.audit import quoted_math
+
+    k = TABLE.lookup("k_{vmyz}")
+    table = TABLE.with_symbols({"K_{vmyz}": k})           # the paper writes K_{vmyz} for the gain k_{vmyz}
+    for q in quoted_math(text):
+        for rel in parse_printed(q, table).relations():
+            relation = rel.as_sympy()
+            if k not in getattr(relation, "free_symbols", set()):
+                continue
+            solved = sp.solve(sp.Eq(rel.lhs, rel.rhs), k) if rel.ops == ("=",) else []
+            if len(solved) != 1 or not solved[0].is_number:
+                return None, f"the quoted {q!r} does not fix k_vmyz"
+            return solved[0], ""
+    return None, "the claim quotes no value of k_vmyz"
+
+
+def _table1_kvmyz() -> tuple[sp.Expr, ...]:
+    """The values of k_vmyz Table 1 lists (the registered table text: ``60 (6)``)."""
     import re
 
-    match = re.search(r"K_\{vmyz\}\s*(?:=|to)\s*(\d+)", text)
-    return int(match.group(1)) if match else None
+    match = re.search(r"k_\{vmyz\} (\d+)(?: \((\d+)\))?", PAPER.get("table1").printed)
+    return tuple(sp.Integer(v) for v in match.groups() if v) if match else ()
+
+
+def _fig3_value(ctx: AuditContext, which: int) -> tuple[sp.Expr | None, Finding | None]:
+    """The quoted k_vmyz of a Fig. 3 claim, checked against Table 1's listing (its ``which``-th value)."""
+    kvmyz, reason = _quoted_kvmyz(ctx.equation.printed)
+    if kvmyz is None:
+        return None, Finding(Verdict.UNDECIDED, reason, Evidence(Method.PARSE))
+    listed = _table1_kvmyz()
+    if len(listed) <= which or listed[which] != kvmyz:
+        return None, Finding(Verdict.INCONSISTENT,
+                             f"the claim quotes k_vmyz = {sp.sstr(kvmyz)}, but the gains of Fig. 3 are Table 1's, which lists "
+                             f"k_vmyz = {', '.join(map(str, listed)) or 'nothing'} (caption of Fig. 3: the stable case first)",
+                             Evidence(Method.PARSE, witness={"quoted": str(kvmyz), "table1": [str(v) for v in listed]},
+                                      facts={"ids": ["fig3", "table1"]}))
+    return (int(kvmyz) if kvmyz.is_integer else kvmyz), None
 
 
 @PAPER.equation("fig3-46", kind="claim", after="47", section="5.2", printed=FIG3_PRINTED_46,
                 derivation="every line of (46) at the Table 1 gains", quotes=('46',))
 def fig3_46(ctx: AuditContext) -> Finding:
-    kvmyz = _quoted_kvmyz(ctx.equation.printed)
-    if kvmyz is None:
-        return Finding(Verdict.UNDECIDED, "the claim quotes no value of k_vmyz", Evidence(Method.PARSE))
+    kvmyz, problem = _fig3_value(ctx, 0)
+    if problem is not None:
+        return problem
     conditions, repairs = _read_46(PAPER.get("46").printed)
     failing = _failing(conditions, table1_gains(kvmyz))
-    facts = {"failing": failing, "k_vmyz": kvmyz}
+    lines = [str(c) if isinstance(c, _RatioChain) else sp.sstr(c) for c in conditions]
+    holding = [line for line in lines if line not in failing]
+    facts = {"failing": failing, "holding": holding, "k_vmyz": kvmyz}
     if failing:
         return Finding(Verdict.INCONSISTENT,
                        f"Table 1 with k_vmyz = {kvmyz} violates line(s) {failing} of (46), so it is not 'selected according to "
-                       "(46)'; it is nevertheless absolutely stable (see fig3-60): (45)/(46) are wrong, not the gains",
+                       "(46)'; it is nevertheless absolutely stable (see fig3-60): (45)/(46) are wrong, not the gains "
+                       f"(the other {len(holding)} line(s) hold: {'; '.join(holding)})",
                        Evidence(Method.COUNTEREXAMPLE, witness={"k_vmyz": kvmyz}, facts=facts))
     return Finding(Verdict.CONFIRMED, f"Table 1 with k_vmyz = {kvmyz} satisfies every line of (46)",
                    Evidence(Method.INSTANCES, facts=facts))
@@ -2476,9 +2569,9 @@ def fig3_46(ctx: AuditContext) -> Finding:
                         "absolute stability of the bilateral teleoperator",
                 derivation="Youla verdict for Table 1; positive realness of the master-port impedance with (47); simulation")
 def fig3_60(ctx: AuditContext) -> Finding:
-    kvmyz = _quoted_kvmyz(ctx.equation.printed)
-    if kvmyz is None:
-        return Finding(Verdict.UNDECIDED, "the claim quotes no value of k_vmyz", Evidence(Method.PARSE))
+    kvmyz, problem = _fig3_value(ctx, 0)
+    if problem is not None:
+        return problem
     verdict = table1_verdict(kvmyz)
     zin = positive_real(master_input_impedance(kvmyz))
     trace = fig3_energy(kvmyz)
@@ -2491,7 +2584,9 @@ def fig3_60(ctx: AuditContext) -> Finding:
                        Evidence(Method.SIMULATION, facts={"absolute_stability": verdict.reason, "input_impedance": zin.reason,
                                                           "E_min": trace.minimum, "E_final": trace.final,
                                                           "plot": fig3_plot({60: trace})}))
-    return Finding(Verdict.WRONG, "the k_vmyz = 60 case is not stable/passive", verdict.evidence)
+    return Finding(Verdict.WRONG, f"the k_vmyz = {sp.sstr(kvmyz)} case is not shown stable: absolute stability "
+                   f"{verdict.decision.value}, master-port impedance {zin.decision.value} positive real, simulated E_s min "
+                   f"{trace.minimum:.3g} J", verdict.evidence)
 
 
 @PAPER.equation("fig3-6", kind="claim", after="47", section="5.2",

@@ -105,6 +105,7 @@ __all__ = [
     "mutate_paper",
     "choose",
     "knob",
+    "EQUIVALENCE_BASES",
     "QuoteError",
     "MutantTimeout",
     "ENV_KNOB",
@@ -571,20 +572,45 @@ class MutantResult:
     detail: str
     reason: str
     seconds: float
+    basis: str = ""
 
     def to_json(self) -> dict[str, Any]:
         m = self.mutant
         return {"paper": m.paper, "equation": m.equation, "target": m.target, "operator": m.operator,
                 "position": m.position, "original": m.original, "replacement": m.replacement,
-                "outcome": self.outcome, "verdict": self.verdict, "detail": self.detail, "reason": self.reason,
-                "seconds": round(self.seconds, 4)}
+                "outcome": self.outcome, "basis": self.basis, "verdict": self.verdict, "detail": self.detail,
+                "reason": self.reason, "seconds": round(self.seconds, 4)}
+
+
+#: How an equivalent mutant was proved equivalent (:attr:`MutantResult.basis`):
+#: ``parse``  the mutant parses to the identical object with the paper's table (a declared
+#:            symmetry such as K_{12} = K_{21}, or another spelling of the same mathematics);
+#: ``form``   the check proved the mutated display equal to the same canonical form (e.g. the
+#:            derived condition it confirms, a positive multiple, a renamed bound variable);
+#: ``data``   a data display (a table of values) keeps every property the paper states and uses;
+#: ``claim``  a claim (a proposition about quoted values or displays) is proved by the same
+#:            exact decisions: it states the property of other values, and the property holds
+#:            for them exactly as it does for the printed ones.
+EQUIVALENCE_BASES = ("parse", "form", "data", "claim")
+
+
+def _basis(form: str) -> str:
+    if form.startswith("('data display"):
+        return "data"
+    if form.startswith("('claim:"):
+        return "claim"
+    return "form"
 
 
 def _audit(paper: Paper, equation: Equation) -> Finding:
-    from hapticproof.audit import run_equation
+    """The finding of ``equation``'s check, as :func:`~hapticproof.audit.run_equation` gets it
+    (a parse error of the display becomes ``malformed``), without rendering the derived form."""
+    from hapticproof.audit import parse_failure
 
-    result = run_equation(paper, equation)
-    return result
+    try:
+        return equation.check(AuditContext(paper, equation))
+    except LatexParseError as err:
+        return parse_failure(equation, err)
 
 
 def _signature(obj: Any) -> Any:
@@ -666,7 +692,7 @@ TIME_LIMIT = 120.0
 def run_mutant(mutant: Mutant, original: Any, registry: dict[str, Paper] | None = None,
                limit: float | None = TIME_LIMIT) -> MutantResult:
     """Audit one mutant through the check of its equation and classify it against ``original``
-    (the :class:`~hapticproof.audit.EquationResult` of the unmutated display)."""
+    (the finding of the unmutated display)."""
     from hapticproof.registry import get_paper
 
     lookup = dict(registry or {})
@@ -701,11 +727,12 @@ def run_mutant(mutant: Mutant, original: Any, registry: dict[str, Paper] | None 
     if _parse_signature(mutant.printed, target_paper) is not None and \
             _parse_signature(mutant.printed, target_paper) == _parse_signature(target.printed, target_paper):
         return MutantResult(mutant, "equivalent", verdict, result.detail,
-                            "identical parse with the paper's table (a declared symmetry or a canonical spelling)", seconds)
+                            "identical parse with the paper's table (a declared symmetry or a canonical spelling)", seconds,
+                            "parse")
     form, base = _printed_form(result), _printed_form(original)
     if form is not None and form == base:
         return MutantResult(mutant, "equivalent", verdict, result.detail,
-                            f"the check reads the same canonical form: {form[:200]}", seconds)
+                            f"the check reads the same canonical form: {form[:200]}", seconds, _basis(form))
     return MutantResult(mutant, "survived", verdict, result.detail, "same verdict, detail and correction", seconds)
 
 
@@ -767,6 +794,14 @@ class MutationReport:
         denominator = self.total - c["equivalent"]
         return 1.0 if denominator == 0 else c["killed"] / denominator
 
+    def equivalence(self) -> dict[str, int]:
+        """Equivalent mutants by the basis of their proof (:data:`EQUIVALENCE_BASES`)."""
+        out = {k: 0 for k in EQUIVALENCE_BASES}
+        for r in self.results:
+            if r.outcome == "equivalent":
+                out[r.basis] = out.get(r.basis, 0) + 1
+        return out
+
     def survivors(self) -> list[MutantResult]:
         return [r for r in self.results if r.outcome == "survived"]
 
@@ -775,7 +810,9 @@ class MutationReport:
 
     def summary(self) -> str:
         c = self.counts()
-        return (f"{self.paper}: {self.total} mutants (of {self.generated}), {c['equivalent']} proved equivalent, "
+        basis = ", ".join(f"{k} {n}" for k, n in self.equivalence().items() if n)
+        return (f"{self.paper}: {self.total} mutants (of {self.generated}), {c['equivalent']} proved equivalent"
+                f"{f' ({basis})' if basis else ''}, "
                 f"{c['killed']} killed, {c['survived']} survived, {c['crashed']} crashed; "
                 f"score {100 * self.score:.1f}% ({self.seconds:.0f} s)")
 
@@ -789,17 +826,17 @@ class MutationReport:
 
     def to_json(self) -> dict[str, Any]:
         return {"paper": self.paper, "generated": self.generated, "total": self.total, "counts": self.counts(),
+                "equivalence": self.equivalence(),
                 "score": self.score, "seconds": round(self.seconds, 2), "results": [r.to_json() for r in self.results]}
 
 
 def _run_group(job: tuple[str, str, list[Mutant]]) -> list[MutantResult]:
     """Run the mutants of one audited equation (in a worker process or in this one)."""
-    from hapticproof.audit import run_equation
     from hapticproof.registry import get_paper
 
     paper_id, eq_id, group = job
     paper = get_paper(paper_id)
-    original = run_equation(paper, paper.get(eq_id))
+    original = _audit(paper, paper.get(eq_id))
     return [run_mutant(m, original) for m in group]
 
 
@@ -859,7 +896,6 @@ def mutate_paper(
     ``only``); ``jobs > 1`` runs the equations' groups of mutants in that many worker processes
     (registered papers only).
     """
-    from hapticproof.audit import run_equation
     from hapticproof.registry import papers as registered
 
     start = time.perf_counter()
@@ -883,7 +919,7 @@ def mutate_paper(
                         progress(r)
     else:
         for eq_id, group in groups.items():
-            original = run_equation(paper, paper.get(eq_id))
+            original = _audit(paper, paper.get(eq_id))
             for m in group:
                 r = run_mutant(m, original, registry)
                 results.append(r)
