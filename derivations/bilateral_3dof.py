@@ -671,18 +671,18 @@ def diagonal_passive(ctx: AuditContext) -> Finding:
         bad = _not_in_s(sp.Matrix([[t]]), f"the termination {sp.sstr(t)}")
         if bad is not None:
             return bad
-    results = {sp.sstr(t): positive_real(sp.Matrix([[t]])) for t in terms}
-    facts = {k: v.reason for k, v in results.items()}
+    results = [(sp.sstr(t), positive_real(sp.Matrix([[t]]))) for t in terms]
+    facts: dict[str, Any] = {"decisions": {k: v.reason for k, v in results}}
     # the claim is the proposition "each of the n named terminations is positive real": what the
     # check proves about it (a mutant naming other PR terminations makes a claim proved the same way)
-    facts["printed_form"] = ("claim: each named termination is positive real",
-                             tuple(r.decision.value for r in results.values()))
-    if all(r.decision == Decision.PROVED for r in results.values()):
-        return Finding(Verdict.CONFIRMED, f"each named scalar termination ({', '.join(results)}) is positive real",
+    facts["printed_form"] = ("claim: each named termination is positive real", tuple(r.decision.value for _, r in results))
+    if all(r.decision == Decision.PROVED for _, r in results):
+        return Finding(Verdict.CONFIRMED, f"each named scalar termination ({', '.join(k for k, _ in results)}) is positive real",
                        Evidence(Method.ROOT_ISOLATION, facts=facts))
-    bad = next(k for k, v in results.items() if v.decision != Decision.PROVED)
-    return Finding(Verdict.WRONG, f"{bad} is not positive real ({results[bad].reason})",
-                   Evidence(results[bad].evidence.method, witness=results[bad].evidence.witness, facts=facts))
+    bad, result = next((k, r) for k, r in results if r.decision != Decision.PROVED)
+    return Finding(Verdict.WRONG if result.decision == Decision.DISPROVED else Verdict.UNDECIDED,
+                   f"{bad} is {'not' if result.decision == Decision.DISPROVED else 'not proved'} positive real ({result.reason})",
+                   Evidence(result.evidence.method, witness=result.evidence.witness, facts=facts))
 
 
 @PAPER.equation("1-nonpassive", kind="claim", after="1", section="2",

@@ -44,9 +44,13 @@ proves a display equal to what it derives (``compare_expressions``, ``compare_bo
 ``compare_sign_conditions``) reports the canonical form of what it read in
 ``evidence.facts["printed_form"]`` -- the derived form when it proved them equal, the printed
 one otherwise -- so a mutant that stays confirmed with the same canonical form was proved equal
-by the same exact computation. Data displays (a table of gains whose stated properties are all
-the paper uses) report the tuple of the properties they verified; a mutant that keeps every
-stated property is equivalent *as data* (see ``benchmarks/README.md``).
+by the same exact computation. Data displays (a matrix of numbers whose stated properties are
+all the paper uses) report the tuple of the properties they verified; a mutant that keeps every
+stated property is equivalent *as data*. A claim that states a property of quoted values (the
+terminations it names are passive) reports the proposition and its exact decisions; a mutant
+naming other values with the same property is equivalent *as a claim* (it is proved true the
+same way). Each equivalent mutant records its basis (:data:`EQUIVALENCE_BASES`) and the report
+counts them separately (see ``benchmarks/README.md``).
 
 A run generates every mutant (``count=None``) or a deterministic sample: equations are shuffled
 with ``seed`` and take one mutant each per round, operators in turn, until ``count`` mutants are
