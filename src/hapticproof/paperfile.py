@@ -379,7 +379,9 @@ def _read_scenes(raw: Any, path: str, text: str, words: Mapping[str, str]) -> di
         except SceneFileError as err:
             raise PaperFileError(f"{err} (scene {name!r})") from None
         except HapticproofError as err:
-            raise PaperFileError(f"{where}: {err}") from None
+            named = re.search(r"unknown parameter '([^']+)'", str(err))
+            line = _table_line(text, named.group(1), f"{prefix}.params") if named else None
+            raise PaperFileError(f"{_at(path, line or header)}: scene {name!r}: {err}") from None
         scenes[name] = scene
     return scenes
 
@@ -453,7 +455,7 @@ def _substitutions(text: str, table: Any, where: str) -> tuple[tuple[sp.Symbol, 
 def _check_other(other: str, ids: set[str], where: str) -> None:
     if ":" not in other:
         if other not in ids:
-            raise PaperFileError(f"{where}: field 'other': equation {other!r} does not exist in this file "
+            raise PaperFileError(f"{where}: equation {other!r} does not exist in this file "
                                  f"(equations: {', '.join(sorted(ids)) or 'none'}; a bundled paper's as PAPER:ID)")
         return
     from hapticproof.errors import UnknownEquationError, UnknownPaperError
@@ -463,7 +465,7 @@ def _check_other(other: str, ids: set[str], where: str) -> None:
     try:
         get_paper(paper_id).get(eq_id)
     except (UnknownPaperError, UnknownEquationError) as err:
-        raise PaperFileError(f"{where}: field 'other': {err}") from None
+        raise PaperFileError(f"{where}: {err}") from None
 
 
 def _read_equations(raw: Any, path: str, text: str, table: Any, scenes: Mapping[str, Any]) -> tuple[ClaimSpec, ...]:

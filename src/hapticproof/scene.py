@@ -482,7 +482,9 @@ class Scene:
             word = params.get(sym.name) if isinstance(params.get(sym.name), str) else None
             target = parameter_symbol(sym.name, word)
             if sym != target:
-                if word is None and _assumption_of(sym) not in (None, _assumption_of(target)):
+                # a parameter given a value is substituted whatever its symbol's assumption
+                # (Scene.with_params on a scene whose B was declared "real", say)
+                if word is None and sym.name not in params and _assumption_of(sym) not in (None, _assumption_of(target)):
                     raise SceneError(f"{where}: the symbol {sym.name} carries the assumption {_assumption_of(sym)!r}; "
                                      f"declare it in params ({sym.name} = {_assumption_of(sym)!r})")
                 mapping[sym] = target

@@ -27,6 +27,9 @@ def register(sub: argparse._SubParsersAction) -> None:
         "cross-paper checks.",
     )
     parser.add_argument("papers", nargs="*", metavar="PAPER", help="paper ids (e.g. hve); default: all")
+    parser.add_argument("--paper", "-p", action="append", default=[], metavar="FILE",
+                        help="audit your own paper from a paper file (TOML; repeatable; "
+                        "hapticproof new-paper FILE writes a template)")
     parser.add_argument("--all", action="store_true", help="audit every registered paper")
     parser.add_argument("--equation", "-e", action="append", default=[], metavar="ID",
                         help="audit only this equation (repeatable; needs one PAPER)")
@@ -41,14 +44,21 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    if args.all or not args.papers:
+    files = _paper_files(args.paper)
+    if args.all or not (args.papers or files):
         selected = list(papers().values())
     else:
         selected = [get_paper(name) for name in args.papers]
+    selected += files
     if args.equation and len(selected) != 1:
         raise_usage("--equation needs exactly one PAPER")
     if args.equation and args.section:
         raise_usage("use --equation or --section, not both")
+    if args.section and len(selected) > 1:      # several papers: those with equations in the sections
+        chosen = [(p, _section_ids(p, args.section)) for p in selected]
+        if not any(ids for _, ids in chosen):
+            raise_usage(f"no equation in section(s) {', '.join(args.section)} in any selected paper")
+        selected = [p for p, ids in chosen if ids]
     selection = [args.equation or _in_sections(p, args.section) or None for p in selected]
     total = sum(len(only) if only else len(p.equations) for p, only in zip(selected, selection))
     bar, start, reports = progress_bar(sys.stderr, "audit"), time.perf_counter(), []
@@ -58,7 +68,7 @@ def run(args: argparse.Namespace) -> int:
         reports.append(audit_paper(paper, only, progress=tick))
     seconds = time.perf_counter() - start
     if args.format == "json":
-        if len(reports) == 1 and args.papers and not args.all:
+        if len(reports) == 1 and (args.papers or args.paper) and not args.all:
             text = json.dumps(reports[0].to_json(), indent=2)
         else:
             text = json.dumps({"papers": [r.to_json() for r in reports]}, indent=2)
@@ -89,6 +99,20 @@ def run(args: argparse.Namespace) -> int:
             counts[verdict] = counts.get(verdict, 0) + n
     print(summary_line(counts, use_colour(sys.stderr), len(reports), seconds), file=sys.stderr)
     return 0
+
+
+def _paper_files(paths: list[str]) -> list:
+    """The registered papers of ``--paper`` files (their mistakes are one-line errors)."""
+    if not paths:
+        return []
+    from hapticproof.paperfile import read_paper
+
+    return [read_paper(path).paper for path in paths]
+
+
+def _section_ids(paper, sections: list[str]) -> list[str]:
+    return [eq.id for eq in paper.ordered()
+            if any(eq.section == s or eq.section.startswith(s + ".") for s in sections)]
 
 
 def _in_sections(paper, sections: list[str]) -> list[str]:
