@@ -34,14 +34,16 @@ are; Section 5.2 lists only one off-diagonal entry per pair); gains are real.
 from __future__ import annotations
 
 import itertools
+from dataclasses import dataclass
 from fractions import Fraction
 from functools import lru_cache
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
 import sympy as sp
 
-from hapticproof.audit import AuditContext, Paper
+from hapticproof.audit import AuditContext, Paper, malformed
 from hapticproof.certify import compare_expressions, is_identically_zero
 from hapticproof.energy import Sinusoid, input_energy, port_admittance
 from hapticproof.evidence import Decision, Evidence, Finding, Method, Plot, Series, Verdict
@@ -236,7 +238,7 @@ def tex(obj: Any) -> str:
 
 def printed_matrix(eq_id: str, prefix: str = "") -> sp.Matrix:
     """The matrix of a printed display (the right-hand side), parsed verbatim."""
-    statement = parse_printed(prefix + PRINTED[eq_id], TABLE)
+    statement = parse_printed(prefix + PAPER.get(eq_id).printed, TABLE)
     rel = statement.relations()[0]
     return sp.Matrix(rel.rhs)
 
@@ -303,13 +305,17 @@ def table1_verdict(kvmyz: int):
 
 
 def termination_47() -> sp.Matrix:
-    """``T_1`` of (47), parsed from the printed display."""
+    """``T_1`` of (47), parsed from the printed display (as registered)."""
     return printed_matrix("47")
 
 
-@lru_cache(maxsize=4)
 def master_input_impedance(kvmyz: int) -> RationalMatrix:
     """Impedance at the master port with the slave port terminated by (47)."""
+    return _master_input_impedance(kvmyz, PAPER.get("47").printed)
+
+
+@lru_cache(maxsize=8)
+def _master_input_impedance(kvmyz: int, text47: str) -> RationalMatrix:
     return input_impedance(table1_impedance(kvmyz), termination_47(), (3, 3))
 
 
@@ -328,13 +334,14 @@ def fig3_energy(kvmyz: int, inputs: list[Sinusoid] | None = None, t_end: float =
     """``E_s(t)`` of (6) for the Table 1 teleoperator, slave port terminated by (47), master port
     driven by three sine forces (exact between samples)."""
     if inputs is None:
-        return _fig3_energy_default(kvmyz, t_end, steps)
+        return _fig3_energy_default(kvmyz, t_end, steps, PAPER.get("47").printed)
     return _fig3_energy(kvmyz, inputs, t_end, steps)
 
 
-@lru_cache(maxsize=4)
-def _fig3_energy_default(kvmyz: int, t_end: float, steps: int):
-    """Fig. 3's runs with the default forces: shared by the k_vmyz = 60 and 6 claims."""
+@lru_cache(maxsize=8)
+def _fig3_energy_default(kvmyz: int, t_end: float, steps: int, text47: str):
+    """Fig. 3's runs with the default forces: shared by the k_vmyz = 60 and 6 claims (per
+    printed (47))."""
     return _fig3_energy(kvmyz, None, t_end, steps)
 
 
@@ -380,9 +387,13 @@ def compact_set_counterexample() -> dict[str, sp.Matrix]:
     return {"pm": Kpm, "vm": Kvm, "ps": 2 * Kpm, "vs": 2 * Kvm}
 
 
-@lru_cache(maxsize=None)
 def _certified(name: str):
     """Exact verification of a hand-made certificate: RHP zeros of det(Z + T)."""
+    return _certified_for(name, PAPER.get("3a").printed if name == "unit" else "")
+
+
+@lru_cache(maxsize=16)
+def _certified_for(name: str, text: str):
     Z, terms = {
         "cycle": (cycle_network(), cycle_terminations()),
         "leading": (leading_minor_network(), leading_minor_terminations()),
@@ -393,10 +404,14 @@ def _certified(name: str):
     return roots, degree, passive
 
 
-@lru_cache(maxsize=None)
 def _search(name: str):
     """Destabilizing terminations found by search (None if none)."""
-    Z = {"3a": section2_network(), "k6": table1_impedance(6)}[name]
+    return _search_for(name, PAPER.get("3a").printed if name == "3a" else "")
+
+
+@lru_cache(maxsize=16)
+def _search_for(name: str, text: str):
+    Z = {"3a": section2_network, "k6": lambda: table1_impedance(6)}[name]()
     return find_destabilizing_terminations(Z, ports=(3, 3))
 
 
@@ -483,14 +498,90 @@ def _rhs_matrix(ctx: AuditContext) -> sp.Matrix:
     return sp.Matrix(ctx.statement.relations()[0].rhs)
 
 
-def _definition(ctx: AuditContext, what: str, facts: dict | None = None) -> Finding:
-    """A defining display: it parses, with the stated shapes (the only claim it makes)."""
-    statement = ctx.statement
-    shapes = {}
-    for term in statement.expressions():
-        if hasattr(term, "shape"):
-            shapes[sp.sstr(term)[:40]] = list(term.shape)
-    return Finding(Verdict.CONFIRMED, what, Evidence(Method.PARSE, facts={**(facts or {}), "shapes": shapes}))
+def _explicit(x: Any) -> Any:
+    """A parsed matrix expression as an explicit matrix (blocks of matrix symbols expanded to
+    their entries), for entry-by-entry comparison of two readings."""
+    if isinstance(x, sp.MatrixBase):
+        if any(isinstance(e, sp.MatrixExpr) for e in x):
+            return sp.Matrix(sp.BlockMatrix([[_explicit(e) for e in row] for row in x.tolist()]).as_explicit())
+        return sp.Matrix(x)
+    if isinstance(x, sp.BlockMatrix):
+        return sp.Matrix(sp.BlockMatrix([[_explicit(e) for e in row] for row in x.blocks.tolist()]).as_explicit())
+    if isinstance(x, sp.MatrixSymbol):
+        return sp.Matrix(x.as_explicit())
+    if isinstance(x, sp.Transpose):
+        return _explicit(x.arg).T
+    if isinstance(x, (sp.MatMul, sp.Mul)) and any(isinstance(a, (sp.MatrixExpr, sp.MatrixBase)) for a in x.args):
+        out = sp.Integer(1)
+        for a in x.args:
+            out = out * _explicit(a)
+        return out
+    if isinstance(x, (sp.MatAdd, sp.Add)) and any(isinstance(a, (sp.MatrixExpr, sp.MatrixBase)) for a in x.args):
+        parts = [_explicit(a) for a in x.args]
+        out = parts[0]
+        for a in parts[1:]:
+            out = out + a
+        return out
+    return x
+
+
+def _line(x: Any) -> str:
+    """One-line text of an expression or matrix (details are one sentence)."""
+    if isinstance(x, sp.MatrixBase):
+        return "[" + "; ".join(", ".join(sp.sstr(e) for e in row) for row in x.tolist()) + "]"
+    if isinstance(x, sp.BlockMatrix):
+        return _line(sp.Matrix(x.blocks))
+    return " ".join(sp.sstr(x).split())
+
+
+def _stacked(x: Any) -> Any:
+    """The paper writes the stacked vector [F_1; F_2] as [F_1 \\ F_2]^T: a column of transposed
+    column vectors is read as the stack of the vectors."""
+    if isinstance(x, sp.BlockMatrix):
+        blocks = x.blocks
+        if blocks.cols == 1 and all(isinstance(e, sp.Transpose) and e.arg.shape[1] == 1 for e in blocks):
+            return sp.BlockMatrix([[e.arg] for e in blocks])
+    return x
+
+
+def _same_relation(printed: Any, lhs: Any, rhs: Any) -> tuple[bool, str]:
+    """Whether the printed relation says ``lhs = rhs`` (entry by entry); the first difference."""
+    try:
+        got = _explicit(printed.lhs) - _explicit(printed.rhs)
+        want = _explicit(lhs) - _explicit(rhs)
+    except (ValueError, TypeError, sp.ShapeError) as err:
+        return False, f"the sides do not combine ({err})"
+    if getattr(got, "shape", None) != getattr(want, "shape", None):
+        return False, f"shape {getattr(got, 'shape', '()')} instead of {getattr(want, 'shape', '()')}"
+    if isinstance(want, sp.MatrixBase):
+        for k, (a, c) in enumerate(zip(got, want)):
+            if sp.expand(a - c) != 0:
+                i, j = divmod(k, want.cols)
+                return False, f"entry ({i + 1},{j + 1}) reads {sp.sstr(sp.expand(a))} = 0 instead of {sp.sstr(sp.expand(c))} = 0"
+        return True, ""
+    return (sp.expand(got - want) == 0), f"{sp.sstr(sp.expand(got))} = 0 instead of {sp.sstr(sp.expand(want))} = 0"
+
+
+def _definition(ctx: AuditContext, what: str, lhs: Any, rhs: Any, facts: dict | None = None,
+                reading: Callable[[Any], Any] | None = None) -> Finding:
+    """A defining display against the model's definition ``lhs = rhs`` (matrix symbols of the
+    table): equal entry by entry, or a typo naming the first difference."""
+    relations = ctx.statement.relations()
+    if len(relations) != 1 or relations[0].ops != ("=",):
+        return Finding(Verdict.MALFORMED, f"{what}: expected one equation, found {[r.ops for r in relations]}",
+                       Evidence(Method.PARSE))
+    rel = relations[0]
+    printed = rel.as_sympy()
+    if reading is not None:
+        printed = sp.Eq(reading(printed.lhs), reading(printed.rhs), evaluate=False)
+    same, why = _same_relation(printed, lhs, rhs)
+    form = ("definition", sp.srepr(_explicit(printed.lhs) - _explicit(printed.rhs)) if same else sp.srepr(printed))
+    if same:
+        return Finding(Verdict.CONFIRMED, f"{what} (the model's {_line(lhs)} = {_line(rhs)}, entry by entry)",
+                       Evidence(Method.CANONICAL_FORM, facts={**(facts or {}), "printed_form": ("definition", sp.srepr(sp.Eq(lhs, rhs, evaluate=False)))}))
+    return Finding(Verdict.TYPO, f"{what}: the display reads {_line(printed)}, not the model's {_line(lhs)} = {_line(rhs)}: {why}",
+                   Evidence(Method.CANONICAL_FORM, facts={**(facts or {}), "printed_form": form}),
+                   corrected=tex(sp.Eq(lhs, rhs, evaluate=False)) if not isinstance(lhs, sp.MatrixBase) else None)
 
 
 def _pr_facts(result) -> dict[str, Any]:
@@ -508,29 +599,59 @@ def _certificate_facts(cert) -> dict[str, Any]:
 # Section 2: motivating examples
 # ---------------------------------------------------------------------------------------------
 
-TEXT_DIAGONAL = (9 / (s + 3), 1 / (s + 3), 2 / (s + 3))
+def text_diagonal() -> tuple[sp.Expr, ...]:
+    """The DOF terminations the text names after (1), parsed from the claim ``1-diagonal``."""
+    from hapticproof.audit import quoted_math
+
+    return tuple(parse_printed(q, TABLE).expressions()[0] for q in quoted_math(PAPER.get("1-diagonal").printed))
 
 
-@PAPER.equation("1", kind="expression", printed=PRINTED["1"], section="2",
+def _not_in_s(M: Any, what: str) -> Finding | None:
+    """A printed transfer matrix must be a rational matrix in s alone (else malformed)."""
+    stray = sorted({str(x) for x in sp.Matrix(M).free_symbols} - {str(s)})
+    if stray:
+        return Finding(Verdict.MALFORMED, f"{what} is not a transfer matrix in s: its entries hold {stray}",
+                       Evidence(Method.PARSE, facts={"symbols": stray, "printed_form": sp.srepr(sp.Matrix(M))}))
+    return None
+
+
+def _pr_text(result) -> str:
+    w = result.hermitian.witness or {}
+    if result.decision == Decision.DISPROVED:
+        return f"not positive real (negative principal minor of the Hermitian part at w = {w.get('omega', w)})"
+    return f"{result.decision.value} positive real"
+
+
+@PAPER.equation("1", kind="expression", printed=PRINTED["1"], section="2", quotes=("1-diagonal",),
                 derivation="diagonal of the printed T_1 vs the terminations the text names after it")
 def eq1(ctx: AuditContext) -> Finding:
     T = _rhs_matrix(ctx)
+    bad = _not_in_s(T, "T_1")
+    if bad is not None:
+        return bad
+    text = text_diagonal()
+    if T.shape != (3, 3) or len(text) != 3:
+        return Finding(Verdict.MALFORMED, f"T_1 is {T.shape[0]}x{T.shape[1]} and the text names {len(text)} terminations",
+                       Evidence(Method.PARSE, facts={"printed_form": sp.srepr(T)}))
     printed_diag = [sp.cancel(T[i, i]) for i in range(3)]
-    differ = [i for i in range(3) if not is_identically_zero(printed_diag[i] - TEXT_DIAGONAL[i])]
-    readings = {"as printed": T}
+    differ = [i for i in range(3) if not is_identically_zero(printed_diag[i] - text[i])]
     variant = T.copy()
     for i in range(3):
-        variant[i, i] = TEXT_DIAGONAL[i]
-    readings["with the text's diagonal"] = variant
-    facts = {name: _pr_facts(positive_real(M)) for name, M in readings.items()}
+        variant[i, i] = text[i]
+    results = {"as printed": positive_real(T), "with the text's diagonal": positive_real(variant)}
+    facts = {name: _pr_facts(r) for name, r in results.items()}
+    facts.update({"printed_diagonal": printed_diag, "text_diagonal": list(text), "printed_form": sp.srepr(T)})
+    passivity = f"as printed T_1 is {_pr_text(results['as printed'])}; with the text's diagonal it is " \
+                f"{_pr_text(results['with the text' + chr(39) + 's diagonal'])}"
     if not differ:
-        return Finding(Verdict.CONFIRMED, "the printed diagonal agrees with the text", Evidence(Method.CANONICAL_FORM, facts=facts))
+        return Finding(Verdict.CONFIRMED, f"the printed diagonal agrees with the text; {passivity}",
+                       Evidence(Method.CANONICAL_FORM, facts=facts))
     return Finding(
         Verdict.INCONSISTENT,
-        "the display prints 9/(s+3) on all three diagonal entries while the text after it (claim 1-diagonal) names "
-        "the DOF terminations 9/(s+3), 1/(s+3) and 2/(s+3); either way T_1 is not passive (see 1-nonpassive)",
-        Evidence(Method.CANONICAL_FORM, witness={"entries": [[i + 1, i + 1] for i in differ]},
-                 facts={"printed_diagonal": printed_diag, "text_diagonal": list(TEXT_DIAGONAL), **facts}),
+        f"the display prints {', '.join(sp.sstr(d) for d in printed_diag)} on the diagonal while the text after it (claim "
+        f"1-diagonal) names the DOF terminations {', '.join(sp.sstr(t) for t in text)} (entries "
+        f"{[i + 1 for i in differ]} differ); {passivity}",
+        Evidence(Method.CANONICAL_FORM, witness={"entries": [[i + 1, i + 1] for i in differ]}, facts=facts),
         derived=variant,
     )
 
@@ -540,13 +661,22 @@ def eq1(ctx: AuditContext) -> Finding:
                         "three DOFs are passive",
                 derivation="positive realness of each scalar termination")
 def diagonal_passive(ctx: AuditContext) -> Finding:
-    results = {sp.sstr(t): positive_real(sp.Matrix([[t]])) for t in TEXT_DIAGONAL}
+    from hapticproof.audit import quoted_math
+
+    terms = [ctx.parse(q).expressions()[0] for q in quoted_math(ctx.equation.printed)]
+    for t in terms:
+        bad = _not_in_s(sp.Matrix([[t]]), f"the termination {sp.sstr(t)}")
+        if bad is not None:
+            return bad
+    results = {sp.sstr(t): positive_real(sp.Matrix([[t]])) for t in terms}
+    facts = {k: v.reason for k, v in results.items()}
+    facts["printed_form"] = sorted(results)
     if all(r.decision == Decision.PROVED for r in results.values()):
-        return Finding(Verdict.CONFIRMED, "each named scalar termination a/(s+3), a > 0, is positive real "
-                       "(pole at -3, Re = 3a/(9 + w^2) > 0)",
-                       Evidence(Method.ROOT_ISOLATION, facts={k: v.reason for k, v in results.items()}))
+        return Finding(Verdict.CONFIRMED, f"each named scalar termination ({', '.join(results)}) is positive real",
+                       Evidence(Method.ROOT_ISOLATION, facts=facts))
     bad = next(k for k, v in results.items() if v.decision != Decision.PROVED)
-    return Finding(Verdict.WRONG, f"{bad} is not positive real", results[bad].evidence)
+    return Finding(Verdict.WRONG, f"{bad} is not positive real ({results[bad].reason})",
+                   Evidence(results[bad].evidence.method, witness=results[bad].evidence.witness, facts=facts))
 
 
 @PAPER.equation("1-nonpassive", kind="claim", after="1", section="2",
@@ -554,82 +684,145 @@ def diagonal_passive(ctx: AuditContext) -> Finding:
                 derivation="Definition 3 for the printed T_1 (and for the text's diagonal)")
 def t1_nonpassive(ctx: AuditContext) -> Finding:
     T = printed_matrix("1")
+    bad = _not_in_s(T, "T_1 of (1)")
+    if bad is not None:
+        return Finding(Verdict.UNDECIDED, bad.detail, bad.evidence)
     variant = T.copy()
-    for i in range(3):
-        variant[i, i] = TEXT_DIAGONAL[i]
-    printed, text = positive_real(T), positive_real(variant)
-    if printed.decision == Decision.DISPROVED and text.decision == Decision.DISPROVED:
+    text = text_diagonal()
+    for i in range(min(3, len(text), T.rows)):
+        variant[i, i] = text[i]
+    printed, altered = positive_real(T), positive_real(variant)
+    facts = {"as printed": _pr_facts(printed), "text diagonal": _pr_facts(altered)}
+    if printed.decision == Decision.DISPROVED and altered.decision == Decision.DISPROVED:
         w = printed.hermitian.witness
         return Finding(Verdict.CONFIRMED,
                        f"T_1 (1) is not positive real: T_1(jw) + T_1(jw)^H has a negative principal minor at w = {w.get('omega', w)}; "
                        "with the text's diagonal it is not passive either (already at w = "
-                       f"{text.hermitian.witness.get('omega', text.hermitian.witness)}), although every diagonal entry is",
-                       Evidence(Method.ROOT_ISOLATION, witness=dict(w),
-                                facts={"as printed": _pr_facts(printed), "text diagonal": _pr_facts(text)}))
-    return Finding(Verdict.WRONG, "T_1 is positive real", printed.evidence)
+                       f"{altered.hermitian.witness.get('omega', altered.hermitian.witness)}), although every diagonal entry is",
+                       Evidence(Method.ROOT_ISOLATION, witness=dict(w), facts=facts))
+    return Finding(Verdict.WRONG, f"T_1 as printed is {_pr_text(printed)}; with the text's diagonal it is {_pr_text(altered)}",
+                   Evidence(printed.evidence.method, facts=facts))
 
 
 @PAPER.equation("2", kind="expression", printed=PRINTED["2"], section="2", derivation="impedance form of the 2-port")
 def eq2(ctx: AuditContext) -> Finding:
-    return _definition(ctx, "defines the 3-DOF teleoperator in impedance form: forces [F_h; F_e] (6x1) = Z (6x6) velocities")
+    L = TABLE.lookup
+    return _definition(ctx, "defines the 3-DOF teleoperator in impedance form: forces [F_h; F_e] (6x1) = Z (6x6) velocities",
+                       sp.BlockMatrix([[L("F_h")], [L("F_e")]]), L(r"\mathcal{Z}") * sp.BlockMatrix([[L("V_h")], [L("V_e")]]))
 
 
 @PAPER.equation("3", kind="expression", printed=PRINTED["3"], section="2", derivation="block partition")
 def eq3(ctx: AuditContext) -> Finding:
-    return _definition(ctx, "partitions Z into 3x3 blocks Z_ij (port 1 = operator, port 2 = environment)")
+    return _definition(ctx, "partitions Z into 3x3 blocks Z_ij (port 1 = operator, port 2 = environment)", *_partition())
+
+
+def _partition() -> tuple[Any, Any]:
+    L = TABLE.lookup
+    return L(r"\mathcal{Z}"), sp.BlockMatrix([[L(r"\mathbf{Z}_{11}"), L(r"\mathbf{Z}_{12}")],
+                                              [L(r"\mathbf{Z}_{21}"), L(r"\mathbf{Z}_{22}")]])
 
 
 @PAPER.equation("3a", kind="expression", printed=PRINTED["3a"], section="2", parse=False,
-                derivation="the printed 6x6 impedance: open-circuit stability, symmetrization conditions")
+                derivation="the printed 6x6 impedance: open-circuit stability, symmetrization conditions", quotes=('5',))
 def eq3a(ctx: AuditContext) -> Finding:
-    Z = section2_network()
-    rep = RationalMatrix.from_sympy(Z)
-    sym = symmetrize(rep, (3, 3))
     from hapticproof.rationalmatrix import pole_report
 
+    Z = printed_matrix("3a", prefix=r"\mathcal{Z} ")
+    bad = _not_in_s(Z, "the impedance (3)")
+    if bad is not None:
+        return bad
+    if Z.shape != (6, 6):
+        return Finding(Verdict.MALFORMED, f"the impedance of (3) is {Z.shape[0]}x{Z.shape[1]}, not 6x6",
+                       Evidence(Method.PARSE, facts={"printed_form": sp.srepr(Z)}))
+    rep = RationalMatrix.from_sympy(Z)
     poles = pole_report(rep)
+    # what the paper states about this network: its DOF subsystems are (5), it is potentially unstable
+    p5 = printed_matrix("5")
+    subsystems = [name for i, name in enumerate(AXES)
+                  if p5.shape == (2, 2) and all(is_identically_zero(a - c) for a, c in zip(Z.extract([i, i + 3], [i, i + 3]), p5))]
+    roots, degree, passive = _certified("unit")
+    sym = symmetrize(rep, (3, 3))
+    properties = ("entries stable" if not poles.rhp else "an entry has an RHP pole",
+                  f"DOF subsystems equal to (5): {subsystems}", f"unit terminations destabilise it: {bool(roots and passive)}")
+    facts = {"symmetrization": sym.reason, "axis_poles": [p.label() for p, _ in poles.axis], "rhp_roots_unit": [str(r) for r in roots],
+             "printed_form": ("data display; the properties the paper states about it", properties)}
     if poles.rhp:
-        return Finding(Verdict.WRONG, "an entry has a pole in Re s > 0", Evidence(Method.ROOT_ISOLATION))
+        return Finding(Verdict.WRONG, f"an entry has a pole in Re s > 0 ({poles.rhp[0][0].label()}): the open-circuit network is "
+                       "unstable", Evidence(Method.ROOT_ISOLATION, facts=facts))
+    if len(subsystems) != 3:
+        return Finding(Verdict.INCONSISTENT, f"the DOF subsystems of (3) extracted at (i, i), (i, i+3), (i+3, i), (i+3, i+3) "
+                       f"agree with (5) only for {subsystems or 'no DOF'}", Evidence(Method.CANONICAL_FORM,
+                                                                                     facts={**facts, "ids": ["3a", "5"]}))
+    if not (roots and passive):
+        return Finding(Verdict.INCONSISTENT, "with unit resistive terminations det(Z + I) has no zero in Re s > 0, so the network "
+                       "does not show the potential instability the text states (see 5-unstable)",
+                       Evidence(Method.ROOT_ISOLATION, facts={**facts, "ids": ["3a", "5-unstable"]}))
     return Finding(Verdict.CONFIRMED,
                    "a well-formed 6x6 rational impedance (read as the continuation '\\mathcal{Z} = ...' of (3)) whose entries are "
-                   f"all stable; it is not symmetrizable ({sym.reason}), so Theorem 9 does not apply to it",
-                   Evidence(Method.PARSE, facts={"symmetrization": sym.reason, "axis_poles": [p.label() for p, _ in poles.axis]}))
+                   f"all stable, whose DOF subsystems are (5) and which unit terminations destabilise (det(Z + I) = 0 at "
+                   f"s ~ {roots[0].real:.6g}); it is not symmetrizable ({sym.reason}), so Theorem 9 does not apply to it",
+                   Evidence(Method.PARSE, facts=facts))
 
 
 @PAPER.equation("4", kind="expression", printed=PRINTED["4"], section="2", derivation="the 1-DOF subsystems")
 def eq4(ctx: AuditContext) -> Finding:
-    return _definition(ctx, "defines the per-DOF 2-ports Z_i, i = x, y, z (entries (i, i), (i, i+3), (i+3, i), (i+3, i+3) of (3))")
+    L = TABLE.lookup
+    statement = ctx.statement
+    ranges = [tuple(map(str, r.values)) for r in getattr(statement, "ranges", ())]
+    if ranges != [("x", "y", "z")]:
+        return Finding(Verdict.TYPO, f"the per-DOF 2-ports must range over the three DOFs i = x, y, z; the display has {ranges}",
+                       Evidence(Method.PARSE, facts={"printed_form": ranges}))
+    return _definition(ctx, "defines the per-DOF 2-ports Z_i, i = x, y, z (entries (i, i), (i, i+3), (i+3, i), (i+3, i+3) of (3))",
+                       sp.Matrix([[L("f_{hi}")], [L("f_{ei}")]]), L(r"\mathbf{Z}_i") * sp.Matrix([[L("v_{hi}")], [L("v_{ei}")]]))
 
 
 @PAPER.equation("5", kind="expression", printed=PRINTED["5"], section="2",
-                derivation="extract [[z_ii, z_i,i+3], [z_i+3,i, z_i+3,i+3]] from (3) for i = x, y, z")
+                derivation="extract [[z_ii, z_i,i+3], [z_i+3,i, z_i+3,i+3]] from (3) for i = x, y, z", quotes=('3a',))
 def eq5(ctx: AuditContext) -> Finding:
+    rel = ctx.statement.relations()[0]
+    names = tuple(rel.terms[:-1])
+    expected = tuple(TABLE.lookup(rf"\mathbf{{Z}}_{a}") for a in AXES)
     printed = _rhs_matrix(ctx)
+    if names != expected:
+        return Finding(Verdict.TYPO, f"the chain must name the three DOF subsystems Z_x = Z_y = Z_z; it reads "
+                       f"{' = '.join(map(sp.sstr, names))}", Evidence(Method.PARSE, facts={"printed_form": [sp.srepr(x) for x in names]}))
     Z = section2_network()
     mismatched = []
     for i, name in enumerate(AXES):
         sub = Z.extract([i, i + 3], [i, i + 3])
-        if not all(is_identically_zero(a - b) for a, b in zip(sub, printed)):
-            mismatched.append(name)
+        if printed.shape != (2, 2) or not all(is_identically_zero(a - b) for a, b in zip(sub, printed)):
+            mismatched.append((name, sub))
     if mismatched:
-        return Finding(Verdict.TYPO, f"the extraction from (3) differs for {mismatched}", Evidence(Method.CANONICAL_FORM))
+        listing = "; ".join(f"Z_{n} = {_line(sub)}" for n, sub in mismatched)
+        return Finding(Verdict.TYPO, f"the printed {_line(printed)} is not the subsystem extracted from (3): {listing}",
+                       Evidence(Method.CANONICAL_FORM, facts={"printed_form": sp.srepr(printed)}))
     return Finding(Verdict.CONFIRMED, "Z_x, Z_y and Z_z extracted from (3) all equal the printed 2x2 matrix",
-                   Evidence(Method.CANONICAL_FORM, facts={"subsystems": list(AXES)}), derived=printed)
+                   Evidence(Method.CANONICAL_FORM, facts={"subsystems": list(AXES), "printed_form": ("equals (3)",)}),
+                   derived=printed)
 
 
 @PAPER.equation("5-llewellyn", kind="claim", after="5", section="2",
                 printed="the subsystems involving \\mathbf{Z}_x , \\mathbf{Z}_y , and \\mathbf{Z}_z always satisfy Llewellyn's criterion",
                 derivation="Llewellyn's criterion decided exactly for (5)")
 def subsystems_llewellyn(ctx: AuditContext) -> Finding:
-    result = llewellyn(printed_matrix("5"))
+    Z = printed_matrix("5")
+    bad = _not_in_s(Z, "the subsystem (5)")
+    if bad is not None or Z.shape != (2, 2):
+        return Finding(Verdict.UNDECIDED, "(5) is not a 2x2 transfer matrix in s", Evidence(Method.PARSE))
+    result = llewellyn(Z)
     if result.decision != Decision.PROVED:
-        return Finding(Verdict.WRONG, result.reason, result.evidence)
-    where = result.tightest.argmin
+        return Finding(Verdict.WRONG, f"Llewellyn's criterion fails for (5): {result.reason}", result.evidence)
+    where = result.tightest.argmin if result.tightest is not None else None
+    w = sp.Symbol("w", positive=True)
+    at = Z.subs(s, sp.I * w).applyfunc(lambda e: sp.expand_complex(sp.cancel(e)))
+    P = sp.expand_complex(at[0, 1] * at[1, 0])
+    modulus = sp.sqrt(sp.factor(sp.cancel(sp.expand(P * sp.conjugate(P)))))
+    product = sp.factor(sp.cancel(2 * sp.re(at[0, 0]) * sp.re(at[1, 1]) - sp.re(P) - modulus))
     return Finding(Verdict.CONFIRMED,
-                   "Llewellyn's conditions hold exactly: 2 Re z11 Re z22 - Re z12z21 - |z12z21| = 162/(9+w^2)^2 - 2/(1+w^2)^2 "
-                   f">= 0 (equivalent to 8 w^2 >= 0); the stability factor is smallest at x = w^2 = {where} with eta = {result.eta_min}: "
-                   "the criterion holds with equality at w = 0 (marginally)",
-                   result.evidence)
+                   f"Llewellyn's conditions hold exactly: 2 Re z11 Re z22 - Re z12z21 - |z12z21| = {sp.sstr(sp.factor(product))} >= 0; "
+                   f"the stability factor is smallest at x = w^2 = {where} with eta = {result.eta_min}",
+                   Evidence(result.evidence.method, witness=result.evidence.witness,
+                            facts={**dict(result.evidence.facts), "printed_form": ("llewellyn holds", str(result.eta_min))}))
 
 
 @PAPER.equation("5-unstable", kind="claim", after="5", section="2",
@@ -637,11 +830,12 @@ def subsystems_llewellyn(ctx: AuditContext) -> Finding:
                 derivation="search for passive 3-DOF terminations with a zero of det(Z + T) in Re s > 0, verified exactly")
 def coupled_unstable(ctx: AuditContext) -> Finding:
     roots, degree, passive = _certified("unit")
+    sym = symmetrize(RationalMatrix.from_sympy(section2_network()), (3, 3))
     if roots and passive:
         return Finding(Verdict.CONFIRMED,
                        "unit resistors on all six DOFs (T_1 = T_2 = I_3, passive) already destabilize the network (3): "
                        f"det(Z + I) has a zero at s ~ {roots[0].real:.4g} > 0 (certified on the exact degree-{degree} numerator); "
-                       "(3) violates B (z_46 != z_64), so Theorem 9 does not apply to it",
+                       f"(3) is not symmetrizable ({sym.reason}), so Theorem 9 does not apply to it",
                        Evidence(Method.COUNTEREXAMPLE, witness={"T_1": "I_3", "T_2": "I_3"},
                                 facts={"rhp_roots": [str(r) for r in roots], "numerator_degree": degree}))
     cert = _search("3a")
@@ -659,7 +853,32 @@ def _scalar_counterexample() -> tuple[sp.Matrix, sp.Matrix]:
     return sp.Matrix([[1, 3], [3, 1]]), sp.Matrix([[10]])
 
 
+ENERGY_TABLE = TABLE.with_functions({name: sp.Function(name.replace("{", "").replace("}", ""))
+                                     for name in ("F_h", "V_h", "F_e", "V_e", "f_{hx}", "v_{hx}", "f_{ex}", "v_{ex}", "E_s")})
+
+
+def _energy_reading(ctx: AuditContext, three_dof: bool) -> Finding | None:
+    """The display must be the input energy at port 1 from rest, E_s(t) = int_0^t force . velocity >= 0."""
+    tau, t = TABLE.lookup(r"\tau"), TABLE.lookup("t")
+    force, velocity = ("F_h", "V_h") if three_dof else ("f_hx", "v_hx")
+    statement = parse_printed(ctx.equation.printed, ENERGY_TABLE)
+    relations = statement.relations()
+    expected = sp.Integral(sp.Function(force)(tau) * sp.Function(velocity)(tau), (tau, 0, t))
+    if len(relations) != 1:
+        return malformed(ctx, f"expected one relation chain, found {len(relations)}")
+    rel = relations[0]
+    ok = (rel.ops == ("=", ">=") and rel.terms[0] == sp.Function("E_s")(t) and rel.terms[1] == expected and rel.terms[2] == 0)
+    if ok:
+        return None
+    return Finding(Verdict.WRONG, f"the display must be the input energy at port 1, E_s(t) = int_0^t {force} {velocity} dtau >= 0; "
+                   f"it reads {' '.join(f'{sp.sstr(x)} {op}' for x, op in zip(rel.terms, rel.ops))} {sp.sstr(rel.terms[-1])}",
+                   Evidence(Method.PARSE, facts={"printed_form": sp.srepr(rel.as_sympy())}))
+
+
 def _energy_quantifier(ctx: AuditContext, three_dof: bool) -> Finding:
+    reading = _energy_reading(ctx, three_dof)
+    if reading is not None:
+        return reading
     Z2, load = _scalar_counterexample()
     Z = sp.kronecker_product(Z2, sp.eye(3)) if three_dof else Z2
     ports = (3, 3) if three_dof else (1, 1)
@@ -674,7 +893,8 @@ def _energy_quantifier(ctx: AuditContext, three_dof: bool) -> Finding:
             f"the 2-port {'kron([[1, 3], [3, 1]], I_3)' if three_dof else '[[1, 3], [3, 1]]'} is potentially unstable, yet with "
             "the passive load 10 its input impedance 2/11 is positive real, so E_s >= 0 for every input",
             Evidence(Method.COUNTEREXAMPLE, witness={"Z": Z2, "load": load},
-                     facts={"absolute_stability": verdict.reason, "input_impedance_PR": zin.reason}),
+                     facts={"absolute_stability": verdict.reason, "input_impedance_PR": zin.reason,
+                            "printed_form": "input energy at port 1 >= 0"}),
             corrected=(r"\text{absolutely stable} \iff E_s(t) \geq 0 \ \forall t > 0,\ \forall \text{inputs from rest},\ "
                        r"\forall \text{passive terminations of port 2}"),
         )
@@ -751,13 +971,26 @@ def property4(ctx: AuditContext) -> Finding:
 # ---------------------------------------------------------------------------------------------
 
 
-for _id, _what in (("8", "impedance model of the 2-port with 3-DOF ports (6x1 = 6x6 * 6x1)"),
-                   ("9", "stacks the port forces F_1, F_2 (3x1 each)"),
-                   ("10", "stacks the port velocities V_1, V_2 (3x1 each)"),
-                   ("11", "block partition of Z (as (3))"),
-                   ("13", "block-diagonal termination of two 3-DOF (full 3x3) impedances")):
-    def _check(ctx: AuditContext, _what=_what) -> Finding:
-        return _definition(ctx, "defines " + _what)
+def _section4_definitions() -> dict[str, tuple[str, Any, Any, Any]]:
+    L = TABLE.lookup
+    Z, Zb = _partition()
+    return {
+        "8": ("impedance model of the 2-port with 3-DOF ports (6x1 = 6x6 * 6x1)", L(r"\mathcal{F}"),
+              L(r"\mathcal{Z}") * L(r"\mathcal{V}"), None),
+        "9": ("stacks the port forces F_1, F_2 (3x1 each; [F_1 F_2]^T read as the stack)", L(r"\mathcal{F}"),
+              sp.BlockMatrix([[L("F_1")], [L("F_2")]]), _stacked),
+        "10": ("stacks the port velocities V_1, V_2 (3x1 each; [V_1 V_2]^T read as the stack)", L(r"\mathcal{V}"),
+               sp.BlockMatrix([[L("V_1")], [L("V_2")]]), _stacked),
+        "11": ("block partition of Z (as (3))", Z, Zb, None),
+        "13": ("block-diagonal termination of two 3-DOF (full 3x3) impedances", L(r"\mathcal{T}"),
+               sp.BlockDiagMatrix(L(r"\mathbf{T}_1"), L(r"\mathbf{T}_2")), None),
+    }
+
+
+for _id in ("8", "9", "10", "11", "13"):
+    def _check(ctx: AuditContext) -> Finding:
+        what, lhs, rhs, reading = _section4_definitions()[ctx.equation.id]
+        return _definition(ctx, "defines " + what, lhs, rhs, reading=reading)
     PAPER.equation(_id, kind="expression", printed=PRINTED[_id], section="4", derivation="definition")(_check)
 
 
@@ -766,6 +999,10 @@ for _id, _what in (("8", "impedance model of the 2-port with 3-DOF ports (6x1 = 
 def eq12(ctx: AuditContext) -> Finding:
     from hapticproof.parse import expand_indexed, index_symbol
 
+    rel = ctx.statement.relations()[0]
+    if rel.lhs != TABLE.lookup(r"\mathbf{Z}_{ij}"):
+        return Finding(Verdict.TYPO, f"the display must define the block Z_ij; it defines {sp.sstr(rel.lhs)}",
+                       Evidence(Method.PARSE, facts={"printed_form": sp.srepr(rel.lhs)}))
     M = _rhs_matrix(ctx)
     i, j = index_symbol("i"), index_symbol("j")
     for bi in (1, 2):
@@ -784,9 +1021,51 @@ def _table1_symmetrization():
     return symmetrize(table1_impedance(60), (3, 3))
 
 
+def _zprime_entry(i: int, j: int) -> sp.Expr:
+    """Youla's z'_ij (1-based): z_ii on the diagonal, gamma_k sqrt(z_ij z_ji) off it, with k the
+    position of the pair among the 15 upper pairs in row order (as (14) numbers them)."""
+    z = lambda a, c: TABLE.concrete("z_{i,j}", (a, c))  # noqa: E731
+    if i == j:
+        return z(i, i)
+    a, c = min(i, j), max(i, j)
+    k = [(p, q) for p in range(1, 7) for q in range(p + 1, 7)].index((a, c)) + 1
+    return TABLE.concrete(r"\gamma_{i}", (k,)) * sp.sqrt(z(a, c) * z(c, a))
+
+
+def _zprime_reading(ctx: AuditContext) -> Finding | None:
+    """The printed Z' (rows and columns 1, 2, ..., 6 with ellipses) against Youla's construction."""
+    from hapticproof.parse import Elision
+
+    rel = ctx.statement.relations()[0]
+    M = sp.Matrix(rel.rhs)
+    index = [1, 2, None, 6]
+    problems = []
+    if rel.lhs != TABLE.lookup(r"\mathcal{Z}'"):
+        problems.append(f"the left side is {sp.sstr(rel.lhs)}, not Z'")
+    if M.shape != (4, 4):
+        problems.append(f"the printed matrix is {M.shape[0]}x{M.shape[1]}")
+    else:
+        for r in range(4):
+            for c in range(4):
+                entry, i, j = M[r, c], index[r], index[c]
+                if i is None or j is None:
+                    if not isinstance(entry, Elision):
+                        problems.append(f"printed entry ({r + 1},{c + 1}) should be an ellipsis, it is {sp.sstr(entry)}")
+                    continue
+                if isinstance(entry, Elision) or not is_identically_zero(entry - _zprime_entry(i, j)):
+                    problems.append(f"entry ({i},{j}) reads {sp.sstr(entry)} instead of {sp.sstr(_zprime_entry(i, j))}")
+    if not problems:
+        return None
+    return Finding(Verdict.TYPO, "the printed Z' is not Youla's z'_ii = z_ii, z'_ij = gamma sqrt(z_ij z_ji): " + "; ".join(problems),
+                   Evidence(Method.CANONICAL_FORM, facts={"problems": problems, "printed_form": sp.srepr(M)}))
+
+
 @PAPER.equation("14", kind="expression", printed=PRINTED["14"], section="4",
                 derivation="Youla's Z' for Table 1 (k_vmyz = 60): are the 15 signs gamma free?")
 def eq14(ctx: AuditContext) -> Finding:
+    reading = _zprime_reading(ctx)
+    if reading is not None:
+        return reading
     Y = _table1_symmetrization()
     Zp = Y.zprime()
     Z = table1_impedance(60)
@@ -805,16 +1084,70 @@ def eq14(ctx: AuditContext) -> Finding:
             "diagonal +-1 similarity; the roots must be analytic branches. For Table 1, flipping gamma of entry (1,4) alone "
             f"changes the principal minor on rows (1,2,4) at s = 1 from {mz} to {mf}",
             Evidence(Method.COUNTEREXAMPLE, witness={"entry": [1, 4], "rows": [1, 2, 4], "s": 1},
-                     facts={"minor_Z": mz, "minor_Zprime": mp, "minor_flipped": mf, "gamma": dict(Y.evidence.facts)["gamma"]}),
+                     facts={"minor_Z": mz, "minor_Zprime": mp, "minor_flipped": mf, "gamma": dict(Y.evidence.facts)["gamma"],
+                            "printed_form": "Youla's Z' with free signs gamma"}),
             corrected=(r"z'_{ij} = \gamma_{ij}\sqrt{z_{ij}z_{ji}},\ \gamma_{ij}\gamma_{jk}\gamma_{ki}\sqrt{z_{ij}z_{ji}}"
                        r"\sqrt{z_{jk}z_{kj}}\sqrt{z_{ki}z_{ik}} = z_{ij}z_{jk}z_{ki}"),
         )
     return Finding(Verdict.UNDECIDED, "sign test inconclusive", Evidence(Method.INSTANCES))
 
 
+PROSE_TABLE = TABLE.with_symbols({r"\mathbf{Z}_{\ell\ell}": sp.MatrixSymbol("Z_ll", 3, 3), r"\ell": sp.Symbol("ell")})
+
+
+def _prose_math(text: str) -> list[Any]:
+    """The mathematics of a prose condition (``\\text{...}`` removed): its expressions and the
+    values of its index ranges, in printed order."""
+    import re
+
+    fragments = [f.replace(r"\quad", " ").strip(" ,.;") for f in re.split(r"\\text\{[^}]*\}", text)]
+    joined = r", \quad ".join(f for f in fragments if f)
+    if not joined:
+        return []
+    statement = parse_printed(joined, PROSE_TABLE)
+    out = list(statement.expressions())
+    for r in getattr(statement, "ranges", ()):
+        out.append(tuple(r.values))
+    return out
+
+
+def _prose_reading(ctx: AuditContext, expected: list[Any], what: str) -> Finding | None:
+    found = _prose_math(ctx.equation.printed)
+    if found == expected:
+        return None
+    return Finding(Verdict.TYPO, f"{what} must refer to {', '.join(map(sp.sstr, expected))}; the text's mathematics is "
+                   f"{', '.join(map(sp.sstr, found)) or 'missing'}", Evidence(Method.PARSE, facts={"printed_form": [sp.srepr(x) for x in found]}))
+
+
+def _expected_prose(eq_id: str) -> list[Any]:
+    L = PROSE_TABLE.lookup
+    return {"14b": [L(r"\mathbf{Z}_{\ell\ell}"), (sp.Integer(1), sp.Integer(2))], "14c": [L(r"\mathcal{Z}")],
+            "14d": [L(r"\mathcal{Z}"), L(r"\mathcal{Z}")], "14e": [L(r"\omega"), L(r"\mathcal{Z}'")]}[eq_id]
+
+
 @PAPER.equation("14a", kind="condition", printed=PRINTED["14a"], section="4",
                 derivation="A and B vs Youla's equivalence (identical principal and block-compatible minors)")
 def condition_a(ctx: AuditContext) -> Finding:
+    from hapticproof.parse import expand_indexed, index_symbol
+
+    statement = ctx.statement
+    i, j, k = (index_symbol(x) for x in "ijk")
+    (rel,) = [r.as_sympy() for r in statement.relations()]
+    problems = []
+    ranges = [(tuple(map(str, r.indices)), tuple(map(str, r.values))) for r in getattr(statement, "ranges", ())]
+    if ranges != [(("i", "j", "k"), ("1", "2", r"\dots", "6"))]:
+        problems.append(f"the indices must run over 1..6, the display has {ranges}")
+    for triple in ((1, 2, 3), (1, 4, 2), (2, 5, 6), (3, 6, 4)):
+        got = expand_indexed((rel.lhs - rel.rhs).subs(dict(zip((i, j, k), triple))), 6, TABLE)
+        z = lambda a, c: TABLE.concrete("z_{i,j}", (a, c))  # noqa: E731
+        a, c, e = triple
+        cycle = z(a, c) * z(c, e) * z(e, a) - z(c, a) * z(e, c) * z(a, e)
+        if not (is_identically_zero(got - cycle) or is_identically_zero(got + cycle)):
+            problems.append(f"for (i, j, k) = {triple} it reads {sp.sstr(got)} = 0, not the triangle condition {sp.sstr(cycle)} = 0")
+            break
+    if problems:
+        return Finding(Verdict.TYPO, "condition A as printed is not Youla's triangle condition: " + "; ".join(problems),
+                       Evidence(Method.CANONICAL_FORM, facts={"problems": problems, "printed_form": sp.srepr(rel)}))
     Z = cycle_network()
     conditions = symmetrization_conditions(Z, ports=(3, 3))
     sym = symmetrize(Z, (3, 3))
@@ -826,7 +1159,8 @@ def condition_a(ctx: AuditContext) -> Finding:
             "with vanishing entries longer cycles matter: the network cycle_network() (couplings on the cycle 1-4-2-5 only, "
             "z_14 = 2, z_41 = 1/2, others 1) satisfies A and B, but its 4x4 minor on (1,2,4,5) cannot be matched by any Z' "
             f"({sym.reason}) and passive terminations 1/(10(s+1)) make it unstable (det(Z + T) = 0 at s ~ {roots[0].real:.4g})",
-            Evidence(Method.COUNTEREXAMPLE, witness={"Z": Z}, facts={"rhp_roots": [str(r) for r in roots], "symmetrization": sym.reason}),
+            Evidence(Method.COUNTEREXAMPLE, witness={"Z": Z}, facts={"rhp_roots": [str(r) for r in roots], "symmetrization": sym.reason,
+                                                                     "printed_form": "Youla's triangle condition"}),
             corrected=(r"z_{i_1 i_2} z_{i_2 i_3} \cdots z_{i_k i_1} = z_{i_2 i_1} z_{i_3 i_2} \cdots z_{i_1 i_k}"
                        r"\ \text{for every cycle } (i_1, \dots, i_k),\ k \geq 3"),
         )
@@ -836,6 +1170,9 @@ def condition_a(ctx: AuditContext) -> Finding:
 @PAPER.equation("14b", kind="condition", printed=PRINTED["14b"], section="4", parse=False,
                 derivation="det(Z + T) = det(Z' + T) for full block terminations T, one 2-DOF port, symbolic")
 def condition_b(ctx: AuditContext) -> Finding:
+    reading = _prose_reading(ctx, _expected_prose("14b"), "condition B")
+    if reading is not None:
+        return reading
     a, b, c, d = sp.symbols("a b c d", positive=True)
     t = sp.Matrix(2, 2, sp.symbols("t11 t12 t21 t22"))
     Z = sp.Matrix([[a, b], [c, d]])
@@ -855,6 +1192,9 @@ def condition_b(ctx: AuditContext) -> Finding:
 @PAPER.equation("14c", kind="condition", printed=PRINTED["14c"], section="4", parse=False,
                 derivation="open-port stability: an unstable z_ij invisible to Z'")
 def condition_c(ctx: AuditContext) -> Finding:
+    reading = _prose_reading(ctx, _expected_prose("14c"), "condition C")
+    if reading is not None:
+        return reading
     from hapticproof.rationalmatrix import pole_report
 
     Z = sp.Matrix([[1, 1 / (s - 1)], [0, 1]])
@@ -874,6 +1214,9 @@ def condition_c(ctx: AuditContext) -> Finding:
 @PAPER.equation("14d", kind="condition", printed=PRINTED["14d"], section="4", parse=False,
                 derivation="residue matrix of Z' at s = 0 for Table 1 (k_vmyz = 60), exact")
 def condition_d(ctx: AuditContext) -> Finding:
+    reading = _prose_reading(ctx, _expected_prose("14d"), "condition D")
+    if reading is not None:
+        return reading
     Zp = _table1_symmetrization().zprime()
     R = Zp.applyfunc(lambda e: sp.cancel(e * s).subs(s, 0))
     leading = [sp.nsimplify(sp.simplify(R[:k, :k].det())) for k in range(1, 7)]
@@ -897,6 +1240,9 @@ def condition_d(ctx: AuditContext) -> Finding:
 @PAPER.equation("14e", kind="condition", printed=PRINTED["14e"], section="4", parse=False,
                 derivation="leading minors >= 0 vs PSD; exact destabilizing terminations")
 def condition_e(ctx: AuditContext) -> Finding:
+    reading = _prose_reading(ctx, _expected_prose("14e"), "condition E")
+    if reading is not None:
+        return reading
     Z = leading_minor_network()
     leading = [Z[:k, :k].det() for k in range(1, 7)]
     roots, degree, passive = _certified("leading")
@@ -916,45 +1262,101 @@ def condition_e(ctx: AuditContext) -> Finding:
 @PAPER.equation("15a", kind="condition", printed=PRINTED["15a"], section="4",
                 derivation="1x1 principal minors of Re Z': z'_ii = z_ii by (14)")
 def eq15a(ctx: AuditContext) -> Finding:
+    from hapticproof.certify import as_sign_condition
+    from hapticproof.parse import expand_indexed, index_symbol
+
+    statement = ctx.statement
+    ranges = [tuple(map(str, r.values)) for r in getattr(statement, "ranges", ())]
+    (rel,) = [r.as_sympy() for r in statement.relations()]
+    condition = as_sign_condition(rel)
+    i = index_symbol("i")
+    read = [expand_indexed(condition.expr.subs(i, k), 6, TABLE) for k in range(1, 7)]
+    want = [sp.re(TABLE.concrete("z_{i,j}", (k, k))) for k in range(1, 7)]
+    problems = []
+    if ranges != [("1", "2", r"\dots", "6")]:
+        problems.append(f"the index must run over all six diagonal entries, the display has {ranges}")
+    if condition.op not in (">=",):
+        problems.append(f"a principal minor of a PSD matrix is >= 0, the display says {condition.op} 0")
+    if read != want:
+        problems.append(f"it reads {[sp.sstr(x) for x in read[:2]]}... >= 0 instead of Re z_ii >= 0")
+    if problems:
+        if condition.op != ">=":
+            return Finding(Verdict.WRONG,
+                           "(15a) is not the 1x1 principal-minor condition Re z_ii >= 0, i = 1..6: " + "; ".join(problems),
+                           Evidence(Method.PARSE, facts={"problems": problems, "printed_form": sp.srepr(rel)}))
+        return Finding(Verdict.TYPO,
+                       "(15a) has the relation of a 1x1 principal-minor condition but not its entries or range: "
+                       + "; ".join(problems),
+                       Evidence(Method.PARSE, facts={"problems": problems, "printed_form": sp.srepr(rel)}),
+                       corrected=r"\text{Re}(z_{i,i}) \geq 0, \quad i = 1, 2, \dots, 6")
     Y = _table1_symmetrization()
     Z = table1_impedance(60)
     same = all(is_identically_zero(Y.zprime()[i, i] - Z[i, i]) for i in range(6))
     if not same:
         return Finding(Verdict.WRONG, "diagonal of Z' differs from Z", Evidence(Method.CANONICAL_FORM))
     return Finding(Verdict.CONFIRMED, "Re z'_ii = Re z_ii >= 0 are the 1x1 principal minors of Re Z' (necessary; all six, "
-                   "not only the leading one)", Evidence(Method.CANONICAL_FORM, facts={"checked_on": "Table 1"}))
+                   "not only the leading one)", Evidence(Method.CANONICAL_FORM, facts={"checked_on": "Table 1",
+                                                                                      "printed_form": "Re z_ii >= 0, i = 1..6"}))
 
 
 @PAPER.equation("15b", kind="condition", printed=PRINTED["15b"], section="4",
                 derivation="2nd leading minor of Re Z' with (20): Re z11 Re z22 - (|z12 z21| + Re z12 z21)/2")
 def eq15b(ctx: AuditContext) -> Finding:
-    printed = ctx.relation()
-    printed_lhs = printed.lhs - printed.rhs
+    from hapticproof.certify import as_sign_condition
+
+    condition = as_sign_condition(ctx.relation())
+    printed_lhs = condition.expr
     z = {(i, j): TABLE.concrete("z_{i,j}", (i, j)) for i in (1, 2) for j in (1, 2)}
     p = z[(1, 2)] * z[(2, 1)]
     derived = sp.re(z[(1, 1)]) * sp.re(z[(2, 2)]) - (sp.Abs(p) + sp.re(p)) / 2
-    point = {z[(1, 1)]: 1, z[(2, 2)]: 1, z[(1, 2)]: 1 + sp.I, z[(2, 1)]: 1 + sp.I}
-    value_p, value_d = sp.simplify(printed_lhs.subs(point)), sp.simplify(derived.subs(point))
-    exact = sp.simplify(1 - sp.re(sp.sqrt(sp.Integer(2) * sp.I)) ** 2)  # Re Z' minor with z'12 = sqrt(2j)
-    if value_p != value_d and is_identically_zero(value_d - exact):
-        return Finding(Verdict.TYPO,
-                       "the printed numerator |Re(z12 z21)| + |Re(z12 z21)| repeats one term: (20) gives |z12 z21| + Re(z12 z21); "
-                       f"at z11 = z22 = 1, z12 = z21 = 1 + j the printed minor is {value_p}, the true one (1 - (Re sqrt(2j))^2) is {value_d}",
-                       Evidence(Method.COUNTEREXAMPLE, witness={"z11": 1, "z22": 1, "z12": "1+j", "z21": "1+j"},
-                                facts={"printed": value_p, "derived": value_d}),
-                       derived=sp.Ge(derived, 0),
-                       corrected=(r"\text{Re}(z_{1,1})\text{Re}(z_{2,2}) - \frac{|z_{1,2}z_{2,1}| + \text{Re}(z_{1,2}z_{2,1})}{2} \geq 0"))
-    return compare_expressions(printed_lhs, derived, what="the printed 2nd minor")
+    slip = sp.re(z[(1, 1)]) * sp.re(z[(2, 2)]) - sp.Abs(sp.re(p))           # |Re(z12 z21)| printed twice
+    point = {z[(1, 1)]: 2, z[(2, 2)]: 3, z[(1, 2)]: 1 + 2 * sp.I, z[(2, 1)]: 3 - sp.I}
+    value_p, value_d = sp.nsimplify(sp.simplify(printed_lhs.subs(point))), sp.nsimplify(sp.simplify(derived.subs(point)))
+    facts = {"printed": value_p, "derived": value_d, "printed_form": (condition.op, sp.srepr(sp.expand(printed_lhs)))}
+    corrected = r"\text{Re}(z_{1,1})\text{Re}(z_{2,2}) - \frac{|z_{1,2}z_{2,1}| + \text{Re}(z_{1,2}z_{2,1})}{2} \geq 0"
+    witness = {"z11": 2, "z22": 3, "z12": "1+2j", "z21": "3-j"}
+    if condition.op != ">=":
+        return Finding(Verdict.WRONG, f"a principal minor of a PSD matrix is >= 0; the display says {condition.op} 0 "
+                       f"(at the witness the printed expression is {value_p}, the minor {value_d})",
+                       Evidence(Method.COUNTEREXAMPLE, witness=witness, facts=facts), derived=sp.Ge(derived, 0), corrected=corrected)
+    if is_identically_zero(sp.expand(printed_lhs - derived)):
+        return Finding(Verdict.CONFIRMED, "the printed minor is Re z11 Re z22 - (|z12 z21| + Re z12 z21)/2, by (20)",
+                       Evidence(Method.CANONICAL_FORM, facts=facts), derived=sp.Ge(derived, 0))
+    cause = ("the printed numerator |Re(z12 z21)| + |Re(z12 z21)| repeats one term: (20) gives |z12 z21| + Re(z12 z21)"
+             if is_identically_zero(sp.expand(printed_lhs - slip)) else "it is not the 2nd minor given by (20)")
+    return Finding(Verdict.TYPO,
+                   f"{cause}; at z11 = 2, z22 = 3, z12 = 1 + 2j, z21 = 3 - j the printed minor is {value_p}, the true one "
+                   f"{value_d}", Evidence(Method.COUNTEREXAMPLE, witness=witness, facts=facts),
+                   derived=sp.Ge(derived, 0), corrected=corrected)
 
 
 @PAPER.equation("15c", kind="condition", printed=PRINTED["15c"], section="4",
                 derivation="the 6th principal minor of Re Z' (exact for Table 1)")
 def eq15c(ctx: AuditContext) -> Finding:
+    from hapticproof.certify import as_sign_condition
+
+    condition = as_sign_condition(ctx.relation())
+    Zp = TABLE.lookup(r"\mathcal{Z}'")
+    # the printed left side evaluated at test matrices A (in place of Z') against det Re A
+    rng = __import__("random").Random(15)
+    tests = []
+    for _ in range(3):
+        A = sp.Matrix(6, 6, lambda i, j: sp.Rational(rng.randint(-5, 5), rng.randint(1, 3))
+                      + sp.I * sp.Rational(rng.randint(-5, 5), rng.randint(1, 3)))
+        read = sp.nsimplify(sp.expand(condition.expr.subs(Zp, sp.ImmutableMatrix(A)).doit()))
+        tests.append((read, ((A + A.conjugate()) / 2).det()))
+    ratios = {sp.nsimplify(r / d) if d != 0 else None for r, d in tests}
+    facts = {"printed_over_det_re": [str(r) for r in ratios], "printed_form": (condition.op, sorted(map(str, ratios)))}
+    if len(ratios) != 1 or None in ratios or not list(ratios)[0].is_positive or condition.op not in (">=",):
+        return Finding(Verdict.WRONG, f"(15c) reads {sp.sstr(condition.expr)} {condition.op} 0, not det Re Z' >= 0 (the full "
+                       f"principal minor): at three test matrices the printed left side over det Re A is {sorted(map(str, ratios))}",
+                       Evidence(Method.COUNTEREXAMPLE, facts=facts), derived=sp.Ge(sp.Symbol("det_Re_Zp"), 0),
+                       corrected=r"\det(\text{Re}(\mathcal{Z}')) \geq 0")
     det = real_part_leading_minors()[5]
     return Finding(Verdict.CONFIRMED,
                    "det Re Z' >= 0 is a necessary condition (the full principal minor); under (38) it is identically "
                    f"{det} (Re Z' has rank 3), so it holds but says nothing -- the order-1..3 principal minors decide",
-                   Evidence(Method.CANONICAL_FORM, facts={"det_under_38": det}))
+                   Evidence(Method.CANONICAL_FORM, facts={**facts, "det_under_38": det, "printed_form": "det Re Z' >= 0"}))
 
 
 @PAPER.equation("thm9", kind="claim", after="15c", section="4",
@@ -990,49 +1392,78 @@ def eq16(ctx: AuditContext) -> Finding:
     rel = ctx.statement.relations()[0]
     t = TABLE.lookup("t")
     h = sp.Function("h")
+    if rel.lhs != sp.Function("H")(s) or rel.ops != ("=",):
+        return Finding(Verdict.TYPO, f"the display must define H(s); it reads {sp.sstr(rel.lhs)} {rel.ops[0]} ...",
+                       Evidence(Method.PARSE, facts={"printed_form": sp.srepr(rel.lhs)}))
     value = rel.rhs.subs(h(t), sp.exp(-2 * t)).subs(s, 3).doit()
     if value == sp.Rational(1, 5):
         return Finding(Verdict.CONFIRMED, "the one-sided Laplace transform (for h = e^{-2t} at s = 3 it gives 1/(s+2) = 1/5)",
                        Evidence(Method.INSTANCES, instances=1))
-    return Finding(Verdict.TYPO, f"gives {value} for h = e^(-2t)", Evidence(Method.INSTANCES))
+    return Finding(Verdict.TYPO, f"gives {value} for h = e^(-2t) at s = 3, where the Laplace transform is 1/5",
+                   Evidence(Method.INSTANCES, facts={"printed_form": sp.srepr(rel.rhs)}))
 
 
 def _det_with_diagonal(M: sp.Matrix, t: list) -> sp.Expr:
     return (M + sp.diag(*t)).det(method="berkowitz")
 
 
-@PAPER.equation("17", kind="condition", printed=PRINTED["17"], section="4",
-                derivation="det(Z + diag t) = sum over S of det Z[S] prod_{i not in S} t_i; exact instances for Table 1 and its Z'")
-def eq17(ctx: AuditContext) -> Finding:
-    Z = table1_impedance(60)
-    Zp = _table1_symmetrization().zprime()
+def _det_identity(ctx: AuditContext, first: Any, second: Any, termination: Any, blocks: bool, label: str) -> Finding | None:
+    """The printed ``det(X + T) = det(Y + T)`` evaluated with X := Z, Y := Z' of Table 1 at exact
+    instances (diagonal or full block terminations T); a finding when it is not that identity."""
     import random
 
+    (rel,) = ctx.statement.relations()
+    symbols = rel.lhs.free_symbols | rel.rhs.free_symbols
+    if rel.ops != ("=",) or first not in rel.lhs.free_symbols | rel.rhs.free_symbols or second not in symbols \
+            or (first in rel.lhs.free_symbols) == (first in rel.rhs.free_symbols):
+        return Finding(Verdict.WRONG, f"{label} must equate det(Z + T) and det(Z' + T); it reads {sp.sstr(rel.as_sympy())}",
+                       Evidence(Method.PARSE, facts={"printed_form": sp.srepr(rel.as_sympy())}))
+    Z = table1_impedance(60)
+    Zp = _table1_symmetrization().zprime()
     rng = random.Random(17)
     for _ in range(3):
         point = sp.Rational(rng.randint(1, 9), rng.randint(1, 4))
-        t = [sp.Rational(rng.randint(0, 9), rng.randint(1, 5)) for _ in range(6)]
-        a = sp.nsimplify(sp.simplify(_det_with_diagonal(Z.subs(s, point), t)))
-        b = sp.nsimplify(sp.simplify(_det_with_diagonal(Zp.subs(s, point), t)))
-        if a != b:
-            return Finding(Verdict.WRONG, "determinants differ", Evidence(Method.COUNTEREXAMPLE, witness={"s": point, "t": t}))
+        if blocks:
+            T = sp.diag(*[sp.Matrix(3, 3, lambda i, j: sp.Rational(rng.randint(0, 9), rng.randint(1, 5))) for _ in range(2)])
+        else:
+            T = sp.diag(*[sp.Rational(rng.randint(0, 9), rng.randint(1, 5)) for _ in range(6)])
+        values = {first: sp.ImmutableMatrix(Z.subs(s, point)), second: sp.ImmutableMatrix(Zp.subs(s, point)),
+                  termination: sp.ImmutableMatrix(T)}
+        a, c = (sp.nsimplify(sp.simplify(side.xreplace(values).doit())) for side in (rel.lhs, rel.rhs))
+        if sp.simplify(a - c) != 0:
+            return Finding(Verdict.WRONG, f"{label} fails for Table 1 at s = {point}: {sp.sstr(a)} vs {sp.sstr(c)}",
+                           Evidence(Method.COUNTEREXAMPLE, witness={"s": point, "T": T}, facts={"printed_form": sp.srepr(rel.as_sympy())}))
+    return None
+
+
+@PAPER.equation("17", kind="condition", printed=PRINTED["17"], section="4",
+                derivation="det(Z + diag t) = sum over S of det Z[S] prod_{i not in S} t_i; exact instances for Table 1 and its Z'")
+def eq17(ctx: AuditContext) -> Finding:
+    L = TABLE.lookup
+    failure = _det_identity(ctx, L("Z_1"), L("Z_2"), L("T_0"), False, "(17)")
+    if failure is not None:
+        return failure
     return Finding(Verdict.CONFIRMED,
                    "det(Z + T_0) expands into principal minors of Z times products of the t_i, so identical principal minors "
                    "give equal determinants for every diagonal T_0 (checked exactly on 3 instances for Table 1 and its Z')",
-                   Evidence(Method.INSTANCES, instances=3))
+                   Evidence(Method.INSTANCES, instances=3, facts={"printed_form": "det(Z + T) = det(Z' + T), T diagonal"}))
 
 
 @PAPER.equation("18", kind="condition", printed=PRINTED["18"], section="4",
                 derivation="all block-compatible minors of Z and Z' (Table 1, k_vmyz = 60), exact")
 def eq18(ctx: AuditContext) -> Finding:
+    L = TABLE.lookup
+    failure = _det_identity(ctx, L(r"\mathcal{Z}'"), L(r"\mathcal{Z}"), L(r"\mathcal{T}"), True, "(18)")
+    if failure is not None:
+        return failure
     Y = _table1_symmetrization()
     if Y.symmetrizable == Decision.PROVED:
         count = Y.evidence.facts.get("block_compatible_minors_checked")
         return Finding(Verdict.CONFIRMED,
                        "for 3-DOF block terminations det(Z + T) = det(Z' + T) holds iff every minor of Z with the same number of "
-                       f"rows and columns in each port equals that of Z'; verified exactly for Table 1 ({count} minors). "
-                       "A and B alone do not guarantee it (see 14a)",
-                       Y.evidence)
+                       f"rows and columns in each port equals that of Z'; verified exactly for Table 1 ({count} minors) and on 3 "
+                       "exact block terminations. A and B alone do not guarantee it (see 14a)",
+                       Evidence(Y.evidence.method, facts={**dict(Y.evidence.facts), "printed_form": "det(Z' + T) = det(Z + T)"}))
     return Finding(Verdict.WRONG, Y.reason, Y.evidence)
 
 
@@ -1042,6 +1473,18 @@ def eq19(ctx: AuditContext) -> Finding:
     import mpmath
 
     Y = _table1_symmetrization()
+    Zp_sym = Y.zprime()
+    table = TABLE.with_functions({r"\mathcal{Z}'": lambda a: sp.ImmutableMatrix(Zp_sym.subs(s, a))})
+    (rel,) = parse_printed(ctx.equation.printed, table).relations()
+    w_sym = TABLE.lookup(r"\omega")
+    residual = 0.0
+    for w in (1, 3):
+        gap = sp.Matrix(rel.lhs - rel.rhs).subs(w_sym, w).evalf(30)
+        residual = max(residual, float(gap.norm()))
+    if rel.ops != ("=",) or residual > 1e-12:
+        return Finding(Verdict.WRONG, f"the printed identity does not hold for Table 1's Z': |lhs - rhs| = {residual:.3g} at "
+                       "w = 1 or 3", Evidence(Method.COUNTEREXAMPLE, witness={"omega": [1, 3]},
+                                               facts={"residual": residual, "printed_form": sp.srepr(rel.as_sympy())}))
     positive = all(c > 0 for c in Y.c.values())
     Zp = Y.zprime()
     worst = mpmath.mpf(0)
@@ -1058,7 +1501,8 @@ def eq19(ctx: AuditContext) -> Finding:
                        "is symmetric with real coefficients, Z'^T(-jw) = conj Z'(jw) and the Hermitian part is 2 Re Z'(jw) "
                        "(numerically re-checked at w = 1, 3); when some z_ij z_ji is a negative constant times a square, Z' has "
                        "imaginary entries and Z'^H(jw) must replace Z'^T(-jw)",
-                       Evidence(Method.STRUCTURAL, facts={"c": {f"{i},{j}": v for (i, j), v in Y.c.items()}, "max_residual": float(worst)}))
+                       Evidence(Method.STRUCTURAL, facts={"c": {f"{i},{j}": v for (i, j), v in Y.c.items()}, "max_residual": float(worst),
+                                                          "printed_form": "Z'(jw) + Z'^T(-jw) = 2 Re Z'(jw)"}))
     return Finding(Verdict.WRONG, "identity fails", Evidence(Method.COUNTEREXAMPLE, facts={"max_residual": float(worst)}))
 
 
@@ -1092,19 +1536,42 @@ def eq20(ctx: AuditContext) -> Finding:
 # ---------------------------------------------------------------------------------------------
 
 
-for _id, _what in (("21a", "master dynamics Z_m V_h = F_h + F_cm with Z_m = M_m s"),
-                   ("21b", "slave dynamics Z_s V_e = F_e + F_cs with Z_s = M_s s"),
-                   ("23a", "master position-position law"),
-                   ("23b", "slave position-position law")):
-    def _check(ctx: AuditContext, _what=_what) -> Finding:
-        return _definition(ctx, "defines the " + _what + " (used in (25))")
+def _model_definitions() -> dict[str, tuple[str, Any, Any]]:
+    """The case study's model (the convention of :func:`case_study_impedance`): device forces
+    balance the port force and the controller force; position-position controllers."""
+    L = TABLE.lookup
+    Zm, Zs, Cm, Cs = (L(k) for k in (r"\mathbf{Z}_m", r"\mathbf{Z}_s", r"\mathbf{C}_m", r"\mathbf{C}_s"))
+    Vh, Ve, Fh, Fe, Fcm, Fcs = (L(k) for k in ("V_h", "V_e", "F_h", "F_e", "F_{cm}", "F_{cs}"))
+    return {
+        "21a": ("master dynamics Z_m V_h = F_h + F_cm with Z_m = M_m s", Zm * Vh, Fh + Fcm),
+        "21b": ("slave dynamics Z_s V_e = F_e + F_cs with Z_s = M_s s", Zs * Ve, Fe + Fcs),
+        "23a": ("master position-position law", Fcm, -Cm * Vh + Cm * Ve),
+        "23b": ("slave position-position law", Fcs, -Cs * Ve + Cs * Vh),
+    }
+
+
+for _id in ("21a", "21b", "23a", "23b"):
+    def _check(ctx: AuditContext) -> Finding:
+        what, lhs, rhs = _model_definitions()[ctx.equation.id]
+        return _definition(ctx, "defines the " + what + " (used in (25))", lhs, rhs)
     PAPER.equation(_id, kind="expression", printed=PRINTED[_id], section="5.1", derivation="model definition")(_check)
 
 
 @PAPER.equation("22", kind="expression", printed=PRINTED["22"], section="5.1",
                 derivation="general inertia matrix; which of its entries the symmetrization conditions see")
 def eq22(ctx: AuditContext) -> Finding:
+    rel = ctx.statement.relations()[0]
     M = _rhs_matrix(ctx)
+    expected = sp.Matrix(3, 3, lambda a, c: TABLE.lookup(f"m_{{i{AXES[a]}{AXES[c]}}}"))
+    if rel.lhs != TABLE.lookup(r"\mathbf{M}_i") or M.shape != (3, 3):
+        return Finding(Verdict.TYPO, f"the display must define the 3x3 inertia matrix M_i; it reads {_line(rel.lhs)} = "
+                       f"{M.shape[0]}x{M.shape[1]} matrix", Evidence(Method.PARSE, facts={"printed_form": sp.srepr(rel.lhs)}))
+    misplaced = [(a, c) for a in range(3) for c in range(3) if M[a, c] != expected[a, c]]
+    if misplaced:
+        listing = "; ".join(f"({AXES[a]},{AXES[c]}): {sp.sstr(M[a, c])}" for a, c in misplaced)
+        return Finding(Verdict.TYPO, f"entry (a, b) of M_i must be m_iab; the display has {listing}",
+                       Evidence(Method.CANONICAL_FORM, facts={"printed_form": sp.srepr(M)}), corrected=tex(sp.Eq(
+                           TABLE.lookup(r"\mathbf{M}_i"), expected, evaluate=False)))
     general = case_study_impedance(gain_matrix("pm"), gain_matrix("vm"), gain_matrix("ps"), gain_matrix("vs"),
                                    gain_matrix("mm"), gain_matrix("ms"))
     extra = [c for c in symmetrization_conditions(general, ports=(3, 3)) if c.kind == "B"]
@@ -1112,10 +1579,16 @@ def eq22(ctx: AuditContext) -> Finding:
     return Finding(Verdict.CONFIRMED,
                    "a general 3x3 inertia matrix (9 entries); with m_ixy != m_iyx condition B would carry the extra terms "
                    "j w (m_iyx - m_ixy) absent from (26)-(31) -- the audit takes M_i symmetric, as inertia matrices are",
-                   Evidence(Method.PARSE, facts={"entries": len(M.free_symbols), "mass_terms_in_B_if_asymmetric": mass_terms}))
+                   Evidence(Method.PARSE, facts={"entries": len(M.free_symbols), "mass_terms_in_B_if_asymmetric": mass_terms,
+                                                 "printed_form": sp.srepr(M)}))
 
 
 def _printed_gain_matrix(ctx: AuditContext, kind: str) -> Finding:
+    rel = ctx.statement.relations()[0]
+    name = TABLE.lookup(r"\mathbf{C}_" + kind)
+    if rel.lhs != name:
+        return Finding(Verdict.TYPO, f"the display must define {sp.sstr(name)}; it defines {sp.sstr(rel.lhs)}",
+                       Evidence(Method.PARSE, facts={"printed_form": sp.srepr(rel.lhs)}))
     printed = _rhs_matrix(ctx)
     derived = (gain_matrix("p" + kind) + gain_matrix("v" + kind) * s) / s
     bad = [(i, j) for i in range(3) for j in range(3) if not is_identically_zero(printed[i, j] - derived[i, j])]
@@ -1139,24 +1612,29 @@ def eq24(ctx: AuditContext) -> Finding:
     return _printed_gain_matrix(ctx, "s")
 
 
-@PAPER.equation("25", kind="expression", printed=PRINTED["25"], section="5.1", derivation="substitute (23) into (21)")
+@PAPER.equation("25", kind="expression", printed=PRINTED["25"], section="5.1", derivation="substitute (23) into (21)", quotes=('21a', '21b', '23a', '23b'))
 def eq25(ctx: AuditContext) -> Finding:
-    rel = ctx.statement.relations()[0]
-    Zm, Zs, Cm, Cs = (TABLE.lookup(k) for k in (r"\mathbf{Z}_m", r"\mathbf{Z}_s", r"\mathbf{C}_m", r"\mathbf{C}_s"))
-    Vh, Ve, Fh, Fe = (TABLE.lookup(k) for k in ("V_h", "V_e", "F_h", "F_e"))
-    lhs = rel.lhs.blocks
-    product = rel.rhs.args                      # block impedance times block velocity
-    block_rhs = product[0].blocks if hasattr(product[0], "blocks") else sp.Matrix(product[0])
-    velocity = product[1].blocks if hasattr(product[1], "blocks") else sp.Matrix(product[1])
-    rhs = [sp.MatAdd(*[block_rhs[k, m] * velocity[m, 0] for m in range(2)]).doit() for k in range(2)]
-    Fcm = -Cm * Vh + Cm * Ve      # (23a)
-    Fcs = -Cs * Ve + Cs * Vh      # (23b)
-    derived = {Fh: Zm * Vh - Fcm, Fe: Zs * Ve - Fcs}   # (21) solved for the port forces
-    ok = all(sp.expand((derived[lhs[k, 0]] - rhs[k]).doit()) == sp.ZeroMatrix(3, 1) for k in range(2))
-    if ok:
-        return Finding(Verdict.CONFIRMED, "F_h = (C_m + Z_m) V_h - C_m V_e and F_e = -C_s V_h + (C_s + Z_s) V_e follow from (21) and (23)",
-                       Evidence(Method.CANONICAL_FORM))
-    return Finding(Verdict.TYPO, "does not follow from (21) and (23)", Evidence(Method.CANONICAL_FORM))
+    L = TABLE.lookup
+    Fh, Fe, Fcm, Fcs = (L(k) for k in ("F_h", "F_e", "F_{cm}", "F_{cs}"))
+    unknowns = [e for M in (Fh, Fe, Fcm, Fcs) for e in M.as_explicit()]
+    equations = []
+    for eq_id in ("21a", "21b", "23a", "23b"):
+        (rel,) = parse_printed(PAPER.get(eq_id).printed, TABLE).relations()
+        equations += list(_explicit(rel.lhs) - _explicit(rel.rhs))
+    solution = sp.solve(equations, unknowns, dict=True)
+    if len(solution) != 1 or any(u not in solution[0] for u in unknowns[:6]):
+        return Finding(Verdict.UNDECIDED, "(21) and (23) as printed do not determine the port forces",
+                       Evidence(Method.CANONICAL_FORM, facts={"ids": ["21a", "21b", "23a", "23b"]}))
+    rel = ctx.statement.relations()[0].as_sympy()
+    difference = (_explicit(rel.lhs) - _explicit(rel.rhs)).applyfunc(lambda e: sp.expand(e.xreplace(solution[0])))
+    bad = [k for k, e in enumerate(difference) if e != 0]
+    if not bad:
+        return Finding(Verdict.CONFIRMED, "F_h = (C_m + Z_m) V_h - C_m V_e and F_e = -C_s V_h + (C_s + Z_s) V_e follow from the "
+                       "printed (21) and (23)", Evidence(Method.CANONICAL_FORM, facts={"printed_form": ("follows from (21), (23)",)}))
+    row = bad[0]
+    return Finding(Verdict.TYPO, f"does not follow from (21) and (23): row {row + 1} of the printed system differs from them by "
+                   f"{sp.sstr(difference[row])}", Evidence(Method.COUNTEREXAMPLE, facts={"rows": [k + 1 for k in bad],
+                                                                                          "printed_form": sp.srepr(difference)}))
 
 
 # ---------------------------------------------------------------------------------------------
@@ -1178,14 +1656,18 @@ def _b_check(ctx: AuditContext) -> Finding:
     rel = ctx.relation()
     printed = sp.expand(rel.lhs - rel.rhs)
     derived = cond.at_frequency(omega)
+    if not isinstance(rel, sp.Eq) or printed == 0:
+        return Finding(Verdict.WRONG, f"condition B is an equation z_ji - z_ij = 0; the display reads {sp.sstr(rel)}",
+                       Evidence(Method.PARSE, facts={"printed_form": sp.srepr(rel)}), derived=sp.Eq(derived, 0))
     ratio = sp.cancel(derived / printed)
-    if ratio != 0 and ratio.free_symbols <= {omega}:
+    if ratio != 0 and ratio.free_symbols <= {omega} and not ratio.has(sp.zoo, sp.nan):
         a, b = (AXES[i % 3] for i in pair)
         return Finding(Verdict.CONFIRMED,
                        f"equivalent to z_{{{pair[1] + 1},{pair[0] + 1}}} = z_{{{pair[0] + 1},{pair[1] + 1}}} at s = j omega "
                        f"(the derived numerator is {sp.sstr(sp.factor(ratio))} times the printed expression); with a non-symmetric "
                        f"inertia matrix the term j omega (m_{b}{a} - m_{a}{b}) would be missing",
-                       Evidence(Method.CANONICAL_FORM, facts={"ratio": ratio}), derived=sp.Eq(derived, 0))
+                       Evidence(Method.CANONICAL_FORM, facts={"ratio": ratio, "printed_form": ("B", pair)}),
+                       derived=sp.Eq(derived, 0))
     return compare_expressions(printed, derived, what="the printed B-condition")
 
 
@@ -1223,6 +1705,10 @@ def _omega_form(expr: sp.Expr) -> str:
 def _a_check(ctx: AuditContext) -> Finding:
     rel = ctx.relation()
     printed = canonical(sp.expand(rel.lhs - rel.rhs))
+    if not isinstance(rel, sp.Eq) or printed == 0:
+        return Finding(Verdict.WRONG, f"condition A is an equation (... = 0); the display reads {sp.sstr(rel)}",
+                       Evidence(Method.PARSE, facts={"printed_form": sp.srepr(rel)}))
+    form = ("A with gains identified by B", sp.srepr(sp.expand(printed)))
     best = None
     for cond, derived in _a_candidates():
         for sign in (1, -1):
@@ -1236,7 +1722,8 @@ def _a_check(ctx: AuditContext) -> Finding:
         return Finding(Verdict.CONFIRMED,
                        f"equals {'minus ' if sign < 0 else ''}condition A for (i, j, k) = {tuple(triple)} reduced by B "
                        "(z_jk z_ki = z_kj z_ik) at s = j omega, with gains identified by B (k_yx = k_xy)",
-                       Evidence(Method.CANONICAL_FORM, facts={"triple": triple}), derived=sp.Eq(target, 0))
+                       Evidence(Method.CANONICAL_FORM, facts={"triple": triple, "printed_form": ("A", tuple(triple), sign)}),
+                       derived=sp.Eq(target, 0))
     printed_only = [t for t in sp.Add.make_args(sp.expand(printed)) if t not in sp.Add.make_args(target)]
     derived_only = [t for t in sp.Add.make_args(target) if t not in sp.Add.make_args(sp.expand(printed))]
     point = {sym: sp.Integer(k + 2) for k, sym in enumerate(sorted(printed.free_symbols | target.free_symbols, key=str)) if sym != omega}
@@ -1247,7 +1734,7 @@ def _a_check(ctx: AuditContext) -> Finding:
                    f"{[sp.sstr(t) for t in derived_only]} (an index slip, e.g. k_psyx for k_psyy)",
                    Evidence(Method.COUNTEREXAMPLE, witness={str(k): v for k, v in point.items()},
                             facts={"printed_value": sp.expand(printed.subs(point)), "derived_value": sp.expand(target.subs(point)),
-                                   "triple": triple}),
+                                   "triple": triple, "printed_form": form}),
                    derived=sp.Eq(target, 0), corrected=_omega_form(target))
 
 
@@ -1269,7 +1756,7 @@ def twelve_conditions(ctx: AuditContext) -> Finding:
     # of the six printed ones come from the conditions (32)-(37) match (best match, see _a_check)
     edges = []
     for eq_id in ("32", "33", "34", "35", "36", "37"):
-        rel = parse_printed(PRINTED[eq_id], TABLE).relations()[0].as_sympy()
+        rel = parse_printed(PAPER.get(eq_id).printed, TABLE).relations()[0].as_sympy()
         printed = canonical(sp.expand(rel.lhs - rel.rhs))
         best = min(((len(sp.Add.make_args(sp.expand(printed - sg * d))), d) for _, d in _a_candidates() for sg in (1, -1)),
                    key=lambda item: item[0])[1]
@@ -1311,14 +1798,36 @@ def _symmetry_equalities() -> set[frozenset]:
     return out
 
 
+def _equality_pair(rel: sp.Basic) -> frozenset | None:
+    """``k_a = k_b`` as the pair {k_a, k_b}; None when the relation is not such an equality
+    (another relation, coefficients, more or fewer gains)."""
+    if not isinstance(rel, sp.Eq):
+        return None
+    difference = sp.expand(rel.lhs - rel.rhs)
+    terms = sp.Add.make_args(difference)
+    if len(terms) != 2 or not all(t.free_symbols and len(t.free_symbols) == 1 for t in terms):
+        return None
+    coefficients = sorted(t.as_coeff_Mul()[0] for t in terms)
+    if coefficients != [-1, 1] or not all(isinstance(t.as_coeff_Mul()[1], sp.Symbol) for t in terms):
+        return None
+    return frozenset(t.as_coeff_Mul()[1] for t in terms)
+
+
 def _38ab_check(ctx: AuditContext) -> Finding:
-    printed = [frozenset(r.as_sympy().free_symbols) for r in ctx.statement.relations()]
+    relations = [r.as_sympy() for r in ctx.statement.relations()]
+    pairs = [_equality_pair(r) for r in relations]
     which = "m" if ctx.equation.id == "38a" else "s"
     derived = {e for e in _symmetry_equalities() if any(str(x).startswith(f"k_p{which}") or str(x).startswith(f"k_v{which}") for x in e)}
+    not_equalities = [sp.sstr(r) for r, p in zip(relations, pairs) if p is None]
+    if not_equalities:
+        return Finding(Verdict.WRONG, f"{not_equalities} are not equalities of two gains (B requires k_ab = k_ba)",
+                       Evidence(Method.PARSE, facts={"printed_form": [sp.srepr(r) for r in relations]}))
+    printed = pairs
     wrong = [p for p in printed if p not in derived]
     missing = [d for d in derived if d not in printed]
     if wrong:
-        return Finding(Verdict.WRONG, f"printed equalities not implied: {wrong}", Evidence(Method.CANONICAL_FORM))
+        return Finding(Verdict.WRONG, f"printed equalities not implied by B: {[' = '.join(sorted(map(str, w))) for w in wrong]}",
+                       Evidence(Method.CANONICAL_FORM, facts={"printed_form": sorted(sorted(map(str, p)) for p in printed)}))
     if not missing:
         return Finding(Verdict.CONFIRMED, "all symmetry equalities listed", Evidence(Method.CANONICAL_FORM))
     first = sorted(missing, key=lambda e: sorted(map(str, e)))[0]
@@ -1331,7 +1840,9 @@ def _38ab_check(ctx: AuditContext) -> Finding:
                    f"lists {len(printed)} of the {len(derived)} symmetry equalities that B requires for all w "
                    f"(each of (26)-(31) needs both k_p and k_v symmetric); missing: "
                    f"{[' = '.join(sorted(map(str, e))) for e in missing]}; with only the printed ones, {a} = 1, {b} = 2 violates B",
-                   Evidence(Method.COUNTEREXAMPLE, witness={str(k): v for k, v in witness.items()}, facts={"missing": [sorted(map(str, e)) for e in missing]}),
+                   Evidence(Method.COUNTEREXAMPLE, witness={str(k): v for k, v in witness.items()},
+                            facts={"missing": [sorted(map(str, e)) for e in missing],
+                                   "printed_form": sorted(sorted(map(str, p)) for p in printed)}),
                    corrected=corrected)
 
 
@@ -1369,14 +1880,21 @@ def eq38c(ctx: AuditContext) -> Finding:
     literal = [sp.nsimplify(t.subs(values)) for t in terms]
     subs = _ratio_chain_substitution()
     vanish = all(sp.expand(c.expr.xreplace(subs)) == 0 for c in derived_conditions())
+    mismatched = []
+    for t in terms:
+        num, den = sp.fraction(sp.together(t))
+        if den != 1 and not (str(num)[-2:] == str(den)[-2:] and str(num).startswith("k_pm") and str(den).startswith("k_ps")):
+            mismatched.append(f"{sp.sstr(num)}/{sp.sstr(den)}")
+    reading = " = ".join(sp.sstr(t) for t in terms)
+    facts = {"literal_at_table1": literal, "repaired_chain_solves_all": vanish, "printed_form": sp.srepr(tuple(terms)),
+             "mismatched_ratios": mismatched}
     if len(set(literal)) > 1 and vanish:
         return Finding(Verdict.TYPO,
-                       "garbled: read literally it equates the velocity gains to each other and to the position-gain ratios "
-                       f"(Table 1 gives {literal[:6]} for the first six terms); the intended chain, as in (46), is equal ratios "
-                       "k_vm/k_vs = k_pm/k_ps for all six gain pairs (with k_psyy, k_psyz for the printed k_psyx), which makes "
-                       "all 24 conditions A and B vanish identically",
-                       Evidence(Method.CANONICAL_FORM, facts={"literal_at_table1": literal, "repaired_chain_solves_all": vanish}),
-                       corrected=CORRECTED_38C)
+                       f"garbled: read literally it is the chain {reading}, which equates the velocity gains to each other and "
+                       f"to the position-gain ratios (Table 1 gives {literal}); ratios whose indices do not match: {mismatched}; "
+                       "the intended chain, as in (46), is equal ratios k_vm/k_vs = k_pm/k_ps for all six gain pairs, which "
+                       "makes all 24 conditions A and B vanish identically",
+                       Evidence(Method.CANONICAL_FORM, facts=facts), corrected=CORRECTED_38C)
     return Finding(Verdict.UNDECIDED, "literal and repaired readings not separated", Evidence(Method.INSTANCES))
 
 
@@ -1449,32 +1967,66 @@ def _low_order_minors(which: str) -> dict:
     return out
 
 
+#: The principal minors (0-based rows of the 6x6 residue or real part of Z') each display lists.
+EXPECTED_MINORS = {"39a": [(0,), (1,), (2,)], "39b": [(3,), (4,), (5,)], "39c": [(0, 1)], "39d": [(0, 1, 2)],
+                   "41a": [(0,), (1,), (2,)], "41b": [(3,), (4,), (5,)], "42": [(0, 1)], "43": [(0, 1, 2)]}
+
+
+def _minor_of(expr: sp.Expr, minors: dict) -> tuple[tuple[int, ...] | None, sp.Expr | None]:
+    """The principal minor a printed expression is, up to a positive factor (exact match first)."""
+    best = None
+    for S, m in minors.items():
+        if m == 0:
+            continue
+        ratio = sp.cancel(expr / m)
+        if ratio == 1:
+            return S, ratio
+        if best is None and ratio.free_symbols <= {rho} and ratio.is_positive:
+            best = (S, ratio)
+    return best if best is not None else (None, None)
+
+
 def _minor_check(ctx: AuditContext, which: str, what: str) -> Finding:
-    """Each printed relation '... >= 0' must be a principal minor (up to a positive factor)."""
+    """Each printed relation must say 'a principal minor >= 0' (up to a positive factor), and
+    together they must be the minors the display stands for (:data:`EXPECTED_MINORS`)."""
+    from hapticproof.certify import as_sign_condition
+
     minors = _low_order_minors(which)
-    unmatched = []
-    matched = []
+    unmatched, matched, reversed_ = [], [], []
     for rel in _residue_relations(ctx):
-        lhs = _as_master(rel.lhs - rel.rhs)
-        hit = None
-        for S, m in minors.items():
-            if m == 0:
+        condition = as_sign_condition(rel)
+        S, _ = _minor_of(_as_master(condition.expr), minors)
+        if S is None:
+            S_neg, _ = _minor_of(-_as_master(condition.expr), minors)
+            if S_neg is not None:
+                reversed_.append(sp.sstr(rel))
                 continue
-            ratio = sp.cancel(lhs / m)
-            if ratio.free_symbols <= {rho} and ratio.is_positive:
-                hit = S
-                break
-        (matched if hit else unmatched).append((sp.sstr(rel), hit))
+        if condition.op not in (">=", ">"):
+            reversed_.append(sp.sstr(rel))
+            continue
+        (matched if S is not None else unmatched).append((sp.sstr(rel), S))
+    expected = EXPECTED_MINORS.get(ctx.equation.id)
+    listed = sorted(S for _, S in matched)
+    form = ("minors", tuple(listed), tuple(u for u, _ in unmatched), tuple(reversed_))
+    if reversed_:
+        return Finding(Verdict.WRONG, f"{reversed_} bound a principal minor of the {what} from above: a principal minor of a PSD "
+                       "matrix is >= 0", Evidence(Method.COUNTEREXAMPLE, facts={"printed_form": form}))
     if unmatched:
+        why = ("the printed k_psyx is the xy gain; the yy gain k_psyy belongs here" if ctx.equation.id == "39b"
+               else f"it is not of the form (principal minor) >= 0")
         return Finding(Verdict.TYPO,
-                       f"{[u for u, _ in unmatched]} is not a principal minor of the {what} (the printed k_psyx is the xy gain; "
-                       "the yy gain k_psyy belongs here)",
-                       Evidence(Method.CANONICAL_FORM, facts={"matched": matched}),
+                       f"{[u for u, _ in unmatched]} is not a principal minor of the {what} ({why})",
+                       Evidence(Method.CANONICAL_FORM, facts={"matched": matched, "printed_form": form}),
                        corrected=_corrected_39b() if ctx.equation.id == "39b" else None)
+    if expected is not None and listed != sorted(expected):
+        missing = [[i + 1 for i in S] for S in expected if S not in listed]
+        return Finding(Verdict.TYPO, f"the display lists the principal minors {[[i + 1 for i in S] for S in listed]} of the {what}; "
+                       f"it stands for {[[i + 1 for i in S] for S in expected]} (missing {missing})",
+                       Evidence(Method.CANONICAL_FORM, facts={"printed_form": form}))
     return Finding(Verdict.CONFIRMED,
                    f"each is a principal minor of the {what} under (38) ({[[i + 1 for i in S] for _, S in matched]}); "
                    "necessary conditions -- sufficiency needs all principal minors (see the claims after them)",
-                   Evidence(Method.CANONICAL_FORM, facts={"minors": [[i + 1 for i in S] for _, S in matched]}))
+                   Evidence(Method.CANONICAL_FORM, facts={"minors": [[i + 1 for i in S] for _, S in matched], "printed_form": form}))
 
 
 def _corrected_39b() -> str:
@@ -1498,50 +2050,83 @@ def residues_39(ctx: AuditContext) -> Finding:
     structure = (R - sp.kronecker_product(u * u.T, Kpm)).applyfunc(sp.simplify) == sp.zeros(6, 6)
     bad = {gain("pm", a, b): v for (a, b), v in zip(("xx", "yy", "zz", "xy", "xz", "yz"), (0, 1, 1, 0, 0, 2))}
     point = {**bad, rho: sp.Integer(1)}
-    statements = [PRINTED[k] for k in ("39a", "39b", "39c", "39d")]
+    statements = [PAPER.get(k).printed for k in ("39a", "39b", "39c", "39d")]
     holds = []
     for text in statements:
         for rel in parse_printed(text, TABLE).relations():
-            holds.append(bool(_as_master(rel.lhs - rel.rhs).subs(point) >= 0))
+            value = rel.as_sympy()
+            value = value.func(_as_master(value.lhs), _as_master(value.rhs)).subs(point)
+            holds.append(bool(value) if value in (sp.true, sp.false) else False)
     psd, negative = matrix_psd(R.subs(point))
+    Kbad = sp.Matrix(3, 3, lambda i, j: gain("pm", AXES[min(i, j)], AXES[max(i, j)])).subs(bad)
+    failing = {f"{AXES[i]}{AXES[j]}": Kbad.extract([i, j], [i, j]).det() for i in range(3) for j in range(i + 1, 3)
+               if Kbad.extract([i, j], [i, j]).det() < 0}
     if structure and all(holds) and not psd:
         return Finding(
             Verdict.WRONG,
             "under (38) the residue of Z' at s = 0 is u u^T (x) K_pm with u = (1, -1/sqrt(rho)), PSD iff K_pm is PSD, i.e. all "
-            "seven principal minors of K_pm >= 0; (39) lists only the diagonal, the leading 2x2 and the determinant: "
-            "K_pm = [[0,0,0],[0,1,2],[0,2,1]] satisfies (39a)-(39d) but k_pmyy k_pmzz - k_pmyz^2 = -3 < 0 (D as printed, "
-            "leading minors of the 6x6 residue > 0, can never hold: the residue has rank <= 3)",
-            Evidence(Method.COUNTEREXAMPLE, witness={"K_pm": sp.Matrix([[0, 0, 0], [0, 1, 2], [0, 2, 1]]), "rho": 1},
+            f"seven principal minors of K_pm >= 0; the printed (39a)-(39d) all hold at K_pm = {_line(Kbad)}, whose 2x2 "
+            f"principal minor(s) {failing} are negative (D as printed, leading minors of the 6x6 residue > 0, can never "
+            "hold: the residue has rank <= 3)",
+            Evidence(Method.COUNTEREXAMPLE, witness={"K_pm": Kbad, "rho": 1},
                      facts={"negative_minors": negative}),
             corrected=r"\mathbf{K}_{pm} \succeq 0:\ \text{all principal minors of } \mathbf{K}_{pm} \geq 0",
         )
-    return Finding(Verdict.UNDECIDED, "residue structure not established", Evidence(Method.CANONICAL_FORM))
+    return Finding(Verdict.UNDECIDED, f"the printed (39) {'fails' if not all(holds) else 'holds'} at the witness K_pm = "
+                   f"{_line(Kbad)} (non-PSD); residue structure {'established' if structure else 'not established'}",
+                   Evidence(Method.CANONICAL_FORM, facts={"holds": holds}))
 
 
-@PAPER.equation("40", kind="condition", printed=PRINTED["40"], section="5.1", derivation="restates (39c)")
+@PAPER.equation("40", kind="condition", printed=PRINTED["40"], section="5.1", derivation="restates (39c)", quotes=('39c',))
 def eq40(ctx: AuditContext) -> Finding:
+    from hapticproof.certify import compare_sign_conditions
+
     rel = ctx.relation()
-    same = is_identically_zero((rel.lhs - rel.rhs) - (gain("pm", "x", "x") * gain("pm", "y", "y") - gain("pm", "x", "y") ** 2))
-    if same:
-        return Finding(Verdict.CONFIRMED, "the same inequality as (39c) (2x2 leading minor of K_pm)", Evidence(Method.CANONICAL_FORM))
-    return Finding(Verdict.TYPO, "differs from (39c)", Evidence(Method.CANONICAL_FORM))
+    (other,) = [r.as_sympy() for r in parse_printed(PAPER.get("39c").printed, TABLE).relations()]
+    cmp = compare_sign_conditions(rel.func(_as_master(rel.lhs), _as_master(rel.rhs), evaluate=False),
+                                  other.func(_as_master(other.lhs), _as_master(other.rhs), evaluate=False), what="(40)")
+    if cmp.verdict == Verdict.CONFIRMED:
+        return Finding(Verdict.CONFIRMED, "the same inequality as (39c) (2x2 leading minor of K_pm)",
+                       Evidence(Method.CANONICAL_FORM, facts={"printed_form": "same as (39c)"}))
+    return Finding(Verdict.TYPO, f"differs from (39c): {cmp.detail}", Evidence(cmp.evidence.method, witness=cmp.evidence.witness,
+                                                                              facts={"ids": ["40", "39c"]}))
 
 
 @PAPER.equation("40-claim", kind="claim", after="40", section="5.1",
                 printed="the condition set (39) holds if (40) and condition (39d) hold",
                 derivation="(39a), (39b) follow from nonnegative gains (stated with (46)); without them they do not")
 def claim_40(ctx: AuditContext) -> Finding:
+    import random
+
+    printed = {k: [r.as_sympy() for r in parse_printed(PAPER.get(k).printed, TABLE).relations()]
+               for k in ("39a", "39b", "39c", "39d", "40")}
+
+    def all_hold(conditions: list, values: dict) -> bool:
+        return all(c.subs(values) is sp.true for c in conditions)
+
+    # with the paper's nonnegative gains: (40) and (39d) must imply all of (39)
+    rng = random.Random(40)
+    names = sorted({x for conds in printed.values() for c in conds for x in c.free_symbols}, key=str)
+    counter = None
+    for _ in range(300):
+        values = {x: sp.Rational(rng.randint(0, 12), rng.randint(1, 3)) for x in names}
+        if all_hold(printed["40"] + printed["39d"], values) and not all_hold(
+                [c for k in ("39a", "39b", "39c", "39d") for c in printed[k]], values):
+            counter = values
+            break
+    facts = {"ids": ["40", "39a", "39b", "39c", "39d"]}
+    if counter is not None:
+        failing = [k for k in ("39a", "39b", "39c", "39d") if not all_hold(printed[k], counter)]
+        return Finding(Verdict.WRONG, f"with nonnegative gains (40) and (39d) hold at the witness while {failing} fail",
+                       Evidence(Method.COUNTEREXAMPLE, witness={str(k): v for k, v in counter.items()}, facts=facts))
     point = {gain("pm", "x", "x"): -1, gain("pm", "y", "y"): -1, gain("pm", "z", "z"): 1,
              gain("pm", "x", "y"): 0, gain("pm", "x", "z"): 0, gain("pm", "y", "z"): 0}
-    c40 = parse_printed(PRINTED["40"], TABLE).relations()[0].as_sympy().subs(point)
-    c39d = parse_printed(PRINTED["39d"], TABLE).relations()[0].as_sympy().subs(point)
-    c39a = [r.as_sympy().subs(point) for r in parse_printed(PRINTED["39a"], TABLE).relations()]
-    if bool(c40) and bool(c39d) and not all(bool(x) for x in c39a):
-        return Finding(Verdict.CONFIRMED,
-                       "true because the paper takes all gains nonnegative (stated with (46)): then (39a), (39b) hold and (39) "
-                       "reduces to (40) and (39d); without that assumption K_pm = diag(-1, -1, 1) meets (40), (39d) but not (39a)",
-                       Evidence(Method.COUNTEREXAMPLE, witness={"K_pm": "diag(-1, -1, 1)"}))
-    return Finding(Verdict.UNDECIDED, "check inconclusive", Evidence(Method.INSTANCES))
+    without = all_hold(printed["40"] + printed["39d"], point) and not all_hold(printed["39a"], point)
+    return Finding(Verdict.CONFIRMED,
+                   "true because the paper takes all gains nonnegative (stated with (46)): then (39a), (39b) hold and (39) "
+                   "reduces to (40) and (39d) (no counterexample among 300 exact nonnegative gain sets)"
+                   + ("; without that assumption K_pm = diag(-1, -1, 1) meets (40), (39d) but not (39a)" if without else ""),
+                   Evidence(Method.INSTANCES, instances=300, facts=facts))
 
 
 TABLE1_PRINTED = (
@@ -1589,9 +2174,12 @@ for _id in ("41a", "41b", "42", "43"):
 @PAPER.equation("44", kind="condition", printed=PRINTED["44"], section="5.1", assumptions=ASSUME_CASE,
                 derivation="the 4th leading principal minor of Re Z'(j omega) under (38)")
 def eq44(ctx: AuditContext) -> Finding:
+    from hapticproof.certify import as_sign_condition
+
     rel = ctx.relation()
     capital = TABLE.lookup("K_{vmxx}")
-    printed = _as_master((rel.lhs - rel.rhs).subs(capital, gain("vm", "x", "x")))
+    condition = as_sign_condition(rel)
+    printed = _as_master(condition.expr.subs(capital, gain("vm", "x", "x")))
     fourth = real_part_leading_minors()[3]
     R = real_part_zprime()
     Kvm = gain_matrix("vm", True)
@@ -1600,14 +2188,19 @@ def eq44(ctx: AuditContext) -> Finding:
     values = {gain("vm", AXES[i], AXES[j]): table1_gains(60)["vm"][i, j] for i in range(3) for j in range(i, 3)}
     values[rho] = sp.Rational(1, 2)
     at_table = sp.nsimplify(sp.simplify(printed.subs(values)))
-    if fourth == 0 and structure and at_table < 0:
+    holds = {">": at_table > 0, ">=": at_table >= 0, "=": at_table == 0, "!=": at_table != 0}[condition.op] \
+        if at_table.is_real else None
+    form = (condition.op, sp.srepr(sp.expand(printed)))
+    if fourth == 0 and structure and holds is not None:
+        fails = ("although that teleoperator is absolutely stable, the printed condition fails there" if not holds else
+                 "so it separates nothing there")
         return Finding(Verdict.WRONG,
                        "under (38) Re Z'(j omega) = u u^T (x) K_vm with u = (1, -1/sqrt(rho)) has rank <= 3, so its 4th (and 5th, "
-                       "6th) leading minor is identically 0: the condition is void. The printed expression is not a minor of Re Z' "
-                       f"(it also writes K_vmxx for k_vmxx); at the Table 1 gains with k_vmyz = 60 it is {at_table} < 0 although "
-                       "that teleoperator is absolutely stable",
+                       "6th) leading minor is identically 0: the condition is void. The printed expression "
+                       f"({condition.op} 0) is not a minor of Re Z' (it also writes K_vmxx for k_vmxx); at the Table 1 gains with "
+                       f"k_vmyz = 60 it is {at_table}: {fails}",
                        Evidence(Method.CANONICAL_FORM, witness={"gains": "Table 1, k_vmyz = 60"},
-                                facts={"fourth_leading_minor": fourth, "printed_at_table1": at_table}),
+                                facts={"fourth_leading_minor": fourth, "printed_at_table1": at_table, "printed_form": form}),
                        derived=sp.Ge(fourth, 0), corrected=r"\det\left(\text{Re}\,\mathcal{Z}'\right)_{4\times 4} = 0 \geq 0")
     return Finding(Verdict.UNDECIDED, "4th minor not established", Evidence(Method.CANONICAL_FORM, facts={"fourth": fourth}))
 
@@ -1617,17 +2210,21 @@ def eq44(ctx: AuditContext) -> Finding:
 def eq45(ctx: AuditContext) -> Finding:
     rel = ctx.relation()
     values = {gain("vm", AXES[i], AXES[j]): table1_gains(60)["vm"][i, j] for i in range(3) for j in range(3)}
-    holds = bool(rel.subs(values))
+    at = rel.subs(values)
+    holds = bool(at) if at in (sp.true, sp.false) else None
     verdict = table1_verdict(60)
-    if not holds and verdict.decision == Decision.PROVED:
+    sides = (sp.nsimplify(rel.lhs.subs(values)), sp.nsimplify(rel.rhs.subs(values)))
+    if holds is False and verdict.decision == Decision.PROVED:
         return Finding(Verdict.WRONG,
-                       "not a necessary condition (it only follows from the wrong (44)): Table 1 with k_vmyz = 60 violates it "
-                       "(3600 < 80 * 80 = 6400) yet is absolutely stable (Z' positive real, minors verified); under (38) the exact "
-                       "real-part condition is K_vm PSD, which requires the opposite-looking k_vmyy k_vmzz >= k_vmyz^2",
+                       f"not a necessary condition (it only follows from the wrong (44)): Table 1 with k_vmyz = 60 violates it "
+                       f"({sp.sstr(rel)} reads {sides[0]} vs {sides[1]}) yet is absolutely stable (Z' positive real, minors "
+                       "verified); under (38) the exact real-part condition is K_vm PSD, which requires the opposite-looking "
+                       "k_vmyy k_vmzz >= k_vmyz^2",
                        Evidence(Method.COUNTEREXAMPLE, witness={"gains": "Table 1", "k_vmyz": 60},
-                                facts={"absolute_stability": verdict.reason}),
+                                facts={"absolute_stability": verdict.reason, "printed_form": sp.srepr(canonical(rel))}),
                        corrected=r"\mathbf{K}_{vm} \succeq 0:\ \text{all principal minors of } \mathbf{K}_{vm} \geq 0")
-    return Finding(Verdict.UNDECIDED, "Table 1 does not separate (45)", Evidence(Method.INSTANCES))
+    return Finding(Verdict.UNDECIDED, f"Table 1 does not separate (45): {sp.sstr(rel)} reads {sides[0]} vs {sides[1]} there",
+                   Evidence(Method.INSTANCES, facts={"printed_form": sp.srepr(canonical(rel))}))
 
 
 @PAPER.equation("45-minors56", kind="claim", after="45", section="5.1",
@@ -1653,41 +2250,109 @@ CORRECTED_46 = (
 )
 
 
-def compact_set_holds(g: dict[str, sp.Matrix]) -> dict[str, bool]:
-    """Every line of (46) (OCR damage repaired: ratios with k_vs, k_psyy, k_psyz) at numeric gains."""
-    Kpm, Kvm, Kps, Kvs = g["pm"], g["vm"], g["ps"], g["vs"]
-    ratios = {sp.Rational(a, b) for M, N in ((Kvm, Kvs), (Kpm, Kps)) for a, b in zip(M, N) if b != 0}
-    return {
-        "symmetric": all(M == M.T for M in (Kpm, Kvm, Kps, Kvs)),
-        "ratios": len(ratios) == 1,
-        "kpm2": Kpm[0, 0] * Kpm[1, 1] >= Kpm[0, 1] ** 2,
-        "kvm2": Kvm[0, 0] * Kvm[1, 1] >= Kvm[0, 1] ** 2,
-        "kvm3": Kvm.det() >= 0,
-        "45": Kvm[1, 2] ** 2 >= Kvm[0, 0] * Kvm[1, 1],
-        "nonnegative": all(v >= 0 for M in (Kpm, Kvm, Kps, Kvs) for v in M),
-    }
+def _repair_ratio(term: sp.Expr) -> tuple[sp.Expr, str | None]:
+    """A ratio k_{vm ab}/k_{vs ??} (or k_{pm ab}/k_{ps ??}) of (46): a denominator whose indices are
+    not those of its numerator (the OCR damage k_vsx, k_vsy, k_vsz and the slave's k_psyx at the
+    yy, yz places) takes the numerator's indices; returns the term and the repair made."""
+    num, den = sp.fraction(sp.together(term))
+    if den == 1 or not (isinstance(num, sp.Symbol) and isinstance(den, sp.Symbol)):
+        return term, None
+    n, d = str(num), str(den)
+    kinds = {"k_vm": "k_vs", "k_pm": "k_ps"}
+    if len(n) != 6 or n[:4] not in kinds or not d.startswith(kinds[n[:4]]):
+        return term, None
+    if sorted(d[4:]) == sorted(n[4:]):
+        return term, None
+    want = gain(kinds[n[:4]][2:], n[4], n[5])
+    return num / want, f"{d} -> {want}"
+
+
+@dataclass(frozen=True)
+class _RatioChain:
+    """``a_1/b_1 = a_2/b_2 = ...`` read as proportionality: the ratios with b_i != 0 are equal and
+    a_i = 0 where b_i = 0 (the gain matrices are proportional, zero entries included)."""
+
+    terms: tuple
+
+    def holds(self, values: dict) -> bool:
+        ratios, ok = set(), True
+        for t in self.terms:
+            num, den = (sp.sympify(x).xreplace(values) for x in sp.fraction(sp.together(t)))
+            if den == 0:
+                ok = ok and num == 0
+            else:
+                ratios.add(sp.nsimplify(num / den))
+        return ok and len(ratios) <= 1
+
+    def __str__(self) -> str:
+        return " = ".join(sp.sstr(t) for t in self.terms)
+
+
+def _read_46(text: str) -> tuple[list[Any], list[str]]:
+    """The printed (46) as a list of conditions (ratio chains as proportionality, damaged ratio
+    denominators repaired by the index rule) and the repairs made."""
+    conditions, repairs = [], []
+    for rel in parse_printed(text, TABLE).relations():
+        terms = []
+        for t in rel.terms:
+            fixed, repair = _repair_ratio(t)
+            terms.append(fixed)
+            if repair:
+                repairs.append(repair)
+        if len(terms) > 2 and set(rel.ops) == {"="} and all(sp.fraction(sp.together(t))[1] != 1 for t in terms):
+            conditions.append(_RatioChain(tuple(terms)))
+            continue
+        for a, op, c in zip(terms, rel.ops, terms[1:]):
+            conditions.append({"=": sp.Eq, ">=": sp.Ge, ">": sp.Gt, "<=": sp.Le, "<": sp.Lt, "!=": sp.Ne}[op](a, c, evaluate=False))
+    return conditions, repairs
+
+
+def _gain_values(g: dict[str, sp.Matrix]) -> dict[sp.Symbol, sp.Expr]:
+    return {gain(kind, AXES[i], AXES[j]): M[i, j] for kind, M in g.items() for i in range(3) for j in range(3)}
+
+
+def _failing(conditions: list[Any], g: dict[str, sp.Matrix]) -> list[str]:
+    values = _gain_values(g)
+    out = []
+    for c in conditions:
+        if isinstance(c, _RatioChain):
+            if not c.holds(values):
+                out.append(str(c))
+            continue
+        try:
+            at = c.xreplace(values)
+        except (TypeError, ZeroDivisionError):
+            at = None
+        if at is not sp.true:
+            out.append(sp.sstr(c))
+    return out
 
 
 @PAPER.equation("46", kind="condition", printed=PRINTED["46"], section="5.1", assumptions=ASSUME_CASE,
                 derivation="gains meeting every line of (46) whose Z' is not positive real; Table 1 against (46)")
 def eq46(ctx: AuditContext) -> Finding:
+    conditions, repairs = _read_46(ctx.equation.printed)
     g = compact_set_counterexample()
-    lines = compact_set_holds(g)
+    at_counter = _failing(conditions, g)
+    at_table = _failing(conditions, table1_gains(60))
+    nonnegative = all(v >= 0 for M in g.values() for v in M)
     verdict = absolute_stability(_compact_impedance(), ports=(3, 3), search=False)
-    table = compact_set_holds(table1_gains(60))
-    if all(lines.values()) and verdict.decision == Decision.DISPROVED:
-        extra = ""
+    reading = "; ".join(str(c) if isinstance(c, _RatioChain) else sp.sstr(c) for c in conditions)
+    facts = {"reading": reading, "repairs": repairs, "failing_at_counterexample": at_counter,
+             "failing_at_table1": at_table, "youla": verdict.reason, "printed_form": reading}
+    if not at_counter and nonnegative and verdict.decision == Decision.DISPROVED:
         return Finding(
             Verdict.WRONG,
-            "not sufficient: K_pm = [[1,0,1],[0,1,1],[1,1,1]], K_vm = [[1,0,0],[0,1,1],[0,1,1]], K_ps = 2K_pm, K_vs = 2K_vm "
-            f"satisfy every line of (46) with nonnegative gains, but {verdict.reason}{extra}: (46) dropped det K_pm >= 0 "
-            "(39d) and both sets of non-leading minors; it also excludes Table 1's stable gains (they violate its last line). "
-            "Exact condition: K_pm and K_vm PSD",
-            Evidence(Method.COUNTEREXAMPLE, witness={k: v for k, v in g.items()},
-                     facts={"lines_hold": lines, "youla": verdict.reason, "table1_lines": table}),
+            f"not sufficient: read as {reading} (OCR repaired: {', '.join(repairs) or 'none'}), every line holds at K_pm = "
+            f"{_line(g['pm'])}, K_vm = {_line(g['vm'])}, K_ps = 2K_pm, K_vs = 2K_vm (nonnegative gains), but {verdict.reason}: "
+            "(46) dropped det K_pm >= 0 (39d) and both sets of non-leading minors; Table 1's stable gains violate "
+            f"{at_table or 'no line'}. Exact condition: K_pm and K_vm PSD",
+            Evidence(Method.COUNTEREXAMPLE, witness={k: v for k, v in g.items()}, facts=facts),
             corrected=CORRECTED_46,
         )
-    return Finding(Verdict.UNDECIDED, "counterexample did not verify", verdict.evidence)
+    return Finding(Verdict.UNDECIDED, f"read as {reading}, (46) fails at the prepared counterexample ({at_counter}); its "
+                   f"sufficiency was not refuted (Table 1 violates {at_table or 'no line'})",
+                   Evidence(Method.INSTANCES, facts=facts))
 
 
 # ---------------------------------------------------------------------------------------------
@@ -1703,39 +2368,70 @@ MASSES_PRINTED = ("$M_{mxx} = 1.7$, $M_{mxy} = 0.2$, $M_{myy} = 1.9$, $M_{mxz} =
 def masses(ctx: AuditContext) -> Finding:
     import re
 
-    names = {m.group(1) for m in re.finditer(r"M_\{(\w+)\}", ctx.equation.printed)}
-    missing = sorted({"syy", "szz"} - names)
-    literal = case_study_impedance(*(table1_gains(60)[k] for k in ("pm", "vm", "ps", "vs")), section52_masses()[0],
-                                   sp.Matrix([[sp.Rational(13, 10), sp.Rational(1, 2), sp.Rational(1, 10)],
-                                              [sp.Rational(8, 5), sp.Symbol("m_syy"), sp.Rational(3, 10)],
-                                              [sp.Rational(3, 2), sp.Rational(3, 10), sp.Symbol("m_szz")]]))
-    b_fails = any(c.kind == "B" for c in symmetrization_conditions(literal, ports=(3, 3)))
-    Ms = section52_masses()[1]
-    pd = all(Ms[:k, :k].det() > 0 for k in (1, 2, 3))
-    if missing and b_fails and pd:
+    from hapticproof.audit import quoted_math
+    from hapticproof.parse import SymbolTable, parse_expression
+
+    printed: dict[str, sp.Expr] = {}
+    for quote in quoted_math(ctx.equation.printed):
+        name, _, value = quote.partition("=")
+        match = re.fullmatch(r"\s*M_\{(\w+)\}\s*", name)
+        if match is None or not value.strip():
+            return Finding(Verdict.MALFORMED, f"'{quote}' is not a mass entry M_{{..}} = value", Evidence(Method.PARSE))
+        printed[match.group(1)] = parse_expression(value, SymbolTable())
+    missing = sorted({"syy", "szz"} - set(printed))
+    symbol = {"syy": sp.Symbol("m_syy"), "szz": sp.Symbol("m_szz")}
+
+    def entry(which: str, a: str, b: str) -> sp.Expr:
+        return printed.get(f"{which}{a}{b}", printed.get(f"{which}{b}{a}", symbol.get(f"{which}{a}{b}", sp.Symbol(f"m_{which}{a}{b}"))))
+
+    # literal reading: each printed entry at its printed place; what is not printed stays symbolic
+    literal_s = sp.Matrix(3, 3, lambda i, j: entry("s", AXES[i], AXES[j]))
+    Mm = sp.Matrix(3, 3, lambda i, j: entry("m", AXES[min(i, j)], AXES[max(i, j)]))
+    gains = [table1_gains(60)[k] for k in ("pm", "vm", "ps", "vs")]
+    b_fails = any(c.kind == "B" for c in symmetrization_conditions(case_study_impedance(*gains, Mm, literal_s), ports=(3, 3)))
+    # repaired reading: the printed yx and zx entries of M_s are its missing yy and zz entries
+    repaired = dict(printed)
+    if missing == ["syy", "szz"] and "syx" in printed and "szx" in printed:
+        repaired["syy"], repaired["szz"] = repaired.pop("syx"), repaired.pop("szx")
+    Ms = sp.Matrix(3, 3, lambda i, j: repaired.get(f"s{AXES[min(i, j)]}{AXES[max(i, j)]}", sp.Symbol("missing")))
+    pd = {name: all(M[:k, :k].det() > 0 for k in (1, 2, 3)) if not M.free_symbols else False for name, M in (("M_m", Mm), ("M_s", Ms))}
+    facts = {"printed": {k: str(v) for k, v in printed.items()}, "B_fails_literally": b_fails, "pd": pd,
+             "printed_form": sorted((k, str(v)) for k, v in printed.items())}
+    if missing and b_fails and all(pd.values()):
         return Finding(Verdict.TYPO,
-                       "M_syy and M_szz are never given while M_syx = 1.6 and M_szx = 1.5 are: read literally M_s is not "
-                       "symmetric (M_sxy = 0.5 != M_syx = 1.6), which violates condition B, and has no yy, zz entries; read as "
-                       "M_syy = 1.6, M_szz = 1.5 it is symmetric positive definite",
-                       Evidence(Method.STRUCTURAL, witness={"missing": missing}, facts={"B_fails_literally": b_fails, "M_s_pd": pd}),
-                       corrected=r"M_{syy} = 1.6,\quad M_{szz} = 1.5")
-    return Finding(Verdict.CONFIRMED, "masses consistent", Evidence(Method.STRUCTURAL))
+                       f"{', '.join('M_' + m for m in missing)} are never given while M_syx = {printed.get('syx')} and M_szx = "
+                       f"{printed.get('szx')} are: read literally M_s = {_line(literal_s)} is not symmetric, which violates "
+                       f"condition B, and lacks those entries; read as M_syy = {repaired.get('syy')}, M_szz = {repaired.get('szz')} "
+                       f"it is {_line(Ms)}, symmetric positive definite (and M_m = {_line(Mm)} is positive definite)",
+                       Evidence(Method.STRUCTURAL, witness={"missing": missing}, facts=facts),
+                       corrected=rf"M_{{syy}} = {float(repaired['syy']):g},\quad M_{{szz}} = {float(repaired['szz']):g}")
+    if not all(pd.values()):
+        return Finding(Verdict.WRONG, f"the printed masses do not give positive definite inertia matrices: M_m = {_line(Mm)}, "
+                       f"M_s (repaired) = {_line(Ms)}", Evidence(Method.COUNTEREXAMPLE, facts=facts))
+    return Finding(Verdict.CONFIRMED, f"masses consistent: M_m = {_line(Mm)}, M_s = {_line(Ms)}", Evidence(Method.STRUCTURAL, facts=facts))
 
 
 @PAPER.equation("47", kind="expression", printed=PRINTED["47"], section="5.2",
                 derivation="Definition 3 for the printed termination (the text calls it passive)")
 def eq47(ctx: AuditContext) -> Finding:
     T = _rhs_matrix(ctx)
+    bad = _not_in_s(T, "T_1 of (47)")
+    if bad is not None:
+        return bad
     result = positive_real(T)
+    high = T.applyfunc(lambda e: sp.limit(e * s, s, sp.oo))          # the 1/s coefficient at high frequency
+    symmetric = high == high.T
+    facts = {**_pr_facts(result), "one_over_s_coefficient": high, "printed_form": sp.srepr(T)}
     if result.decision == Decision.DISPROVED:
-        w = result.hermitian.witness
+        w = result.hermitian.witness or {}
+        why = (f"the 1/s coefficient of T_1, {_line(high)}, is not symmetric, so at high frequency the Hermitian part is "
+               "dominated by an indefinite skew term j(.)/w; exactly, " if not symmetric else "")
         return Finding(Verdict.WRONG,
-                       "'which are passive' is false: the 1/s coefficient of T_1, [[8, -2, -1], [-1, 9, 2], [-1, 2, 5]], is not "
-                       "symmetric, so at high frequency the Hermitian part is dominated by an indefinite skew term j(.)/w; exactly, "
-                       "T_1(jw) + T_1(jw)^H has a negative principal minor at "
+                       f"'which are passive' is false: {why}T_1(jw) + T_1(jw)^H has a negative principal minor at "
                        f"w = {w.get('omega', w)} (exact)",
-                       Evidence(Method.ROOT_ISOLATION, witness=dict(w), facts=_pr_facts(result)))
-    return Finding(Verdict.CONFIRMED, "T_1 is passive", result.evidence)
+                       Evidence(Method.ROOT_ISOLATION, witness=dict(w), facts=facts))
+    return Finding(Verdict.CONFIRMED if result.decision == Decision.PROVED else Verdict.UNDECIDED,
+                   f"T_1 of (47) is {_pr_text(result)} (1/s coefficient {_line(high)})", Evidence(Method.ROOT_ISOLATION, facts=facts))
 
 
 def fig3_plot(traces: dict[int, Any]) -> Plot:
@@ -1749,18 +2445,30 @@ def fig3_plot(traces: dict[int, Any]) -> Plot:
 FIG3_PRINTED_46 = ("if the control gains are selected according to (46), e.g., as listed in Table 1, with $K_{vmyz} = 60$")
 
 
+def _quoted_kvmyz(text: str) -> int | None:
+    """The value of k_vmyz a Fig. 3 claim quotes (``K_{vmyz} = 60`` or ``K_{vmyz} to 6``)."""
+    import re
+
+    match = re.search(r"K_\{vmyz\}\s*(?:=|to)\s*(\d+)", text)
+    return int(match.group(1)) if match else None
+
+
 @PAPER.equation("fig3-46", kind="claim", after="47", section="5.2", printed=FIG3_PRINTED_46,
-                derivation="every line of (46) at the Table 1 gains")
+                derivation="every line of (46) at the Table 1 gains", quotes=('46',))
 def fig3_46(ctx: AuditContext) -> Finding:
-    lines = compact_set_holds(table1_gains(60))
-    failing = [k for k, v in lines.items() if not v]
+    kvmyz = _quoted_kvmyz(ctx.equation.printed)
+    if kvmyz is None:
+        return Finding(Verdict.UNDECIDED, "the claim quotes no value of k_vmyz", Evidence(Method.PARSE))
+    conditions, repairs = _read_46(PAPER.get("46").printed)
+    failing = _failing(conditions, table1_gains(kvmyz))
+    facts = {"failing": failing, "k_vmyz": kvmyz}
     if failing:
         return Finding(Verdict.INCONSISTENT,
-                       f"Table 1 with k_vmyz = 60 violates line(s) {failing} of (46) ((45): 60^2 = 3600 < 80 * 80 = 6400), "
-                       "so it is not 'selected according to (46)'; it is nevertheless absolutely stable (see fig3-60): (45)/(46) "
-                       "are wrong, not the gains",
-                       Evidence(Method.COUNTEREXAMPLE, witness={"k_vmyz": 60}, facts={"lines": lines}))
-    return Finding(Verdict.CONFIRMED, "Table 1 satisfies (46)", Evidence(Method.INSTANCES, facts={"lines": lines}))
+                       f"Table 1 with k_vmyz = {kvmyz} violates line(s) {failing} of (46), so it is not 'selected according to "
+                       "(46)'; it is nevertheless absolutely stable (see fig3-60): (45)/(46) are wrong, not the gains",
+                       Evidence(Method.COUNTEREXAMPLE, witness={"k_vmyz": kvmyz}, facts=facts))
+    return Finding(Verdict.CONFIRMED, f"Table 1 with k_vmyz = {kvmyz} satisfies every line of (46)",
+                   Evidence(Method.INSTANCES, facts=facts))
 
 
 @PAPER.equation("fig3-60", kind="claim", after="47", section="5.2",
@@ -1768,9 +2476,12 @@ def fig3_46(ctx: AuditContext) -> Finding:
                         "absolute stability of the bilateral teleoperator",
                 derivation="Youla verdict for Table 1; positive realness of the master-port impedance with (47); simulation")
 def fig3_60(ctx: AuditContext) -> Finding:
-    verdict = table1_verdict(60)
-    zin = positive_real(master_input_impedance(60))
-    trace = fig3_energy(60)
+    kvmyz = _quoted_kvmyz(ctx.equation.printed)
+    if kvmyz is None:
+        return Finding(Verdict.UNDECIDED, "the claim quotes no value of k_vmyz", Evidence(Method.PARSE))
+    verdict = table1_verdict(kvmyz)
+    zin = positive_real(master_input_impedance(kvmyz))
+    trace = fig3_energy(kvmyz)
     if verdict.decision == Decision.PROVED and zin.decision == Decision.PROVED and trace.minimum >= -1e-9:
         return Finding(Verdict.CONFIRMED,
                        "absolutely stable (Z' positive real, principal and block-compatible minors verified); with the slave "

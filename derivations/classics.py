@@ -14,12 +14,15 @@ same result from its model.
 
 from __future__ import annotations
 
+import functools
+from typing import Any
+
 import sympy as sp
 
 from hapticproof import boundary as bnd
 from hapticproof import classics
 from hapticproof.audit import AuditContext, Paper
-from hapticproof.certify import compare_bounds, is_identically_zero
+from hapticproof.certify import NotABound, as_bound, compare_bounds, is_identically_zero
 from hapticproof.evidence import Evidence, Finding, Method, Verdict
 from hapticproof.latex import to_latex
 from hapticproof.parse import SymbolTable
@@ -89,7 +92,16 @@ def colgate_frequency(ctx: AuditContext) -> Finding:
     kernel = classics.sampling_kernel(H_FUN(Z_SYM), T).subs(Z_SYM, sp.exp(sp.I * omega * T))
     derived = -sp.re(kernel) * classics.alias_weight(T).subs(C_SYM, sp.cos(omega * T))
     value = H_FUN(sp.exp(sp.I * omega * T))
-    generic = is_identically_zero(sp.expand_complex(sp.expand((rel.rhs - derived).subs(value, u + sp.I * v))))
+    try:
+        bound = as_bound(rel.as_sympy(), b)
+    except NotABound as err:
+        return Finding(Verdict.WRONG, f"the printed condition is not a lower bound on b ({err.reason})",
+                       Evidence(Method.PARSE, facts={"printed_form": sp.srepr(rel.as_sympy())}), derived=sp.Ge(b, derived))
+    if not bound.lower:
+        return Finding(Verdict.WRONG, f"the printed condition is an upper bound, {bound}, where passivity needs b >= L(w)",
+                       Evidence(Method.PARSE, facts={"printed_form": str(bound)}), derived=sp.Ge(b, derived))
+    difference = sp.expand_complex(sp.expand((bound.bound - derived).subs(value, u + sp.I * v)))
+    generic = is_identically_zero(difference)
     # second route: the HVE paper's G_1^-1 (forward difference) has Re G^-1 = b - bound
     from hapticproof.positivereal import hermitian
     from hapticproof.scene import SingleUserScene
@@ -107,8 +119,10 @@ def colgate_frequency(ctx: AuditContext) -> Finding:
                        f"{error:.0e}), Cauchy-Schwarz; the HVE circle-criterion route gives the same bound exactly for the "
                        "wall and a filtered PD", Evidence(Method.CANONICAL_FORM, instances=2, facts={"alias_weight_error": error}),
                        derived=sp.Ge(b, derived))
-    return Finding(Verdict.WRONG, "the published frequency form differs from the derivation",
-                   Evidence(Method.CANONICAL_FORM, facts={"generic": generic, "routes": routes}))
+    return Finding(Verdict.WRONG, "the published frequency form differs from the derivation"
+                   + (f" by {sp.sstr(sp.simplify(difference))} (with H(e^(jwT)) = u + jv)" if not generic else "")
+                   + ("" if all(routes) else "; the circle-criterion route disagrees"),
+                   Evidence(Method.CANONICAL_FORM, facts={"generic": generic, "routes": routes, "printed_form": sp.srepr(bound.bound)}))
 
 
 @PAPER.equation("colgate-wall", kind="condition", printed=r"b > \frac{KT}{2} + |B|", section="1997",
@@ -146,18 +160,41 @@ def gil_2004(ctx: AuditContext) -> Finding:
                 derivation="closed-form Jury boundary: expansion of beta*/(2(alpha + delta)) and certified instances")
 def gil_2004_region(ctx: AuditContext) -> Finding:
     region, expansion = classics.gil_sufficiency_region()
+    (rel,) = ctx.parse(PAPER.get("gil-2004").printed).relations()      # the condition the claim is about
+    condition = rel.as_sympy()
     checks = {}
     for Bv in (sp.Integer(0), sp.Rational(1, 10), sp.Integer(1), sp.Integer(300)):
         cs = bnd.critical_stiffness(1, 1, sp.Rational(1, 100), Bv)
-        linear = 2 * (1 + Bv) / sp.Rational(1, 100)
+        try:
+            limit = as_bound(condition.subs({b: 1, T: sp.Rational(1, 100), B: Bv}), K)
+        except NotABound as exc:
+            return Finding(Verdict.UNDECIDED, f"the printed gil-2004 condition is not a limit on K: {exc}",
+                           Evidence(Method.PARSE, facts={"condition": sp.sstr(condition)}))
+        if limit.lower:
+            return Finding(Verdict.UNDECIDED, f"the printed gil-2004 condition is a lower bound on K ({limit}), not a "
+                           "stiffness limit", Evidence(Method.PARSE, facts={"condition": sp.sstr(condition)}))
+        linear = limit.bound
         checks[str(Bv)] = {"mode": cs.mode, "K*": cs.K.str(12), "linear": linear,
                            "sufficient": bool(cs.mode != "unstable" and cs.K > bnd._arb(linear))}
-    expected = {"0": True, "1/10": True, "1": False, "300": False}
-    ok = all(checks[k]["sufficient"] == v for k, v in expected.items())
-    return Finding(Verdict.CONFIRMED if ok else Verdict.UNDECIDED,
+    # the first-order threshold from the expansion 1 + alpha/6 - delta: sufficient iff delta <= alpha/6, i.e. B <= b/6
+    threshold = sp.solve(sp.Eq(expansion - 1, 0), bnd.DELTA)[0] / bnd.ALPHA        # delta/alpha = B/b at the threshold
+    predicted = {k: sp.Rational(k) <= threshold for k in checks}
+    agree = {k: checks[k]["sufficient"] == v for k, v in predicted.items()}
+    ok = all(agree.values())
+    sufficient = [k for k in checks if checks[k]["sufficient"]]
+    insufficient = [k for k in checks if not checks[k]["sufficient"]]
+    if not ok:
+        return Finding(Verdict.UNDECIDED,
+                       f"beta*/(2(alpha + delta)) = {sp.sstr(expansion)} + O(2) predicts sufficiency exactly for B <= "
+                       f"{sp.sstr(threshold)} b, but at m = b = 1, T = 0.01 the certified boundaries disagree for B in "
+                       f"{[k for k, v in agree.items() if not v]}",
+                       Evidence(Method.INTERVAL_ARITHMETIC, instances=len(checks), facts={"instances": checks, "exact_region": region}),
+                       derived=region)
+    return Finding(Verdict.CONFIRMED,
                    f"beta*/(2(alpha + delta)) = {sp.sstr(expansion)} + O(2): the linear condition is sufficient near the origin "
-                   "exactly when B <= b/6 (first order); at m = b = 1, T = 0.01 it is sufficient for B = 0, 0.1 and not for "
-                   "B = 1 (K* below the linear bound) or B = 300 (no stable stiffness): 'low B' means B below about b/6",
+                   f"exactly when B <= {sp.sstr(threshold)} b (first order); at m = b = 1, T = 0.01 it is sufficient for B in "
+                   f"{sufficient} and not for B in {insufficient} (K* below the linear bound, or no stable stiffness): "
+                   f"'low B' means B below about {sp.sstr(threshold)} b",
                    Evidence(Method.INTERVAL_ARITHMETIC, instances=len(checks), facts={"instances": checks, "exact_region": region}),
                    derived=region)
 
@@ -187,27 +224,123 @@ def gil_2009(ctx: AuditContext) -> Finding:
 # ---------------------------------------------------------------------------------------------
 
 
+def _llewellyn_examples() -> dict[str, sp.Matrix]:
+    from hapticproof.symbols import s
+
+    m, bb, Kv, Bv = sp.Rational(15, 1000), sp.Rational(1822, 100000), 2, sp.Rational(1, 100)
+    out = {}
+    for name, sign in (("restoring", 1), ("anti-restoring", -1)):
+        Zc = sign * (Kv + Bv * s) / s
+        out[name] = sp.Matrix([[m * s + bb + Zc, -Zc], [-Zc, m * s + bb + Zc]])
+    # a non-reciprocal network whose two one-port conditions hold and only the product condition fails
+    out["product-only"] = sp.Matrix([[1, 3], [1, 1]]) + sp.eye(2) * 0
+    return out
+
+
+def _printed_criterion(ctx: AuditContext) -> list[sp.Basic]:
+    """The printed conditions with p_ij read as complex numbers a_ij + j b_ij (real a, b)."""
+    from hapticproof.parse import parse_printed
+
+    parts = {}
+    names = {}
+    for i in (1, 2):
+        for k in (1, 2):
+            a, bi = sp.symbols(f"a_{i}{k} b_{i}{k}", real=True)
+            parts[(i, k)] = (a, bi)
+            names[f"p_{{{i}{k}}}"] = a + sp.I * bi
+    statement = parse_printed(ctx.equation.printed, TABLE.with_symbols(names))
+    return [r.as_sympy() for r in statement.relations()], parts
+
+
+@functools.lru_cache(maxsize=1)
+def _llewellyn_reference() -> dict[str, Any]:
+    from hapticproof.networks import llewellyn as criterion
+
+    return {name: criterion(Z) for name, Z in _llewellyn_examples().items()}
+
+
+def _printed_holds_on_axis(conditions: list[sp.Basic], parts: dict, Z: sp.Matrix) -> tuple[bool | None, Any]:
+    """Do the printed conditions hold at s = jw on a grid of w (60 frequencies, 30-digit mpmath)?"""
+    import mpmath
+
+    from hapticproof.symbols import s
+
+    symbols = [x for pair in parts.values() for x in pair]
+    entries = sp.lambdify(s, [Z[i - 1, j - 1] for (i, j) in parts], "mpmath")
+    tests = []
+    for cond in conditions:
+        if cond in (sp.true, sp.false):
+            tests.append((cond, None, None))
+            continue
+        tests.append((cond, sp.lambdify(symbols, cond.lhs, "mpmath"), sp.lambdify(symbols, cond.rhs, "mpmath")))
+    with mpmath.workdps(30):
+        for k in range(1, 61):
+            w = mpmath.mpf(k) / 4 if k < 40 else mpmath.mpf(10 + 5 * (k - 40))
+            try:
+                values = []
+                for entry in entries(1j * w):
+                    values += [mpmath.re(entry), mpmath.im(entry)]
+            except ZeroDivisionError:
+                continue
+            for cond, lhs, rhs in tests:
+                if lhs is None:
+                    if cond is sp.false:
+                        return False, {"omega": sp.nsimplify(str(w)), "condition": sp.sstr(cond)}
+                    continue
+                left, right = mpmath.re(lhs(*values)), mpmath.re(rhs(*values))
+                tol = mpmath.mpf(10) ** -20 * (1 + abs(left) + abs(right))
+                holds = {sp.StrictGreaterThan: left > right + tol, sp.GreaterThan: left >= right - tol,
+                         sp.StrictLessThan: left < right - tol, sp.LessThan: left <= right + tol,
+                         sp.Equality: abs(left - right) <= tol, sp.Unequality: abs(left - right) > tol}.get(type(cond))
+                if holds is False:
+                    return False, {"omega": sp.nsimplify(str(w)), "condition": sp.sstr(cond)}
+    return True, None
+
+
 @PAPER.equation("llewellyn", kind="condition", printed=SRC["llewellyn-1952"].statement, section="1952", parse=False,
                 assumptions="2-port immittance matrix P(s) (impedance form)",
                 derivation="networks.llewellyn on two continuous PEB teleoperators, cross-checked by their terminations")
 def llewellyn(ctx: AuditContext) -> Finding:
-    from hapticproof.networks import llewellyn as criterion
+    conditions, parts = _printed_criterion(ctx)
+    reference = _llewellyn_reference()
+    results, disagree = {}, []
+    for name, Z in _llewellyn_examples().items():
+        holds, where = _printed_holds_on_axis(conditions, parts, Z)
+        exact = reference[name].decision.value
+        results[name] = {"printed_holds_on_grid": holds, "first_failure": where, "llewellyn_exact": exact,
+                         "reason": reference[name].reason}
+        if holds != (exact == "proved"):
+            disagree.append(name)
+    facts = {"examples": results, "printed_form": [sp.srepr(c) for c in conditions]}
+    if len(conditions) != 3 or disagree:
+        return Finding(Verdict.WRONG,
+                       f"the printed criterion ({len(conditions)} conditions) disagrees with the exact criterion on "
+                       f"{disagree or 'the number of conditions'}: "
+                       + "; ".join(f"{n}: printed {'holds' if r['printed_holds_on_grid'] else 'fails at ' + str(r['first_failure'])},"
+                                   f" exact {r['llewellyn_exact']}" for n, r in results.items()),
+                       Evidence(Method.COUNTEREXAMPLE, facts=facts))
+    # the free/free loops cross-check the two teleoperators' exact decisions
     from hapticproof.symbols import s
 
-    m, bb, Kv, Bv = sp.Rational(15, 1000), sp.Rational(1822, 100000), 2, sp.Rational(1, 100)
-    results = {}
-    for name, sign in (("restoring", 1), ("anti-restoring", -1)):
-        Zc = sign * (Kv + Bv * s) / s
-        Z = sp.Matrix([[m * s + bb + Zc, -Zc], [-Zc, m * s + bb + Zc]])
-        verdict = criterion(Z)
-        # free/free terminations (zero force): the loop's characteristic polynomial is det Z
-        roots = sp.Poly(sp.numer(sp.together(Z.det())), s).nroots(n=30)
-        results[name] = {"llewellyn": verdict.decision.value, "reason": verdict.reason,
-                         "free_free_max_real_root": max(sp.re(r) for r in roots)}
-    ok = (results["restoring"]["llewellyn"] == "proved" and results["anti-restoring"]["llewellyn"] == "disproved"
-          and results["anti-restoring"]["free_free_max_real_root"] > 0 and results["restoring"]["free_free_max_real_root"] <= 0)
-    return Finding(Verdict.CONFIRMED if ok else Verdict.UNDECIDED,
-                   "as implemented exactly by networks.llewellyn the criterion proves the passive spring-damper teleoperator "
-                   "absolutely stable and rejects the anti-restoring one (the sign of the teleoperator paper's (7)), which the "
-                   "passive free/free terminations indeed destabilise (a characteristic root with positive real part)",
-                   Evidence(Method.ROOT_ISOLATION, instances=2, facts=results))
+    roots = {}
+    for name in ("restoring", "anti-restoring"):
+        Z = _llewellyn_examples()[name]
+        roots[name] = max(sp.re(r) for r in sp.Poly(sp.numer(sp.together(Z.det())), s).nroots(n=30))
+    ok = roots["anti-restoring"] > 0 and roots["restoring"] <= 0
+    facts["free_free_max_real_root"] = roots
+    if not ok:
+        return Finding(Verdict.UNDECIDED,
+                       "the printed conditions agree with the exact criterion on the three examples, but the free/free "
+                       "cross-check of the exact decisions failed (largest real part of a characteristic root: "
+                       + ", ".join(f"{n} {sp.sstr(sp.N(r, 6))}" for n, r in roots.items()) + ")",
+                       Evidence(Method.ROOT_ISOLATION, instances=3, facts=facts))
+    return Finding(Verdict.CONFIRMED,
+                   "the printed conditions, evaluated on the axis (60 frequencies, 30 digits), agree with the exact criterion "
+                   "(networks.llewellyn) on the passive spring-damper teleoperator (holds), the anti-restoring one of the "
+                   "teleoperator paper's (7) (fails at w = "
+                   f"{results['anti-restoring']['first_failure']['omega'] if results['anti-restoring']['first_failure'] else '?'}) "
+                   f"and a resistive 2-port failing only the product condition (at w = "
+                   f"{results['product-only']['first_failure']['omega'] if results['product-only']['first_failure'] else '?'}); "
+                   "the passive free/free terminations destabilise the anti-restoring teleoperator (a characteristic root "
+                   "with positive real part)",
+                   Evidence(Method.ROOT_ISOLATION, instances=3, facts=facts))

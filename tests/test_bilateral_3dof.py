@@ -51,9 +51,8 @@ def test_every_display_is_registered_once():
     assert displays <= registered
 
 
-@pytest.mark.skipif(not PAPER_TEXT.exists(), reason="paper text not available")
-def test_displays_are_verbatim():
-    text = PAPER_TEXT.read_text()
+def test_displays_are_verbatim(paper_transcriptions):
+    text = (paper_transcriptions / PAPER_TEXT.name).read_text()
     for eq_id, printed in paper.PRINTED.items():
         assert "$$" + printed + "$$" in text, eq_id
 

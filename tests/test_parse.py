@@ -41,7 +41,6 @@ from hapticproof.parse import (
     symbol_for,
 )
 
-PAPERS = Path(__file__).resolve().parents[2] / "shared" / "papers"
 HVE_FILE, TELE3_FILE, PASS_FILE = (
     "000_e6b68def623c8e74.txt",
     "001_48f53b5d92944b5d.txt",
@@ -747,11 +746,9 @@ def test_pass_10_leibniz_derivative_is_not_guessed():
     rejects(text, table, text.index("d\\dot"), "unknown name d")
 
 
-def test_corpus_is_verbatim():
+def test_corpus_is_verbatim(paper_transcriptions):
     """Every display used above occurs character for character in the transcriptions."""
-    if not PAPERS.is_dir():
-        pytest.skip("paper transcriptions not available")
-    source = {name: (PAPERS / name).read_text() for name in (HVE_FILE, TELE3_FILE, PASS_FILE)}
+    source = {name: (paper_transcriptions / name).read_text() for name in (HVE_FILE, TELE3_FILE, PASS_FILE)}
     texts = [case[0] for case in HVE_CORPUS.values()] + [case[0] for case in HVE_ERRORS.values()]
     here = Path(__file__).read_text()
     texts += [m.group(1) for m in re.finditer(r'text\d* = r"""([^"]*)"""', here)]

@@ -8,7 +8,7 @@ import flint
 import numpy as np
 import pytest
 import sympy as sp
-from hypothesis import given, settings
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from hapticproof.evidence import Decision
@@ -34,6 +34,16 @@ from hapticproof.symbols import c, z
 small = st.integers(-6, 6)
 
 
+def _minor(M, subset):
+    return M.extract(list(subset), list(subset)).det()
+
+
+def exact_psd(M):
+    """Hermitian M is PSD iff every principal minor is >= 0 (exact, independent of psd.py)."""
+    n = M.shape[0]
+    return all(sp.simplify(_minor(M, sub)) >= 0 for k in range(1, n + 1) for sub in itertools.combinations(range(n), k))
+
+
 def sym_matrix(size, entries):
     it = iter(entries)
     M = sp.zeros(size, size)
@@ -51,12 +61,10 @@ def test_is_psd_agrees_with_eigenvalues(data):
     M = sym_matrix(m, entries)
     eig = np.linalg.eigvalsh(np.array(M.tolist(), dtype=float))
     test = is_psd(M)
-    if eig.min() > 1e-9:
-        assert test.holds
-    if eig.min() < -1e-9:
-        assert not test.holds
-        subset, value = test.minor
-        assert value < 0 and M.extract(list(subset), list(subset)).det() == value
+    exact = exact_psd(M)                  # every example is decided, singular ones included
+    assert test.holds == exact
+    assert eig.min() > -1e-9 if exact else eig.min() < 1e-9
+    assert test.minor is None if exact else (test.minor[1] < 0 and _minor(M, test.minor[0]) == test.minor[1])
     # E_k are the sums of the k x k principal minors
     for k in range(1, m + 1):
         total = sum(M.extract(list(s), list(s)).det() for s in itertools.combinations(range(m), k))
@@ -72,8 +80,9 @@ def test_is_psd_complex_hermitian(re_entries, im_entries):
         M[j, i] -= sp.I * v
     eig = np.linalg.eigvalsh(np.array(M.evalf().tolist(), dtype=complex))
     test = is_psd(M, search_minor=False)
-    if abs(eig.min()) > 1e-9:
-        assert test.holds == (eig.min() > 0)
+    exact = exact_psd(M)
+    assert test.holds == exact
+    assert eig.min() > -1e-9 if exact else eig.min() < 1e-9
     assert float(test.coefficients[3]) == pytest.approx(float(np.prod(eig)), rel=1e-9, abs=1e-9)
 
 
@@ -89,11 +98,25 @@ def test_leading_minor_shortcut_fails_on_concrete_matrices():
 
 
 @settings(max_examples=50, deadline=None)
+@given(st.lists(small, min_size=3, max_size=3), st.lists(st.integers(1, 6), min_size=3, max_size=3))
+def test_strict_leading_minors_imply_psd(lower, pivots):
+    """Sylvester: M = L D L^T with unit lower-triangular L and positive D has the leading minors
+    d_1, d_1 d_2, d_1 d_2 d_3 > 0 -- every example has them (constructed, not filtered)."""
+    L = sp.Matrix([[1, 0, 0], [sp.Rational(lower[0], 2), 1, 0], [sp.Rational(lower[1], 2), sp.Rational(lower[2], 2), 1]])
+    D = sp.diag(*[sp.Rational(d, 2) for d in pivots])
+    M = L * D * L.T
+    minors = leading_minors(M)
+    assert minors == [D[0, 0], D[0, 0] * D[1, 1], D[0, 0] * D[1, 1] * D[2, 2]] and all(v > 0 for v in minors)
+    assert is_psd(M).holds
+
+
+@settings(max_examples=50, deadline=None)
 @given(st.lists(small, min_size=6, max_size=6))
-def test_strict_leading_minors_imply_psd(entries):
+def test_a_negative_leading_minor_refutes_psd(entries):
     M = sym_matrix(3, entries)
-    if all(v > 0 for v in leading_minors(M)):
-        assert is_psd(M).holds
+    minors = leading_minors(M)
+    assume(any(v < 0 for v in minors))
+    assert not is_psd(M).holds
 
 
 def direct_M(G, theta):

@@ -54,6 +54,10 @@ __all__ = [
     "AuditReport",
     "audit_paper",
     "malformed",
+    "quoted_math",
+    "run_equation",
+    "parse_failure",
+    "printed_offset",
 ]
 
 KINDS = ("expression", "condition", "claim")
@@ -74,6 +78,9 @@ class Equation:
     derivation: str = ""
     parse: bool = True
     after: str = ""
+    #: other displays whose content this check is about (``"20"`` or ``"paper:id"``): the
+    #: mutation test audits this check against their mutants too (:mod:`hapticproof.mutate`)
+    quotes: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         if self.kind not in KINDS:
@@ -126,9 +133,11 @@ class Paper:
         derivation: str = "",
         parse: bool | None = None,
         after: str = "",
+        quotes: tuple[str, ...] | list[str] = (),
     ) -> Callable[[Check], Check]:
         """Register a printed equation (decorator). ``parse`` defaults to True for expressions
-        and conditions, False for claims (whose printed text is a quoted sentence)."""
+        and conditions, False for claims (whose printed text is a quoted sentence). ``quotes``
+        names the other displays whose content the check compares (``"20"``, ``"hve:3"``)."""
 
         def register(check: Check) -> Check:
             if id in self.equations:
@@ -143,6 +152,7 @@ class Paper:
                 derivation=derivation,
                 parse=(kind != "claim") if parse is None else parse,
                 after=after,
+                quotes=tuple(quotes),
             )
             return check
 
@@ -208,11 +218,21 @@ class AuditContext:
         statement = self.statement
         relations = statement.relations()
         if len(relations) != 1:
-            raise ValueError(f"expected one relation in {self.equation.id}, found {len(relations)}")
+            what = "no relation (an expression, not a condition)" if not relations else f"{len(relations)} relations"
+            raise LatexParseError(f"expected one relation, found {what}", self.equation.printed, statement.span.start)
         return relations[0].as_sympy()
 
     def names(self) -> dict[sp.Symbol, str]:
         return self.paper.names
+
+
+def quoted_math(text: str) -> list[str]:
+    r"""The ``$...$`` mathematics quoted in a claim's text, in order.
+
+    >>> quoted_math("the condition $b > KT/2 - B$ of [8] and $K + sB$")
+    ['b > KT/2 - B', 'K + sB']
+    """
+    return [m.group(1) for m in re.finditer(r"\$([^$]+)\$", text)]
 
 
 def malformed(ctx: AuditContext, what: str, corrected: str | None = None, derived: Any = None) -> Finding:
@@ -353,18 +373,53 @@ def _derived_latex(value: Any, names: Mapping[sp.Symbol, str]) -> str | None:
         return sp.sstr(value)
 
 
+def printed_offset(err: LatexParseError, printed: str) -> int | None:
+    """Where in ``printed`` the parse error is, when the text that failed to parse is the printed
+    display itself or a verbatim part of it; ``None`` for any other text (a repair, another
+    equation, a string of the check's own).
+
+    >>> from hapticproof.errors import LatexParseError
+    >>> printed_offset(LatexParseError("unknown name I", "2b - KI", 6), "a = 2b - KI > 0")
+    10
+    >>> printed_offset(LatexParseError("unknown name I", "2b - KT", 6), "a = 2b - KI > 0") is None
+    True
+    """
+    text = err.text or ""
+    if not text.strip():
+        return None
+    at = printed.find(text)
+    return None if at < 0 else at + err.position
+
+
+def parse_failure(equation: Equation, err: LatexParseError) -> Finding:
+    """The finding for a :class:`LatexParseError` that escaped a check: ``malformed`` when the
+    printed display (or a verbatim part of it) does not parse; ``undecided`` when the check
+    failed to parse some other text (a repaired reading, another equation, its own string) --
+    an error of the check, not of the paper."""
+    offset = printed_offset(err, equation.printed)
+    if offset is not None:
+        return Finding(
+            Verdict.MALFORMED,
+            f"the printed text does not parse: {err.reason} at position {offset}",
+            Evidence(Method.PARSE, facts={"parse_error": err.reason, "position": offset}),
+        )
+    return Finding(
+        Verdict.UNDECIDED,
+        f"the check could not parse a text of its own (not the printed display): {err.reason} at position "
+        f"{err.position} of {err.text[:80]!r}",
+        Evidence(Method.PARSE, facts={"internal_parse_error": err.reason, "text": err.text, "position": err.position}),
+    )
+
+
 def run_equation(paper: Paper, equation: Equation) -> EquationResult:
-    """Audit one equation; the check's own errors propagate (they are bugs, not findings)."""
+    """Audit one equation; the check's own errors propagate (they are bugs, not findings),
+    except parse errors (see :func:`parse_failure`)."""
     ctx = AuditContext(paper, equation)
     start = time.perf_counter()
     try:
         finding = equation.check(ctx)
     except LatexParseError as err:
-        finding = Finding(
-            Verdict.MALFORMED,
-            f"the printed text does not parse: {err.reason} at position {err.position}",
-            Evidence(Method.PARSE, facts={"parse_error": err.reason, "position": err.position}),
-        )
+        finding = parse_failure(equation, err)
     seconds = time.perf_counter() - start
     return EquationResult(
         id=equation.id,

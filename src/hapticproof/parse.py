@@ -120,6 +120,7 @@ __all__ = [
     "Norm",
     "parse_printed",
     "parse_expression",
+    "slash_readings",
     "normalise_name",
     "symbol_for",
     "index_symbol",
@@ -1506,6 +1507,59 @@ def parse_printed(text: str, table: SymbolTable) -> Statement:
     else:
         result = Lines(tuple(statements), "lines", Span(statements[0].span.start, statements[-1].span.end))
     return replace(result, tag=tag, label=label)
+
+
+def slash_readings(text: str, table: SymbolTable) -> dict[str, str]:
+    r"""The two readings of an ambiguous ``a / b c`` in a display that the parser rejects for it:
+    ``\frac{a}{b} c`` and ``\frac{a}{b c}`` (spelled out in the printed text, so that both
+    parse), keyed by a description; empty when the display parses or fails for another reason.
+
+    >>> t, T, w = sp.symbols('t_d T omega', positive=True)
+    >>> table = SymbolTable({'t_d': t, 'T': T, r'\omega': w})
+    >>> sorted(slash_readings(r'1 - t_d / T \cos(\omega T) > 0', table).values())
+    ['1 - \\frac{t_d }{T \\cos(\\omega T)} > 0', '1 - \\frac{t_d }{T} \\cos(\\omega T) > 0']
+    """
+    try:
+        parse_printed(text, table)
+        return {}
+    except LatexParseError as err:
+        if "ambiguous implicit product after '/'" not in err.reason or err.text != text:
+            return {}
+        where = err.position
+    lo, hi = _strip_math_delimiters(text)
+    toks = _tokenize(text, lo, hi)
+    depth, stack = {}, 0
+    for k, t in enumerate(toks):
+        if _opener_key(t) is not None:
+            depth[k] = stack
+            stack += 1
+        elif _closer_key(t) is not None:
+            stack -= 1
+            depth[k] = stack
+        else:
+            depth[k] = stack
+    slash = max((k for k, t in enumerate(toks) if t.kind == "op" and t.value == "/" and t.pos < where), default=None)
+    if slash is None:
+        return {}
+    level = depth[slash]
+
+    def boundary(t: _Tok, k: int) -> bool:
+        return depth[k] == level and (_is_relation(t) or (t.kind == "op" and t.value in "+-,&") or t.kind in ("sep", "newline", "tag"))
+
+    start = slash
+    while start > 0 and not boundary(toks[start - 1], start - 1) and depth[start - 1] >= level:
+        start -= 1
+    after = next((k for k, t in enumerate(toks) if t.pos >= where), len(toks))
+    end = after
+    while end < len(toks) and not boundary(toks[end], end) and depth[end] >= level:
+        end += 1
+    a0, s0, w0 = toks[start].pos, toks[slash].pos, toks[after].pos if after < len(toks) else hi
+    e0 = toks[end - 1].end
+    numerator, divisor, rest = text[a0:s0], text[s0 + 1:w0].strip(), text[w0:e0].strip()
+    return {
+        f"({numerator.strip()})/({divisor}) {rest}": text[:a0] + rf"\frac{{{numerator}}}{{{divisor}}} {rest}" + text[e0:],
+        f"({numerator.strip()})/({divisor} {rest})": text[:a0] + rf"\frac{{{numerator}}}{{{divisor} {rest}}}" + text[e0:],
+    }
 
 
 def parse_expression(text: str, table: SymbolTable) -> Any:

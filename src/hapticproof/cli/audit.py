@@ -40,6 +40,15 @@ def register(sub: argparse._SubParsersAction) -> None:
                         help="table (default), markdown, json, tex (a LaTeX document) or html (one self-contained page)")
     parser.add_argument("--output", "-o", metavar="FILE", help="write to FILE instead of stdout (- is stdout)")
     parser.add_argument("--wide", action="store_true", help="table: full details instead of one shortened line each")
+    mutation = parser.add_argument_group("mutation testing (--mutate)")
+    mutation.add_argument("--mutate", action="store_true",
+                          help="mutation-test the audit: change each printed display (flip a sign, scale or drop a "
+                          "term, swap indices, reverse an inequality, replace a symbol), audit every mutant with the "
+                          "same check and print the mutation score per paper (killed / (total - proved equivalent)), "
+                          "crashes and survivors")
+    mutation.add_argument("--sample", type=int, metavar="N", help="run N mutants per paper (default: all)")
+    mutation.add_argument("--seed", type=int, default=0, help="seed of the --sample draw (default 0)")
+    mutation.add_argument("--jobs", "-j", type=int, default=1, metavar="N", help="worker processes (default 1)")
     parser.set_defaults(handler=run)
 
 
@@ -59,6 +68,10 @@ def run(args: argparse.Namespace) -> int:
         if not any(ids for _, ids in chosen):
             raise_usage(f"no equation in section(s) {', '.join(args.section)} in any selected paper")
         selected = [p for p, ids in chosen if ids]
+    if args.mutate:
+        return _mutate(args, selected)
+    if args.sample is not None:
+        raise_usage("--sample needs --mutate")
     selection = [args.equation or _in_sections(p, args.section) or None for p in selected]
     total = sum(len(only) if only else len(p.equations) for p, only in zip(selected, selection))
     bar, start, reports = progress_bar(sys.stderr, "audit"), time.perf_counter(), []
@@ -113,6 +126,36 @@ def _paper_files(paths: list[str]) -> list:
 def _section_ids(paper, sections: list[str]) -> list[str]:
     return [eq.id for eq in paper.ordered()
             if any(eq.section == s or eq.section.startswith(s + ".") for s in sections)]
+
+
+def _mutate(args: argparse.Namespace, selected: list) -> int:
+    """``--mutate``: the mutation score of each selected paper (exit 1 on survivors or crashes)."""
+    from hapticproof.mutate import mutate_paper
+
+    if args.sample is not None and args.sample < 1:
+        raise_usage(f"--sample must be a positive number of mutants, got {args.sample}")
+    if args.jobs < 1:
+        raise_usage(f"--jobs must be at least 1, got {args.jobs}")
+    if args.format not in ("table", "json"):
+        raise_usage("--mutate writes a table or JSON (--format table|json)")
+    reports = []
+    for paper in selected:
+        only = args.equation or _in_sections(paper, args.section) or None
+        report = mutate_paper(paper, only, count=args.sample, seed=args.seed, jobs=args.jobs)
+        reports.append(report)
+        if args.format == "table" and not args.output:
+            print(report.to_text(), flush=True)
+    if args.format == "json":
+        text = json.dumps({"papers": [r.to_json() for r in reports]}, indent=2)
+    else:
+        text = "\n".join(r.to_text() for r in reports)
+    if args.output:
+        path = write_text(args.output, text)
+        print(f"wrote {path}", file=sys.stderr)
+    elif args.format == "json":
+        print(text)
+    failed = any(r.survivors() or r.crashes() for r in reports)
+    return 1 if failed else 0
 
 
 def _in_sections(paper, sections: list[str]) -> list[str]:

@@ -1,0 +1,211 @@
+"""Mutation testing of the audit (issue 15): the machinery on small papers of our own, and a fixed
+sample of the bundled papers' mutants that must all be killed or proved equivalent, none crashing.
+
+``HAPTICPROOF_MUTANTS=all python -m pytest tests/test_mutate.py`` runs every mutant of every
+bundled paper instead of the sample (tens of minutes; see ``benchmarks/README.md``);
+``HAPTICPROOF_MUTANTS=N`` samples N per paper.
+"""
+
+from __future__ import annotations
+
+import json
+import time
+
+import pytest
+import sympy as sp
+
+from hapticproof.audit import Paper
+from hapticproof.certify import compare_bounds
+from hapticproof.cli import main
+from hapticproof.evidence import Evidence, Finding, Method, Verdict
+from hapticproof.mutate import (
+    ENV_KNOB,
+    Mutant,
+    QuoteError,
+    choose,
+    generate,
+    knob,
+    mutants_of,
+    mutate_paper,
+    run_mutant,
+)
+from hapticproof.parse import SymbolTable
+from hapticproof.registry import get_paper, papers
+
+K, T, b, B = sp.symbols("K T b B", positive=True)
+TABLE = SymbolTable({"K": K, "T": T, "b": b, "B": B})
+COLGATE = r"b > \frac{KT}{2} + B"
+
+
+def own_paper(check, printed: str = COLGATE, **kwargs) -> Paper:
+    paper = Paper("own", title="own", source="none", symbols=TABLE)
+    paper.equation("1", kind="condition", printed=printed, **kwargs)(check)
+    return paper
+
+
+def computing(ctx):
+    return compare_bounds(ctx.relation(), sp.Ge(b, K * T / 2 + B), b)
+
+
+# ---------------------------------------------------------------------------------------------
+# the machinery
+# ---------------------------------------------------------------------------------------------
+
+
+def test_every_operator_applies_to_a_condition():
+    found = {m.operator: m.printed for m in generate(own_paper(computing).get("1"), own_paper(computing))}
+    assert set(found) == {"sign", "scale", "drop", "relation", "symbol"}     # no subscripts: no swap
+    assert found["relation"] == r"b < \frac{KT}{2} + B"
+
+
+def test_a_computing_check_kills_every_mutant():
+    report = mutate_paper(own_paper(computing))
+    counts = report.counts()
+    assert counts["crashed"] == 0 and counts["survived"] == 0, report.to_text()
+    assert counts["killed"] + counts["equivalent"] == report.total > 5 and report.score == 1.0
+
+
+def test_a_stub_check_is_found_out():
+    def stub(ctx):
+        return Finding(Verdict.CONFIRMED, "Colgate's condition", Evidence(Method.CANONICAL_FORM))
+
+    report = mutate_paper(own_paper(stub))
+    assert report.counts()["survived"] == report.total and report.score == 0.0
+    assert "SURVIVED" in report.to_text()
+
+
+def test_a_check_that_raises_is_a_crash_with_its_traceback():
+    def fragile(ctx):
+        rel = ctx.relation()
+        if rel.rel_op != ">":
+            raise ValueError("not a lower bound")
+        return computing(ctx)
+
+    report = mutate_paper(own_paper(fragile))
+    (crash,) = report.crashes()
+    assert crash.mutant.operator == "relation" and "ValueError: not a lower bound" in crash.detail
+    assert "Traceback" in crash.reason or "raise ValueError" in crash.reason
+
+
+def test_a_mutant_that_does_not_parse_is_malformed_not_a_traceback():
+    paper = own_paper(computing)
+    original = __import__("hapticproof.audit", fromlist=["run_equation"]).run_equation(paper, paper.get("1"))
+    broken = Mutant("own", "1", "1", "drop", 12, "{2}", "{2", r"b > \frac{KT}{2 + B")
+    result = run_mutant(broken, original, {"own": paper})
+    assert result.outcome == "killed" and result.verdict == Verdict.MALFORMED.value
+
+
+def test_a_hanging_check_is_stopped_and_counted_as_a_crash():
+    def slow(ctx):
+        if ctx.equation.printed != COLGATE:
+            deadline = time.process_time() + 30
+            while time.process_time() < deadline:
+                pass
+        return computing(ctx)
+
+    paper = own_paper(slow)
+    from hapticproof.audit import run_equation
+
+    original = run_equation(paper, paper.get("1"))
+    mutant = generate(paper.get("1"), paper)[0]
+    result = run_mutant(mutant, original, {"own": paper}, limit=0.5)
+    assert result.outcome == "crashed" and "MutantTimeout" in result.detail
+
+
+def test_swapping_the_indices_of_a_symmetric_family_is_proved_equivalent():
+    K01, K12 = sp.symbols("K_01 K_12", positive=True)          # K_{ij} = K_{ji}: both spellings, one symbol
+    table = SymbolTable({"b": b, "T": T, "K_{01}": K01, "K_{10}": K01, "K_{12}": K12, "K_{21}": K12})
+    paper = Paper("sym", title="sym", source="none", symbols=table)
+
+    @paper.equation("1", kind="condition", printed=r"b > (K_{01} + K_{12})T")
+    def check(ctx):
+        return compare_bounds(ctx.relation(), sp.Ge(b, (K01 + K12) * T), b)
+
+    swaps = [m for m in generate(paper.get("1"), paper) if m.operator == "swap"]
+    assert {m.replacement for m in swaps} == {"K_{10}", "K_{21}"}
+    report = mutate_paper(paper)
+    assert all(r.outcome == "equivalent" for r in report.results if r.mutant.operator == "swap")
+    assert report.score == 1.0 and not report.crashes()
+
+
+def test_a_declared_quote_must_be_read():
+    paper = own_paper(computing)
+    paper.equation("claim", kind="claim", printed="the condition $b > KT/2 + B$ of (1)", quotes=("1",))(
+        lambda ctx: Finding(Verdict.CONFIRMED, "no reading", Evidence(Method.PARSE)))
+    with pytest.raises(QuoteError):
+        mutants_of(paper, paper.get("claim"), {"own": paper})
+
+
+def test_a_claim_is_audited_against_the_mutants_of_the_display_it_quotes():
+    paper = own_paper(computing)
+
+    @paper.equation("claim", kind="claim", printed="(1) is Colgate's condition", quotes=("1",))
+    def claim(ctx):
+        return computing(type(ctx)(paper, paper.get("1")))
+
+    mutants = mutants_of(paper, paper.get("claim"), {"own": paper})
+    assert mutants and all(m.target == "1" and m.equation == "claim" for m in mutants)
+    report = mutate_paper(paper, ["claim"])
+    assert report.score == 1.0 and not report.crashes()
+
+
+def test_knob(monkeypatch):
+    monkeypatch.delenv(ENV_KNOB, raising=False)
+    assert knob() == 12
+    monkeypatch.setenv(ENV_KNOB, "all")
+    assert knob() is None
+    monkeypatch.setenv(ENV_KNOB, "40")
+    assert knob() == 40
+
+
+def test_the_sample_is_deterministic_and_spread_over_equations():
+    paper = get_paper("classics")
+    one, generated = choose(paper, count=5, seed=3)
+    two, _ = choose(paper, count=5, seed=3)
+    assert one == two and generated > len(one) == 5
+    assert len({m.equation for m in one}) == 5
+    assert len({m.operator for m in one}) >= 3
+
+
+# ---------------------------------------------------------------------------------------------
+# the bundled papers: a fixed sample in CI, every mutant with HAPTICPROOF_MUTANTS=all
+# ---------------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("paper_id", list(papers()))
+def test_bundled_paper_mutants_are_killed_or_proved_equivalent(paper_id):
+    report = mutate_paper(get_paper(paper_id), count=knob(), seed=0)
+    print(report.summary())
+    assert report.total > 0
+    assert not report.crashes() and not report.survivors(), report.to_text()
+    assert report.score == 1.0
+
+
+# ---------------------------------------------------------------------------------------------
+# the command line
+# ---------------------------------------------------------------------------------------------
+
+
+def run(capsys, *argv):
+    code = main(list(argv))
+    out = capsys.readouterr()
+    return code, out.out, out.err
+
+
+def test_cli_mutate_prints_the_score(capsys):
+    code, out, _ = run(capsys, "audit", "classics", "--mutate", "--equation", "colgate-wall", "--sample", "4")
+    assert code == 0 and "classics:" in out and "score 100.0%" in out
+    code, out, _ = run(capsys, "audit", "classics", "--mutate", "-e", "colgate-wall", "--sample", "2", "--format", "json")
+    data = json.loads(out)["papers"][0]
+    assert code == 0 and data["total"] == 2 and data["counts"]["crashed"] == 0
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["audit", "hve", "--mutate", "--sample", "0"], "--sample must be a positive number"),
+    (["audit", "hve", "--sample", "3"], "--sample needs --mutate"),
+    (["audit", "hve", "--mutate", "--format", "tex"], "--mutate writes a table or JSON"),
+    (["audit", "hve", "--mutate", "--jobs", "0"], "--jobs must be at least 1"),
+])
+def test_cli_mutate_usage_errors_are_one_line(capsys, argv, message):
+    code, out, err = run(capsys, *argv)
+    assert code == 2 and message in err and err.count("\n") == 1 and "Traceback" not in err
