@@ -104,7 +104,10 @@ class State:
 
     @functools.cached_property
     def model(self) -> Any:
-        return self.scene.build()
+        key = ("model", self.spec.scene)
+        if key not in self.cache:          # shared by the repair trials of one check
+            self.cache[key] = self.scene.build()
+        return self.cache[key]
 
     @functools.cached_property
     def table(self) -> Any:
@@ -119,12 +122,18 @@ class State:
     @functools.cached_property
     def names(self) -> dict[str, sp.Symbol]:
         """The model's symbols by name (plus ``n`` for a symbolic delay)."""
-        return _model_symbols(self.scene, self.model)
+        key = ("names", self.spec.scene)
+        if key not in self.cache:
+            self.cache[key] = _model_symbols(self.scene, self.model)
+        return self.cache[key]
 
     @functools.cached_property
     def values(self) -> dict[str, Any]:
         """Parameter values of the scene by name."""
-        return {sym.name: value for sym, value in self.scene._substitution().items()}
+        key = ("values", self.spec.scene)
+        if key not in self.cache:
+            self.cache[key] = {sym.name: value for sym, value in self.scene._substitution().items()}
+        return self.cache[key]
 
     def prepare(self, expr: Any) -> Any:
         """A printed expression in the model's symbols: names unified, the scene's values
@@ -334,6 +343,17 @@ def _relations(condition: Any) -> list[Any]:
     return [condition]
 
 
+@functools.lru_cache(maxsize=512)
+def _bound(condition: Any, var: sp.Symbol) -> Any:
+    """:func:`~hapticproof.certify.as_bound`, remembered (the exact side repeats across repairs);
+    ``None`` when the condition is not a bound on ``var``."""
+    try:
+        return as_bound(condition, var)
+    except (TypeError, ValueError, sp.PolynomialError):
+        return None
+
+
+@functools.lru_cache(maxsize=256)
 def _drop_trivial(condition: Any) -> Any:
     """An And without the parts that hold for every admissible value (e.g. ``K T >= 0``)."""
     parts = []
@@ -370,11 +390,11 @@ def _variable(printed: Any, exact: Any, state: State) -> sp.Symbol | None:
     by_name = {s.name: s for s in free}
     candidates = [by_name[n] for n in _preferred(state) if n in by_name] + [s for s in free if s.name not in _preferred(state)]
     for var in candidates:
-        try:
-            p, e = as_bound(printed, var), as_bound(exact, var)
-        except (TypeError, ValueError, sp.PolynomialError):
+        e = _bound(exact, var)
+        if e is None or not getattr(e, "lower", True):
             continue
-        if getattr(p, "lower", True) and getattr(e, "lower", True):
+        p = _bound(printed, var)
+        if p is not None and getattr(p, "lower", True):
             return var
     return None
 
@@ -428,6 +448,10 @@ def compare_conditions(printed: Any, exact: Any, state: State, *, claim: str, wh
     if exact in (sp.true, sp.false):
         return _constant_exact(printed, exact, state, claim, what, derived)
     var = _variable(printed, exact, state)
+    if state.repairing:
+        quick = _quick_reject(printed, exact, var, claim)
+        if quick is not None:
+            return quick
     if var is not None:
         state.repairable = True
         try:
@@ -460,6 +484,60 @@ def compare_conditions(printed: Any, exact: Any, state: State, *, claim: str, wh
                    Evidence(Method.INSTANCES, instances=count,
                             witness=_witness_json(stronger) if stronger is not None else None, facts={"exact": exact}),
                    derived=derived)
+
+
+def _numerically_different(a: Any, b: Any, tries: int = 2) -> bool:
+    """``a != b`` seen at exact random points (never used to prove equality, only to skip)."""
+    free = sorted((sp.sympify(a).free_symbols | sp.sympify(b).free_symbols), key=str)
+    ranges = {s: (sp.Rational(1, 3), sp.Integer(3)) for s in free if not s.is_integer}
+    ranges.update({s: (2, 3) for s in free if s.is_integer})
+    if C_SYM in ranges:
+        ranges[C_SYM] = (sp.Rational(-9, 10), sp.Rational(9, 10))
+    for point in Sampler(free, seed=13, ranges=ranges).draw(tries + 1)[1:]:
+        try:
+            value = sp.N((sp.sympify(a) - sp.sympify(b)).xreplace(point), 30)
+        except (TypeError, ValueError, ZeroDivisionError):
+            continue
+        if value.is_number and value.is_finite and abs(value) > sp.Float("1e-15"):
+            return True
+    return False
+
+
+def _positive_ratio_at_points(printed: Any, exact: Any) -> bool:
+    """Whether ``P/E`` (as ``... > 0`` forms) is positive at two exact points (a cheap look
+    before the symbolic ratio test)."""
+    ops = {">": 1, ">=": 1, "<": -1, "<=": -1}
+    rels = (printed, exact)
+    if not all(isinstance(r, sp.core.relational.Relational) and r.rel_op in ops for r in rels):
+        return False
+    fp, fe = ((r.lhs - r.rhs) * ops[r.rel_op] for r in rels)
+    free = sorted(fp.free_symbols | fe.free_symbols, key=str)
+    for point in Sampler(free, seed=17).draw(3)[1:]:
+        try:
+            ratio = sp.N((fp / fe).xreplace(point), 20)
+        except (TypeError, ZeroDivisionError):
+            return False
+        if not ratio.is_number or not ratio.is_finite or not ratio > 0:
+            return False
+    return True
+
+
+def _quick_reject(printed: Any, exact: Any, var: sp.Symbol | None, claim: str) -> Finding | None:
+    """While searching repairs, a mutant is kept only when it may be confirmed (or, for a
+    sufficient condition, conservative): skip the others without a full comparison."""
+    reject = Finding(Verdict.WRONG, "not equivalent to the exact condition", Evidence(Method.INSTANCES))
+    if var is None:
+        if not _positive_ratio_at_points(printed, exact):
+            return reject
+        return None if _ratio_equivalent(printed, exact) else reject
+    p, e = _bound(printed, var), _bound(exact, var)
+    if p is None or e is None or getattr(p, "lower", True) != getattr(e, "lower", True):
+        return reject
+    if claim == "sufficient":
+        return None
+    if _numerically_different(p.bound, e.bound):
+        return reject
+    return None
 
 
 def _constant_exact(printed: Any, exact: Any, state: State, claim: str, what: str, derived: Any) -> Finding:
@@ -577,15 +655,21 @@ def _run(state: State) -> Finding:
 def _with_assumption(state: State) -> Finding:
     """Check the claim; with a stated ``assumption`` also under it (``needs-assumption`` when
     it holds only there)."""
+    text = ", ".join(f"{sp.sstr(k)} = {sp.sstr(v)}" for k, v in state.spec.assumption)
+    if state.spec.assumption and state.repairing:
+        # a repair of a claim made under an assumption is right under that assumption
+        inner = _run(_assumed(state))
+        return Finding(inner.verdict, f"under the stated assumption {text}: {inner.detail}", inner.evidence,
+                       derived=inner.derived)
+    inner = None
     finding = _run(state)
     if not state.spec.assumption or finding.verdict in _OK:
         if state.spec.assumption and finding.verdict in _OK:
             return Finding(finding.verdict, finding.detail + " (it holds without the stated assumption)",
                            finding.evidence, derived=finding.derived, corrected=finding.corrected)
         return finding
-    under = _assumed(state)
-    inner = _run(under)
-    text = ", ".join(f"{sp.sstr(k)} = {sp.sstr(v)}" for k, v in state.spec.assumption)
+    if inner is None:
+        inner = _run(_assumed(state))
     if inner.verdict in _OK and finding.verdict == Verdict.WRONG:
         return Finding(
             Verdict.NEEDS_ASSUMPTION,
@@ -617,7 +701,7 @@ def _assumed(state: State) -> State:
     scenes[name] = new_scene
     source = _SourceView(state.source, scenes)
     new_spec = ClaimSpec(**{**{f: getattr(spec, f) for f in spec.__dataclass_fields__}, "scene": name, "assumption": ()})
-    return State(new_spec, source, state.printed, equation=state.equation, repairing=state.repairing)
+    return State(new_spec, source, state.printed, equation=state.equation, repairing=state.repairing, cache=state.cache)
 
 
 class _SourceView:
@@ -660,8 +744,12 @@ def _should_repair(state: State, finding: Finding) -> bool:
 
 
 def _repaired(state: State, finding: Finding) -> bool:
+    """A trial edit repairs the display when it is right: confirmed, a correct sufficient
+    condition, or right under the claim's stated assumption."""
     if finding.verdict == Verdict.CONFIRMED:
         return True
+    if finding.verdict == Verdict.NEEDS_ASSUMPTION:
+        return bool(state.spec.assumption)
     return finding.verdict == Verdict.CONSERVATIVE and state.spec.claim == "sufficient-condition"
 
 
@@ -678,12 +766,13 @@ def _repair(state: State, finding: Finding) -> Finding:
     mutants = generate(state.equation, state.source.paper, text=state.printed)[:MAX_EDITS]
     found = []
     for mutant in mutants:
-        trial = State(state.spec, state.source, mutant.printed, equation=state.equation, repairing=True)
+        trial = State(state.spec, state.source, mutant.printed, equation=state.equation, repairing=True,
+                      cache=state.cache)
         try:
             result = _with_assumption(trial)
         except (LatexParseError, HapticproofError, TypeError, ValueError, ZeroDivisionError, NotImplementedError):
             continue
-        if _repaired(state, result) and not (state.spec.assumption and result.verdict == Verdict.NEEDS_ASSUMPTION):
+        if _repaired(state, result):
             found.append((mutant, result))
     facts = dict(finding.evidence.facts)
     facts["edits_tried"] = len(mutants)

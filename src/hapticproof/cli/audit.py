@@ -81,7 +81,7 @@ def run(args: argparse.Namespace) -> int:
         reports.append(audit_paper(paper, only, progress=tick))
     seconds = time.perf_counter() - start
     if args.format == "json":
-        if len(reports) == 1 and (args.papers or args.paper) and not args.all:
+        if len(reports) == 1 and len(args.papers) + len(args.paper) == 1 and not args.all:
             text = json.dumps(reports[0].to_json(), indent=2)
         else:
             text = json.dumps({"papers": [r.to_json() for r in reports]}, indent=2)
