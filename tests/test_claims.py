@@ -107,9 +107,11 @@ def test_hermitian_part_expression_condition_and_delay():
         ("delay", r"b + B\cos(\omega (t_d + T)) - \frac{KT}{2}\cos(\omega t_d) - KT\frac{\sin(\omega t_d)\sin(\omega T)}"
                   r"{2(1 - \cos(\omega T))} > 0", "hermitian-part", 'scene = "delayed"'),
         ("delay-bad", r"b + B\cos(\omega t_d) - \frac{KT}{2}\cos(\omega t_d) > 0", "hermitian-part", 'scene = "delayed"'),
+        ("minor", r"b - \frac{(K_0 + K)T}{2} + (B_0 + B)\cos(\omega T) > 0", "hermitian-part", 'scene = "users"'),
+        ("minor-bad", r"b - \frac{(K_0 + K)T}{2} > 0", "hermitian-part", 'scene = "users"'),
     )
     assert verdicts(res) == {"expr": "confirmed", "expr-sign": "typo", "cond": "confirmed", "cond-missing": "malformed",
-                             "delay": "confirmed", "delay-bad": "wrong"}
+                             "delay": "confirmed", "delay-bad": "wrong", "minor": "confirmed", "minor-bad": "wrong"}
     assert res["expr-sign"].corrected == r"b - \frac{KT}{2} + B\cos(\omega T)"
     assert res["cond-missing"].corrected is None                  # b + KT/2 is not Re G_2^-1 (B is missing)
     assert res["delay-bad"].evidence.witness["n"] >= 1

@@ -56,14 +56,13 @@ corrected LaTeX is that edited display.
 from __future__ import annotations
 
 import functools
-import itertools
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
 import sympy as sp
 
-from hapticproof.certify import Sampler, as_bound, compare_bounds, compare_expressions, find_difference, is_identically_zero
+from hapticproof.certify import Sampler, as_bound, compare_bounds
 from hapticproof.errors import HapticproofError, LatexParseError
 from hapticproof.evidence import Decision, Evidence, Finding, Method, Outcome, Verdict
 from hapticproof.symbols import c as C_SYM
@@ -621,13 +620,14 @@ Checker = Callable[[State], Finding]
 
 @functools.lru_cache(maxsize=1)
 def checkers() -> dict[str, Checker]:
-    """The checker of each claim kind (:mod:`hapticproof.claimcheckers`)."""
-    from hapticproof import claimcheckers as cc
+    """The checker of each claim kind (:mod:`hapticproof.claimcheckers`, :mod:`hapticproof.claimconditions`)."""
+    from hapticproof import claimcheckers as ce
+    from hapticproof import claimconditions as cc
 
     return {
-        "inverse-transfer": cc.inverse_transfer,
-        "hermitian-part": cc.hermitian_part,
-        "residue": cc.residue,
+        "inverse-transfer": ce.inverse_transfer,
+        "hermitian-part": ce.hermitian_part,
+        "residue": ce.residue,
         "passivity-condition": functools.partial(cc.condition, claim="passivity"),
         "sufficient-condition": functools.partial(cc.condition, claim="sufficient"),
         "necessary-condition": functools.partial(cc.condition, claim="necessary"),
@@ -715,19 +715,9 @@ class _SourceView:
         return getattr(self._source, name)
 
     def table_for(self, scene: str | None) -> Any:
-        from hapticproof.paperfile import _scene_table
+        from hapticproof.paperfile import bound_table
 
-        key = ("view", scene)
-        if key not in self._source._tables:
-            original = self._source.scenes
-            object.__setattr__(self._source, "scenes", self.scenes)
-            try:
-                self._source._tables.pop(scene, None)
-                self._source._tables[key] = _scene_table(self._source, scene)
-                self._source._tables.pop(scene, None)
-            finally:
-                object.__setattr__(self._source, "scenes", original)
-        return self._source._tables[key]
+        return bound_table(self._source, self.scenes.get(scene) if scene else None, ("view", scene))
 
 
 def _with_text(printed: str, suffix: str) -> str:

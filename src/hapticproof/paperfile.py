@@ -370,7 +370,7 @@ def _read_scenes(raw: Any, path: str, text: str, words: Mapping[str, str]) -> di
         try:
             first = scene_from_table(table, where=path, base=base, text=text, prefix=prefix)
             used = first.names() | set(first.assumptions)
-            if first.active or first.system == "multi-user":
+            if first.active:
                 used.add("z_a")
             assumptions = {k: w for k, w in words.items()
                            if k in used and w in ("positive", "nonnegative", "real", "integer", "negative", "nonpositive")}
@@ -394,11 +394,16 @@ def _header_line(text: str, table: str) -> int | None:
 
 
 def _scene_table(paper: PaperFile, scene_name: str | None) -> Any:
-    key = scene_name
+    return bound_table(paper, paper.scenes.get(scene_name) if scene_name else None, scene_name)
+
+
+def bound_table(paper: PaperFile, scene: Any, key: Any) -> Any:
+    """The paper's symbol table with ``H`` (single-user) or ``C`` (teleoperator) bound to the
+    scene's environment or controller (remembered under ``key``), unless the file declares the
+    name as something other than a function."""
     if key in paper._tables:
         return paper._tables[key]
     table = paper.symbols
-    scene = paper.scenes.get(scene_name) if scene_name else None
     if scene is not None:
         from hapticproof.symbols import z as Z_SYM
 
@@ -408,8 +413,7 @@ def _scene_table(paper: PaperFile, scene_name: str | None) -> Any:
             design = sp.sympify(design).xreplace(mapping) if mapping else sp.sympify(design)
             bound = (lambda expr: (lambda arg: expr.xreplace({Z_SYM: arg})))(design)
             name = "H" if scene.system == "single-user" else "C"
-            declared = paper.words.get(name)
-            if declared in (None, "function"):
+            if paper.words.get(name) in (None, "function"):
                 table = table.with_functions({name: bound})
     paper._tables[key] = table
     return table
@@ -463,9 +467,15 @@ def _check_other(other: str, ids: set[str], where: str) -> None:
 
     paper_id, eq_id = other.split(":", 1)
     try:
-        get_paper(paper_id).get(eq_id)
-    except (UnknownPaperError, UnknownEquationError) as err:
+        paper = get_paper(paper_id)
+    except UnknownPaperError as err:
         raise PaperFileError(f"{where}: {err}") from None
+    try:
+        paper.get(eq_id)
+    except UnknownEquationError:
+        ids = list(paper.equations)
+        shown = ", ".join(ids[:8]) + (", ..." if len(ids) > 8 else "")
+        raise PaperFileError(f"{where}: paper {paper.id!r} has no equation {eq_id!r} (it has {len(ids)}: {shown})") from None
 
 
 def _read_equations(raw: Any, path: str, text: str, table: Any, scenes: Mapping[str, Any]) -> tuple[ClaimSpec, ...]:
