@@ -56,6 +56,11 @@ users = 2
 uniform = true
 [scenes.tele]
 system = "teleoperator"
+[scenes.pd]
+system = "teleoperator"
+controller = "pd"
+[scenes.pd.params]
+b = "positive"           # both robots' damping
 '''
 
 
@@ -137,6 +142,14 @@ def test_passivity_conditions_each_way():
     weak = res["weak"].evidence
     assert weak.facts["recheck"]["decision"] == "disproved"
     assert res["nec-strong"].evidence.facts["recheck"]["decision"] == "proved"
+
+
+def test_teleoperator_conditions():
+    res = audit(("worst", r"b > KT + 2B", "passivity-condition", 'scene = "pd"'),
+                ("sign", r"b > KT - 2B", "passivity-condition", 'scene = "pd"'),
+                ("freq", r"b > KT - 2B \cos \omega T", "hermitian-part", 'scene = "pd"'))
+    assert verdicts(res) == {"worst": "confirmed", "sign": "typo", "freq": "confirmed"}
+    assert res["sign"].corrected == r"b > KT + 2B"
 
 
 def test_numeric_scene_and_claims_that_do_not_apply():

@@ -177,12 +177,14 @@ def _at_delay(state: State, n: int) -> Any:
 
 def hermitian_part(state: State) -> Finding:
     """The display is ``Re G^{-1}(e^{j omega T})`` (or the condition ``Re G^{-1} >= 0`` at each frequency)."""
-    system = _system(state, ("single-user", "multi-user"), "hermitian-part")
+    system = _system(state, ("single-user", "multi-user", "teleoperator"), "hermitian-part")
     statement = state.statement
     relations = statement.relations()
     is_condition = bool(relations) and any(op != "=" for r in relations for op in r.ops)
     if system == "multi-user":
         return _hermitian_matrix(state)
+    if system == "teleoperator":
+        return _teleoperator_bounds(state, is_condition)
     from hapticproof.positivereal import hermitian
 
     form = hermitian(state.model)
@@ -393,6 +395,22 @@ def _hermitian_matrix(state: State) -> Finding:
     first = M[:1, :1].det() / 2
     return compare_expressions(value, first, on_mismatch=Verdict.WRONG,
                                what="the printed expression (no principal minor of the Hermitian part matches; vs the first)")
+
+
+def _teleoperator_bounds(state: State, is_condition: bool) -> Finding:
+    """Teleoperator: the frequency-wise passivity condition, each robot's damping at least its
+    bound at every frequency (the teleoperator paper's eq. 32, exact in ``c``)."""
+    from hapticproof.teleoperator import bounds
+
+    relation = _single(state)
+    if not is_condition or relation is None:
+        return _malformed("for a teleoperator the frequency-wise claim is a condition on the dampings "
+                          "(b_m >= bound(c), b_s >= bound(c)); the display is none")
+    model = state.model
+    bd = bounds(model)
+    exact = sp.And(sp.Ge(model.b_m, bd.master, evaluate=False), sp.Ge(model.b_s, bd.slave, evaluate=False))
+    printed = _in_c(state.prepare(relation), state)
+    return compare_conditions(printed, exact, state, claim="passivity", what="the printed frequency-wise condition")
 
 
 def _principal_minors(M: sp.Matrix) -> list[tuple[str, sp.Expr]]:

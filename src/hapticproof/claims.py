@@ -17,7 +17,9 @@ when only sampling agrees.
     ``c = cos(omega T)`` (or, with a symbolic delay, in the canonical theta-form, for every
     integer ``n``); a condition (``b > KT/2 - B\cos(\omega T)``) with ``Re G^{-1} >= 0`` at each
     frequency, as a bound on the device damping. m users: the matrix ``G + G^H`` (or its half)
-    or one of its principal minors.
+    or one of its principal minors (a condition: that minor ``>= 0``). Teleoperator: the
+    condition that each robot's damping exceeds its bound at every frequency (eq. 32 of the
+    teleoperator paper).
 ``residue``
     The residue (matrix) of ``G^{-1}`` at ``z = 1``.
 ``passivity-condition``, ``sufficient-condition``, ``necessary-condition``
@@ -441,7 +443,18 @@ def compare_conditions(printed: Any, exact: Any, state: State, *, claim: str, wh
     """Compare a printed condition with the exact necessary-and-sufficient one, as the claim
     says (``passivity`` / ``sufficient`` / ``necessary``): bounds when both bound one parameter
     (:func:`~hapticproof.certify.compare_bounds`), else a proof of equivalence up to a
-    positive factor or exact sampling (witnesses re-checked by ``verify``)."""
+    positive factor or exact sampling (witnesses re-checked by ``verify``).
+
+    >>> from hapticproof.paperfile import loads, TEMPLATE
+    >>> paper = loads(TEMPLATE)
+    >>> spec = paper.claim("3")
+    >>> state = State(spec, paper, spec.printed)
+    >>> b, K, T, B = (state.names[name] for name in ("b", "K", "T", "B"))
+    >>> exact = sp.Ge(b, K*T/2 + B)
+    >>> [compare_conditions(printed, exact, state, claim=claim, what="b > KT").verdict.value
+    ...  for printed, claim in ((sp.Gt(b, K*T + B), "passivity"), (sp.Gt(b, K*T + B), "necessary"))]
+    ['conservative', 'wrong']
+    """
     derived = exact if derived is None else derived
     exact = _drop_trivial(exact)
     if exact in (sp.true, sp.false):
@@ -796,7 +809,13 @@ def _describe_edit(mutant: Any) -> str:
 
 
 def describe(spec: Any, paper: Any) -> str:
-    """One line: what the claim is compared with (the report's ``derivation``)."""
+    """One line: what the claim is compared with (the report's ``derivation``).
+
+    >>> from hapticproof.paperfile import loads, TEMPLATE
+    >>> paper = loads(TEMPLATE)
+    >>> describe(paper.claim("3"), paper)
+    "exact condition for G^-1 positive real of scene 'wall' (single-user, forward) (necessary and sufficient)"
+    """
     scene = paper.scenes.get(spec.scene) if spec.scene else None
     where = ""
     if scene is not None:

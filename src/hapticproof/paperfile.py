@@ -400,7 +400,13 @@ def _scene_table(paper: PaperFile, scene_name: str | None) -> Any:
 def bound_table(paper: PaperFile, scene: Any, key: Any) -> Any:
     """The paper's symbol table with ``H`` (single-user) or ``C`` (teleoperator) bound to the
     scene's environment or controller (remembered under ``key``), unless the file declares the
-    name as something other than a function."""
+    name as something other than a function.
+
+    >>> paper = loads(TEMPLATE)
+    >>> table = bound_table(paper, paper.scenes["wall"], "wall")
+    >>> table.functions["H"](1)                     # H(1) = K for the wall
+    K
+    """
     if key in paper._tables:
         return paper._tables[key]
     table = paper.symbols

@@ -714,7 +714,10 @@ class Scene:
                 raise SceneError("teleoperator scenes need an integer communication delay")
         values = {s.name: v for s, v in mapping.items()}
         mass = lambda name: values.get(name, values.get("m"))  # noqa: E731
-        damping = lambda name: values.get(name, values.get("b", self.symbol(name)))  # noqa: E731
+        # "b" is both dampings: a value, or an assumption (one symbol b for both robots)
+        both = self.symbol("b") if "b" in self.assumptions else None
+        damping = lambda name: values.get(name, values.get("b", both if both is not None and name not in self.assumptions  # noqa: E731
+                                                           else self.symbol(name)))
         alpha = values.get("alpha", self.symbol("alpha") if "alpha" in self.assumptions else 1)
         return TeleoperatorScene(mass("m_m"), mass("m_s"), damping("b_m"), damping("b_s"), sub(self.symbol("T")),
                                  sub(self.environment_z()), alpha)
