@@ -656,6 +656,12 @@ def check(ctx: Any, *, spec: Any, source: Any) -> Finding:
         finding = _with_assumption(state)
     except ClaimError as err:
         return Finding(Verdict.UNDECIDED, f"the claim cannot be checked: {err}", Evidence(Method.STRUCTURAL))
+    except LatexParseError:
+        raise                                   # the audit reports the printed display as malformed
+    except (HapticproofError, ArithmeticError, TypeError, ValueError, NotImplementedError, sp.PolynomialError) as err:
+        # a display the generic checker cannot handle is undecided with the reason, never a traceback
+        return Finding(Verdict.UNDECIDED, f"the check could not decide this display: {type(err).__name__}: {err}",
+                       Evidence(Method.STRUCTURAL, facts={"error": f"{type(err).__name__}: {err}"}))
     if _should_repair(state, finding):
         finding = _repair(state, finding)
     return finding
