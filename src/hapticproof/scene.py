@@ -482,7 +482,9 @@ class Scene:
             word = params.get(sym.name) if isinstance(params.get(sym.name), str) else None
             target = parameter_symbol(sym.name, word)
             if sym != target:
-                if word is None and _assumption_of(sym) not in (None, _assumption_of(target)):
+                # a parameter given a value is substituted whatever its symbol's assumption
+                # (Scene.with_params on a scene whose B was declared "real", say)
+                if word is None and sym.name not in params and _assumption_of(sym) not in (None, _assumption_of(target)):
                     raise SceneError(f"{where}: the symbol {sym.name} carries the assumption {_assumption_of(sym)!r}; "
                                      f"declare it in params ({sym.name} = {_assumption_of(sym)!r})")
                 mapping[sym] = target
@@ -712,7 +714,10 @@ class Scene:
                 raise SceneError("teleoperator scenes need an integer communication delay")
         values = {s.name: v for s, v in mapping.items()}
         mass = lambda name: values.get(name, values.get("m"))  # noqa: E731
-        damping = lambda name: values.get(name, values.get("b", self.symbol(name)))  # noqa: E731
+        # "b" is both dampings: a value, or an assumption (one symbol b for both robots)
+        both = self.symbol("b") if "b" in self.assumptions else None
+        damping = lambda name: values.get(name, values.get("b", both if both is not None and name not in self.assumptions  # noqa: E731
+                                                           else self.symbol(name)))
         alpha = values.get("alpha", self.symbol("alpha") if "alpha" in self.assumptions else 1)
         return TeleoperatorScene(mass("m_m"), mass("m_s"), damping("b_m"), damping("b_s"), sub(self.symbol("T")),
                                  sub(self.environment_z()), alpha)

@@ -18,7 +18,7 @@ from hapticproof.errors import HapticproofError
 __all__ = ["main", "build_parser"]
 
 #: Subcommand modules, in the order they appear in ``--help``.
-COMMANDS = ("audit", "derive", "check", "export", "boundary", "map", "bench")
+COMMANDS = ("audit", "new-paper", "derive", "check", "export", "boundary", "map", "bench")
 
 
 def build_parser(command: str | None = None) -> argparse.ArgumentParser:
@@ -34,7 +34,7 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
     parser.add_argument("--version", action="version", version=f"hapticproof {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
     for name in (command,) if command in COMMANDS else COMMANDS:
-        importlib.import_module(f"hapticproof.cli.{name}").register(sub)
+        importlib.import_module(f"hapticproof.cli.{name.replace('-', '_')}").register(sub)
     return parser
 
 

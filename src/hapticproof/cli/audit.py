@@ -27,6 +27,9 @@ def register(sub: argparse._SubParsersAction) -> None:
         "cross-paper checks.",
     )
     parser.add_argument("papers", nargs="*", metavar="PAPER", help="paper ids (e.g. hve); default: all")
+    parser.add_argument("--paper", "-p", action="append", default=[], metavar="FILE",
+                        help="audit your own paper from a paper file (TOML; repeatable; "
+                        "hapticproof new-paper FILE writes a template)")
     parser.add_argument("--all", action="store_true", help="audit every registered paper")
     parser.add_argument("--equation", "-e", action="append", default=[], metavar="ID",
                         help="audit only this equation (repeatable; needs one PAPER)")
@@ -51,16 +54,23 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    if args.all or not args.papers:
+    files = _paper_files(args.paper)
+    if args.all or not (args.papers or files):
         selected = list(papers().values())
     else:
         selected = [get_paper(name) for name in args.papers]
+    selected += files
     if args.equation and len(selected) != 1:
         raise_usage("--equation needs exactly one PAPER")
     if args.equation and args.section:
         raise_usage("use --equation or --section, not both")
     if args.jobs is not None and args.jobs < 1:
         raise_usage("--jobs must be at least 1")
+    if args.section and len(selected) > 1:      # several papers: those with equations in the sections
+        chosen = [(p, _section_ids(p, args.section)) for p in selected]
+        if not any(ids for _, ids in chosen):
+            raise_usage(f"no equation in section(s) {', '.join(args.section)} in any selected paper")
+        selected = [p for p, ids in chosen if ids]
     if args.mutate:
         return _mutate(args, selected)
     if args.sample is not None:
@@ -72,7 +82,7 @@ def run(args: argparse.Namespace) -> int:
                             progress=(lambda k, _n: bar(k, total)) if bar else None)
     seconds = time.perf_counter() - start
     if args.format == "json":
-        if len(reports) == 1 and args.papers and not args.all:
+        if len(reports) == 1 and len(args.papers) + len(args.paper) == 1 and not args.all:
             text = json.dumps(reports[0].to_json(), indent=2)
         else:
             text = json.dumps({"papers": [r.to_json() for r in reports]}, indent=2)
@@ -103,6 +113,20 @@ def run(args: argparse.Namespace) -> int:
             counts[verdict] = counts.get(verdict, 0) + n
     print(summary_line(counts, use_colour(sys.stderr), len(reports), seconds), file=sys.stderr)
     return 0
+
+
+def _paper_files(paths: list[str]) -> list:
+    """The registered papers of ``--paper`` files (their mistakes are one-line errors)."""
+    if not paths:
+        return []
+    from hapticproof.paperfile import read_paper
+
+    return [read_paper(path).paper for path in paths]
+
+
+def _section_ids(paper, sections: list[str]) -> list[str]:
+    return [eq.id for eq in paper.ordered()
+            if any(eq.section == s or eq.section.startswith(s + ".") for s in sections)]
 
 
 def _mutate(args: argparse.Namespace, selected: list) -> int:
