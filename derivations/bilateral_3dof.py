@@ -1847,7 +1847,7 @@ def _38ab_check(ctx: AuditContext) -> Finding:
                        Evidence(Method.PARSE, facts={"printed_form": [sp.srepr(r) for r in relations]}))
     printed = pairs
     wrong = [p for p in printed if p not in derived]
-    missing = [d for d in derived if d not in printed]
+    missing = sorted((d for d in derived if d not in printed), key=lambda e: sorted(map(str, e)))   # a set: fixed order
     if wrong:
         return Finding(Verdict.WRONG, f"printed equalities not implied by B: {[' = '.join(sorted(map(str, w))) for w in wrong]}",
                        Evidence(Method.CANONICAL_FORM, facts={"printed_form": sorted(sorted(map(str, p)) for p in printed)}))

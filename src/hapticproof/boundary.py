@@ -51,7 +51,7 @@ from typing import Any
 import flint
 import sympy as sp
 
-from hapticproof.errors import SceneError
+from hapticproof.errors import DerivationError, SceneError
 from hapticproof.evidence import Decision, Evidence, Method, Outcome, exact
 from hapticproof.realroots import ball_spectral_radius, flint_precision
 from hapticproof.symbols import z as Z_SYM
@@ -317,11 +317,13 @@ def closed_form_boundary() -> ClosedFormBoundary:
     solutions = []
     for cond in (inner_minus, minus, inner_plus):
         poly = sp.Poly(cond, BETA)
-        assert poly.degree() == 1, "Jury conditions of the undelayed wall are affine in beta"
+        if poly.degree() != 1:
+            raise DerivationError("Jury conditions of the undelayed wall should be affine in beta")
         solutions.append(sp.factor(-poly.TC() / poly.LC()))
     complex_pair, flip, lower = solutions
     # P(1) = alpha beta (1 - p): positive for every beta > 0
-    assert sp.expand(one - ALPHA * BETA * (1 - P)) == 0
+    if sp.expand(one - ALPHA * BETA * (1 - P)) != 0:
+        raise DerivationError("P(1) should be alpha beta (1 - p)")
     a3, _, _, a0 = characteristic_polynomial(0).all_coeffs()
     return ClosedFormBoundary(complex_pair, flip, lower, sp.factor(a3 + a0))
 

@@ -49,6 +49,7 @@ from typing import Any
 import mpmath
 import sympy as sp
 
+from hapticproof.errors import DerivationError
 from hapticproof.scene import SYMBOLS
 from hapticproof.symbols import c as C_SYM
 from hapticproof.symbols import z as Z_SYM
@@ -347,14 +348,16 @@ def leading_order_boundary(n: Any = SYMBOLS["n"], operator: bool = False) -> Lea
     ) * num.subs(zs, zval)
     poly = _truncate(poly, order)
     low, high = sp.expand(poly.coeff(_E, 2)), sp.expand(poly.coeff(_E, 3))
-    assert sp.im(low) == 0 and sp.re(high) == 0, "lowest orders are real/imaginary as expected"
+    if sp.im(low) != 0 or sp.re(high) != 0:
+        raise DerivationError("the lowest orders of the expansion are not real/imaginary as expected")
     (freq,) = sp.solve(low, _W**2)
     (crit,) = sp.solve(sp.expand(sp.im(high) / _W).subs(_W**2, freq), _G)
     # back to physical symbols: g (2n+1) = 2 (a + d)  <=>  K (T/2 + nT) = b + B  (+ b_h)
     damping = b + OPERATOR["b_h"] if operator else b
     delay = t_d if isinstance(n, sp.Symbol) else sp.sympify(n) * T
     ratio = sp.simplify(crit * (2 * sp.sympify(n) + 1) / (2 * (_A + _D)))
-    assert ratio == 1, f"unexpected leading order {crit}"
+    if ratio != 1:
+        raise DerivationError(f"unexpected leading order {crit}")
     condition = sp.Gt(damping + B, K * (T / 2 + delay), evaluate=False)
     return LeadingOrder(n, operator, freq, crit, condition)
 

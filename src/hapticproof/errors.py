@@ -19,6 +19,7 @@ __all__ = [
     "UnknownPaperError",
     "UnknownEquationError",
     "InputFormatError",
+    "DerivationError",
 ]
 
 
@@ -69,3 +70,7 @@ class UnknownEquationError(HapticproofError, KeyError):
 
 class InputFormatError(HapticproofError, ValueError):
     """A user file or command-line value is not in the documented format."""
+
+
+class DerivationError(HapticproofError, ArithmeticError):
+    """An internal identity of a derivation did not hold (a bug, reported instead of a verdict)."""

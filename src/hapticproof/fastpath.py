@@ -38,7 +38,7 @@ import flint
 from hapticproof import trigpoly
 from hapticproof.errors import SceneError
 from hapticproof.evidence import Decision, Evidence, Method, Outcome
-from hapticproof.kernel import SignCertificate, _sign_outcome, q_str
+from hapticproof.kernel import SignCertificate, sign_outcome, q_str
 from hapticproof.positivereal import HERMITIAN, Condition, combine, pole_conditions
 from hapticproof.realroots import minimise_rational, real_roots, to_rational
 
@@ -497,13 +497,13 @@ def _monomial_outcome(N: flint.fmpq_poly, D: flint.fmpq_poly, P: flint.fmpq_poly
         zeros = verdict[1]
         roots = tuple((x, x) for x in zeros)
         cert = SignCertificate(p, lo, hi, "c", True, (lo, (lo + hi) / 2, hi), roots, **kwargs)
-        return _sign_outcome(cert, None, f"{label}(c)")
+        return sign_outcome(cert, None, f"{label}(c)")
     if verdict is not None and verdict[0] == "negative":
         witness = _negative_circle_point(verdict[1], lambda c: p(c) < 0, _pole_test(Q), p)
         if witness is not None:
             value = flint.fmpq(witness["c"].numerator, witness["c"].denominator)
             cert = SignCertificate(p, lo, hi, "c", False, witness=value, witness_point=witness["z"], **kwargs)
-            return _sign_outcome(cert, witness, f"{label}(c)")
+            return sign_outcome(cert, witness, f"{label}(c)")
     # hard cases (a zero of even multiplicity inside, a root at a bisection point): the kernel
     return decide_rational_sign(N, D, -1, 1, "c", label, transfer=transfer_data, transfer_den=Q)
 

@@ -53,6 +53,7 @@ __all__ = [
     "BoundaryRoot",
     "decide_sign",
     "decide_rational_sign",
+    "sign_outcome",
     "decide_psd",
     "locate_roots",
     "simplest_between",
@@ -422,14 +423,14 @@ def decide_sign(p: Any, lo: Any, hi: Any, variable: str = "c", label: str = "p")
     """
     p = flint.fmpq_poly(p) if not isinstance(p, flint.fmpq_poly) else p
     cert, witness = _sign(p, lo, hi, variable, label)
-    return _sign_outcome(cert, witness, f"{label}({variable})")
+    return sign_outcome(cert, witness, f"{label}({variable})")
 
 
 def _interval_text(cert: SignCertificate) -> str:
     return f"[{q_str(cert.lo)}, {'oo' if cert.hi is None else q_str(cert.hi)}]"
 
 
-def _sign_outcome(cert: SignCertificate, witness: dict[str, Any] | None, what: str) -> Outcome:
+def sign_outcome(cert: SignCertificate, witness: dict[str, Any] | None, what: str) -> Outcome:
     if cert.holds:
         touching = len(cert.roots)
         reason = f"{what} >= 0 for all {cert.variable} in {_interval_text(cert)}"
@@ -460,7 +461,7 @@ def decide_rational_sign(num: flint.fmpq_poly, den: flint.fmpq_poly, lo: Any, hi
         raise ZeroDivisionError("zero denominator")
     cert, witness = _sign(num * den, lo, hi, variable, label, numerator=num, denominator=den, transfer=transfer,
                           transfer_den=transfer_den)
-    return _sign_outcome(cert, witness, f"{label}({variable})")
+    return sign_outcome(cert, witness, f"{label}({variable})")
 
 
 # ---------------------------------------------------------------------------------------------

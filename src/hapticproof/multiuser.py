@@ -64,7 +64,7 @@ from typing import Any
 import flint
 import sympy as sp
 
-from hapticproof.errors import SceneError
+from hapticproof.errors import DerivationError, SceneError
 from hapticproof.evidence import Decision, Evidence, Method, Outcome
 from hapticproof.kernel import decide_constant_psd, locate_roots, poly_json
 from hapticproof.lazy import stage
@@ -995,7 +995,8 @@ def hve_leading_minor_counterexample() -> tuple[MultiUserScene, Any]:
     scene = MultiUserScene.from_values(b=[sp.Rational(1, 2), sp.Rational(1, 4)], T=1, K0=[1, 1], B0=[0, 0], edges=())
     H = hermitian(scene)
     lead = psd_minors(H, subsets=[(0,), (0, 1)])
-    assert all(mn.num.is_zero() for mn in lead.values()), "the leading minors should vanish identically"
+    if not all(mn.num.is_zero() for mn in lead.values()):
+        raise DerivationError("the leading minors of the counterexample scene should vanish identically")
     return scene, decide_psd_on_circle(H)
 
 

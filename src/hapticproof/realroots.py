@@ -27,6 +27,8 @@ import flint
 import mpmath
 import sympy as sp
 
+from hapticproof.errors import DerivationError
+
 __all__ = [
     "flint_precision",
     "ball_spectral_radius",
@@ -431,7 +433,8 @@ def _separate(roots: list[RealRoot]) -> list[RealRoot]:
 def _deflate(factor: flint.fmpz_poly, root: flint.fmpq) -> flint.fmpz_poly:
     """Divide out the linear factor of a rational root (exact)."""
     quotient, remainder = divmod(factor, flint.fmpz_poly([-root.p, root.q]))
-    assert remainder == 0
+    if remainder != 0:
+        raise DerivationError(f"{root} is not a root of the factor")
     return quotient
 
 

@@ -61,7 +61,7 @@ import numpy as np
 import scipy.linalg
 import sympy as sp
 
-from hapticproof.errors import InputFormatError, SceneError
+from hapticproof.errors import DerivationError, InputFormatError, SceneError
 from hapticproof.realroots import ball_spectral_radius, flint_precision
 
 __all__ = [
@@ -375,7 +375,8 @@ def _split_impedance(num: tuple[Fraction, ...], den: tuple[Fraction, ...]):
         k = rem[-1] / den1[-1]
         padded = [Fraction(0)] * (len(den1) - len(rem)) + rem
         diff = [a - k * b for a, b in zip(padded, den1)]
-        assert diff[-1] == 0
+        if diff[-1] != 0:
+            raise DerivationError("the spring term did not split off the impedance")
         rem = diff[:-1] or [Fraction(0)]
         den = den1
     while len(rem) > 1 and rem[0] == 0:
