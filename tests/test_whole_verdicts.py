@@ -125,3 +125,26 @@ def test_check_reads_an_audit_report(capsys, tmp_path):
     assert main(["check", str(path)]) == 0
     out = capsys.readouterr().out
     assert "hve (25)" in out
+
+
+def test_the_audit_runs_the_checker_on_every_certificate():
+    """A finding's certificates are re-verified by the independent checker; a certificate the
+    checker rejects makes the verdict undecided (issue 10: 'the audit runs it')."""
+    import flint
+
+    from hapticproof.audit import rechecked
+    from hapticproof.evidence import Evidence, Finding, Method, Verdict
+    from hapticproof.kernel import decide_sign
+
+    out = decide_sign(flint.fmpq_poly([1, -2, 1]), -1, 1)          # (c - 1)^2 >= 0: proved
+    good = Finding(Verdict.CONFIRMED, "a square", Evidence(Method.ROOT_ISOLATION, facts={"certificate": out.evidence.facts["certificate"]}))
+    checked = rechecked(good)
+    assert checked.verdict == Verdict.CONFIRMED
+    assert checked.evidence.facts["checker"] == {"certificates": 1, "re-verified": 1}
+    forged = to_jsonable(out.evidence.facts["certificate"].to_json())
+    forged["polynomial"] = ["-1", "0", "1"]                          # c^2 - 1 < 0 inside: 'holds' is false
+    bad = rechecked(Finding(Verdict.CONFIRMED, "a forged square", Evidence(Method.ROOT_ISOLATION, facts={"certificate": forged})))
+    assert bad.verdict == Verdict.UNDECIDED
+    assert "rejected" in bad.evidence.facts["checker"] and "checker rejected" in bad.detail
+    plain = Finding(Verdict.CONFIRMED, "no certificate", Evidence(Method.CANONICAL_FORM))
+    assert rechecked(plain) is plain

@@ -36,7 +36,7 @@ import re
 import textwrap
 import time
 from collections.abc import Callable, Iterable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import sympy as sp
@@ -420,6 +420,7 @@ def run_equation(paper: Paper, equation: Equation) -> EquationResult:
         finding = equation.check(ctx)
     except LatexParseError as err:
         finding = parse_failure(equation, err)
+    finding = rechecked(finding)
     seconds = time.perf_counter() - start
     return EquationResult(
         id=equation.id,
@@ -434,6 +435,32 @@ def run_equation(paper: Paper, equation: Equation) -> EquationResult:
         section=equation.section,
         assumptions=equation.assumptions,
     )
+
+
+def rechecked(finding: Finding) -> Finding:
+    """``finding`` with every certificate in its evidence re-verified by the independent checker
+    (:mod:`hapticproof.checker`); the tally goes to ``evidence.facts["checker"]``. A certificate
+    the checker rejects makes the verdict ``undecided`` -- the decision and its proof disagree,
+    so neither is reported as established."""
+    from hapticproof.checker import certificates, check_certificate
+
+    certs = list(certificates(finding.evidence.to_json()))
+    if not certs:
+        return finding
+    results = [check_certificate(c) for c in certs]
+    tally: dict[str, Any] = {"certificates": len(results), "re-verified": sum(r.ok and r.verified for r in results)}
+    skipped = [r.reason for r in results if r.ok and not r.verified]
+    failed = [r.reason for r in results if not r.ok]
+    if skipped:
+        tally["not re-verified"] = skipped
+    if failed:
+        tally["rejected"] = failed
+    evidence = replace(finding.evidence, facts={**finding.evidence.facts, "checker": tally})
+    if not failed:
+        return replace(finding, evidence=evidence)
+    return replace(finding, verdict=Verdict.UNDECIDED, evidence=evidence, corrected=None,
+                   detail=f"the independent checker rejected a certificate of this check ({failed[0]}); "
+                          f"the check had said {finding.verdict.value}: {finding.detail}")
 
 
 def audit_paper(paper: Paper, only: Iterable[str] | None = None,

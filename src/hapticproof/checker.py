@@ -734,16 +734,17 @@ class ReportCheck:
         return "\n".join(lines)
 
 
-def _certificates(node: Any) -> Iterator[dict]:
+def certificates(node: Any) -> Iterator[dict]:
+    """Every certificate object (a dict with a ``certificate`` kind) inside a JSON value."""
     if isinstance(node, dict):
         if isinstance(node.get("certificate"), str):
             yield node
             return
         for value in node.values():
-            yield from _certificates(value)
+            yield from certificates(value)
     elif isinstance(node, list):
         for value in node:
-            yield from _certificates(value)
+            yield from certificates(value)
 
 
 def _entries(report: Any) -> list[tuple[str, Any]]:
@@ -767,5 +768,5 @@ def check_report(report: Any) -> ReportCheck:
         report = json.loads(report)
     out = []
     for name, entry in _entries(report):
-        out.append((name, [check_certificate(c) for c in _certificates(entry)]))
+        out.append((name, [check_certificate(c) for c in certificates(entry)]))
     return ReportCheck(out)

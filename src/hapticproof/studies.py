@@ -140,7 +140,7 @@ def peer_study(delays: Sequence[int] = (0, 3, 10), rels: Sequence[float] = (1e-2
     :func:`hapticproof.positivereal.positive_real` (the SymPy path) gives the same decision;
     ``check``: re-verify every certificate with :mod:`hapticproof.checker` (untimed).
     """
-    from hapticproof.checker import check_certificate
+    from hapticproof.checker import certificates, check_certificate
     from hapticproof.evidence import to_jsonable
 
     cases = peer_cases(delays, rels)
@@ -154,7 +154,7 @@ def peer_study(delays: Sequence[int] = (0, 3, 10), rels: Sequence[float] = (1e-2
         row["hapticproof"] = {"seconds": seconds, "verdict": verdict, "decision": out.decision.value,
                               "wrong": verdict != case["truth"]}
         if check:
-            certs = list(_certificates(to_jsonable(out.to_json())))
+            certs = list(certificates(to_jsonable(out.to_json())))
             results = [check_certificate(c) for c in certs]
             row["hapticproof"]["certificates"] = len(certs)
             row["hapticproof"]["certificates_verified"] = sum(r.ok and r.verified for r in results)
@@ -186,18 +186,6 @@ def _summary(rows: list[dict[str, Any]], name: str) -> dict[str, Any]:
     times = [r[name]["seconds"] for r in rows]
     return {"median_seconds": statistics.median(times), "max_seconds": max(times),
             "wrong_verdicts": sum(bool(r[name]["wrong"]) for r in rows), "of": len(rows)}
-
-
-def _certificates(node: Any):
-    if isinstance(node, dict):
-        if isinstance(node.get("certificate"), str):
-            yield node
-            return
-        for value in node.values():
-            yield from _certificates(value)
-    elif isinstance(node, list):
-        for value in node:
-            yield from _certificates(value)
 
 
 def plot_peers(data: dict[str, Any], path: str | Path) -> None:
