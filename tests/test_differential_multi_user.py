@@ -30,6 +30,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from oracles.discrete import multi_user_positive_real  # noqa: E402
 from oracles.harness import Tally, examples, expected_decision, timed  # noqa: E402
+from certified import assert_certified  # noqa: E402
 
 from hapticproof.multiuser import MultiUserScene, positive_real  # noqa: E402
 
@@ -110,6 +111,7 @@ def test_multi_user_positive_real_matches_oracle():
     def run(case):
         oracle, t_oracle, oracle_error = timed(_oracle, case)
         outcome, t_toolkit, error = timed(lambda: positive_real(_scene(case)))
+        assert_certified(outcome)
         decision = outcome.decision.value if outcome is not None else None
         tally.check(dict(case), decision, oracle, call=_call(case), error=error,
                     seconds={"toolkit": t_toolkit, "oracle": t_oracle}, oracle_error=oracle_error)

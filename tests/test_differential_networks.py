@@ -40,6 +40,7 @@ from oracles.harness import Tally, examples, expected_decision, timed  # noqa: E
 from oracles.polys import RationalFunction  # noqa: E402
 from oracles.result import YES, OracleResult  # noqa: E402
 from oracles.search import check_termination  # noqa: E402
+from certified import assert_certified  # noqa: E402
 
 from hapticproof.networks import absolute_stability, llewellyn, positive_real  # noqa: E402
 
@@ -167,6 +168,7 @@ def _zstr(Z: sp.Matrix) -> str:
 def _decide(call, tally: Tally, case: dict, oracle_call, label: str):
     oracle, t_oracle, oracle_error = timed(oracle_call)
     outcome, t_toolkit, error = timed(call)
+    assert_certified(outcome, label)
     decision = outcome.decision.value if outcome is not None else None
     tally.check({**case, "Z": _zstr(case["Z"])}, decision, oracle, call=label, error=error,
                 seconds={"toolkit": t_toolkit, "oracle": t_oracle}, oracle_error=oracle_error)
@@ -242,6 +244,7 @@ def test_absolute_stability_matches_oracle():
     def run(case):
         Z, ports = case["Z"], case["ports"]
         verdict, t_toolkit, error = timed(lambda: absolute_stability(Z, ports=ports, search=False))
+        assert_certified(verdict)
         decision = verdict.decision.value if verdict is not None else None
         # the search oracle runs only when it could refute the toolkit's "proved"
         oracle, t_oracle, oracle_error = timed(lambda: oracle_absolute_stability(Z, ports, search=decision == "proved"))

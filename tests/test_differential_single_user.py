@@ -36,6 +36,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from oracles.discrete import Z, discrete_positive_real, integrator, single_user_positive_real  # noqa: E402
 from oracles.harness import Tally, examples, expected_decision, timed  # noqa: E402
 from oracles.result import OracleResult  # noqa: E402
+from certified import assert_certified  # noqa: E402
 
 from hapticproof.positivereal import positive_real  # noqa: E402
 from hapticproof.scene import SingleUserScene  # noqa: E402
@@ -191,6 +192,7 @@ def test_positive_real_matches_oracle():
     def run(case):
         oracle, t_oracle, oracle_error = timed(_oracle, case)
         outcome, t_toolkit, error = timed(lambda: positive_real(_scene(case)))
+        assert_certified(outcome, _call(case))
         decision = outcome.decision.value if outcome is not None else None
         tally.check(case, decision, oracle, call=_call(case), error=error,
                     seconds={"toolkit": t_toolkit, "oracle": t_oracle}, oracle_error=oracle_error)

@@ -30,6 +30,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from oracles.discrete import Z, teleoperator_passivity  # noqa: E402
 from oracles.harness import Tally, examples, expected_decision, timed  # noqa: E402
+from certified import assert_certified  # noqa: E402
 
 from hapticproof.teleoperator import TeleoperatorScene, passivity  # noqa: E402
 
@@ -96,6 +97,7 @@ def test_teleoperator_passivity_matches_oracle():
                                                                    C=case["C"], alpha=case["alpha"]))
         scene = lambda: TeleoperatorScene(1, 1, case["b_m"], case["b_s"], case["T"], case["C"], case["alpha"])  # noqa: E731
         outcome, t_toolkit, error = timed(lambda: passivity(scene()))
+        assert_certified(outcome)
         decision = outcome.decision.value if outcome is not None else None
         call = (f"passivity(TeleoperatorScene(m_m=1, m_s=1, b_m={case['b_m']}, b_s={case['b_s']}, T={case['T']}, "
                 f"C={sp.sstr(case['C'])}, alpha={case['alpha']}))")
