@@ -146,9 +146,25 @@ def _align(expr: Any) -> Any:
 
 
 def _signals(expr: Any) -> Any:
-    """Applied signal functions ``V_h1(z)`` ... -> plain symbols ``V_h1`` ..."""
-    calls = {a: sp.Symbol(a.func.__name__) for a in expr.atoms(sp.core.function.AppliedUndef)}
+    """Applied signal functions ``V_h1(z)`` ... -> plain symbols ``V_h1`` ...; a signal evaluated
+    at anything but ``z`` (``V_h1(-z)``) stays a call, so it matches no model term."""
+    calls = {a: sp.Symbol(a.func.__name__) for a in expr.atoms(sp.core.function.AppliedUndef)
+             if len(a.args) == 1 and isinstance(a.args[0], sp.Symbol) and a.args[0].name == "z"}
     return expr.xreplace(calls)
+
+
+def _users_range(statement: Any) -> str | None:
+    """Why the printed index range of a per-user statement is not ``i = 1, ..., m`` (None if it is)."""
+    from hapticproof.parse import Elision, Qualified
+
+    if not isinstance(statement, Qualified) or len(statement.ranges) != 1:
+        return "it is not one statement for the index range i = 1, ..., m"
+    rng = statement.ranges[0]
+    values = [v for v in rng.values if not isinstance(v, Elision)]
+    if [str(i) for i in rng.indices] != ["i"] or len(values) < 2 or values[0] != 1 or sp.sstr(values[-1]) != "m" \
+            or any(v != k + 1 for k, v in enumerate(values[:-1])):
+        return f"the printed range is {', '.join(map(sp.sstr, rng.values))} for {', '.join(map(str, rng.indices))}, not i = 1, ..., m"
+    return None
 
 
 def _in_c(expr: Any) -> sp.Expr:
@@ -235,6 +251,10 @@ P37 = r"b_i V_{hi}(z) = F_{hi}(z) - U_i(z), \quad i = 1, \cdots, m"
 @PAPER.equation("37", kind="expression", printed=P37, section=SECTION, assumptions=ASSUME,
                 derivation="force balance of device i in Fig. 7b (mass moved into the operator, as in (14))")
 def eq37(ctx: AuditContext) -> Finding:
+    wrong_range = _users_range(ctx.statement)
+    if wrong_range is not None:
+        return Finding(Verdict.WRONG, f"the balance must hold for every user: {wrong_range}",
+                       Evidence(Method.PARSE, facts={"printed_form": ("range", wrong_range)}), corrected=P37)
     body = ctx.statement.body.as_sympy()
     facts = {}
     for i in (1, 2, 3):
@@ -826,7 +846,21 @@ def _quoted_choices(ctx: AuditContext) -> tuple[dict[sp.Symbol, Any], Any]:
                 worst_c = r.rhs
             elif isinstance(r.lhs, sp.Symbol) and r.lhs in (b, K_0, B_0, K, B):
                 choices[r.lhs] = r.rhs
+            elif r.atoms(sp.cos, sp.sin) or omega in r.free_symbols:
+                worst_c = _frequency_named(r)
     return choices, worst_c
+
+
+def _frequency_named(relation: sp.Eq) -> Any:
+    """The ``c = cos(omega T)`` a printed frequency statement names (``2 cos(omega T) = -1`` ->
+    -1/2); the relation itself when it names no single c (it then matches no derived c)."""
+    if omega not in relation.free_symbols:
+        return relation
+    try:
+        roots = sp.solve(_in_c(relation.lhs - relation.rhs), C)
+    except (ValueError, NotImplementedError):
+        return relation
+    return roots[0] if len(roots) == 1 else relation
 
 
 @lru_cache(maxsize=8)
@@ -868,7 +902,7 @@ def _worst_choice_claim(ctx: AuditContext, m: int, condition_id: str, scene: Mul
     derived = _worst_aggregates(m, delay, c_star)
     wrong = {p: (_aggregate_kind(v), derived[p]) for p, v in choices.items() if _aggregate_kind(v) != derived[p]}
     members = _members(m)
-    stray = {p: v for p, v in choices.items() if p not in wrong and set(getattr(v, "args", ())) != members[p]}
+    stray = {p: v for p, v in choices.items() if set(getattr(v, "args", ())) != members[p]}
     users = _scene_values(scene)
     values = {p: sp.sympify(v).xreplace(users) for p, v in choices.items()}
     for p in (b, K_0, B_0, K, B):      # aggregates the text does not choose: the derived one
@@ -887,10 +921,14 @@ def _worst_choice_claim(ctx: AuditContext, m: int, condition_id: str, scene: Mul
     corrected = ", ".join(f"{p} = {derived[p]}" for p in (b, K_0, B_0, K, B))
     c_wrong = worst_c is not None and worst_c != c_star
     if wrong or c_wrong or stray:
-        listing = "; ".join([f"{p} is the {got} where the worst case needs the {want}" for p, (got, want) in wrong.items()]
+        listing = "; ".join([f"{p} = {sp.sstr(choices[p])} is the {got} where the worst case needs the {want}"
+                             for p, (got, want) in wrong.items()]
                             + [f"{p} = {sp.sstr(v)} does not aggregate {sorted(map(str, members[p]))}" for p, v in stray.items()])
         if c_wrong:
             listing = (listing + "; " if listing else "") + f"the worst frequency is c = {c_star}, not {worst_c}"
+        unchosen = [str(p) for p in (b, K_0, B_0, K, B) if p not in choices and len(members[p]) > 1]
+        if unchosen:
+            listing += f"; no choice printed for {', '.join(unchosen)} (the derived one is used)"
         if holds and _not_pr(scene):
             return Finding(Verdict.WRONG,
                            f"with the printed choices ({listing}) ({condition_id}) holds at the witness ({sp.sstr(at)}) while "

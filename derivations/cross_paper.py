@@ -125,6 +125,21 @@ def tele_routh(ctx: AuditContext) -> Finding:
                 printed="teleoperator introduction 'b > KT/2 + B' (Colgate and Schenkel) vs HVE (3) 'b > KT/2 + B'",
                 derivation="both quotes as bounds on b", quotes=('teleoperator:intro-colgate', 'hve:3'))
 def tele_colgate(ctx: AuditContext) -> Finding:
+    from hapticproof.audit import quoted_math
+    from hapticproof.derivations import teleoperator as tele
+    from hapticproof.parse import parse_printed
+
+    # both quote Colgate and Schenkel's condition for the wall K + sB: the quoted wall must be it
+    quotes = quoted_math(tele.PAPER.get("intro-colgate").printed)
+    walls = parse_printed(quotes[0], tele.TABLE).expressions() if len(quotes) > 1 else ()
+    wall = walls[0] if len(walls) == 1 else None
+    wall = getattr(wall, "as_sympy", lambda: wall)()
+    names = {x.name: x for x in getattr(wall, "free_symbols", ())}
+    if wall is None or {"K", "B", "s"} - set(names) or not is_identically_zero(wall - (names["K"] + names["s"] * names["B"])):
+        return Finding(Verdict.INCONSISTENT, f"the teleoperator's introduction quotes the condition for the wall "
+                       f"{sp.sstr(wall) if wall is not None else quotes[:1]}, while HVE (3) is Colgate and Schenkel's "
+                       "condition for the wall K + sB", Evidence(Method.CANONICAL_FORM, facts={"ids": ["teleoperator:intro-colgate", "hve:3"],
+                                                                                           "printed_form": sp.srepr(wall)}))
     return _compare(_teleoperator_intro("colgate"), _relation("hve", "3"), ["teleoperator:intro-colgate", "hve:3"],
                     "the two quotes of Colgate and Schenkel")
 
@@ -137,6 +152,7 @@ def tele32(ctx: AuditContext) -> Finding:
     s29, _ = _printed("teleoperator", "29")
     alpha = tele.symbols.lookup(r"\alpha")
     same = [is_identically_zero(sp.expand(r32.rhs.subs(alpha, 1) - r29.rhs)) and r32.lhs == r29.lhs
+            and type(r32.as_sympy()) is type(r29.as_sympy())                 # the same relation (> vs <)
             for r32, r29 in zip(s32.relations(), s29.relations())]
     ids = ["teleoperator:32", "teleoperator:29"]
     if all(same) and len(same) == 2:

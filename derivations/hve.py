@@ -564,7 +564,18 @@ def eq23(ctx: AuditContext) -> Finding:
     corrected_expr = printed.subs(sp.cos(omega * t_d - T), sp.cos(omega * (t_d + T)))
     corrected_ok = _theta_mismatch(corrected_expr, derived.canonical()) == 0 and condition.op in (">", ">=")
     # exact witness on the intended reading at n = 1 (t_d = T): compare as bounds on b, c in [-1, 1]
-    printed_1 = omega_to_c(intended.subs({t_d: T}), omega, T)
+    try:
+        printed_1 = omega_to_c(intended.subs({t_d: T}), omega, T)
+    except ValueError as err:
+        # Re G^-1 at n = 1 is a polynomial in cos(omega T); a display that is not one cannot be it
+        return Finding(
+            Verdict.WRONG,
+            f"not the real part of (22): at n = 1 the printed expression is not a function of cos(omega T) alone "
+            f"({err}), which Re G^-1 is; it differs by {sp.sstr(as_intended)} in the canonical variables",
+            Evidence(Method.CANONICAL_FORM, facts=facts),
+            derived=sp.Gt(derived.expr(omega * T).subs(n, t_d / T), 0),
+            corrected=r"b + B\cos(\omega (t_d + T)) - \frac{KT}{2}\cos(\omega t_d) - KTS > 0",
+        )
     exact_1 = hermitian(scene(delay=1)).expr()
     witness = compare_bounds(_RELATIONS[condition.op](printed_1, 0, evaluate=False), sp.Ge(exact_1, 0), b,
                              verify=verify_pointwise("forward", delay=1), what="(23) read as cos(omega(t_d - T)), at n = 1")

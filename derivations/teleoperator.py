@@ -495,9 +495,23 @@ def eq5(ctx: AuditContext) -> Finding:
 def eq6(ctx: AuditContext) -> Finding:
     (rel,) = _parse(ctx, ERROR_TABLE).relations()            # e is the error here, not Euler's number
     (rel31,) = _parse(ctx, ERROR_TABLE, PAPER.get("31").printed).relations()
-    derived = rel31.rhs.subs(alpha, 1)
-    return compare_expressions(rel.rhs, derived, what="the position error (6)",
+    error, error31 = _error_defined(rel), _error_defined(rel31)
+    if error is None or error31 is None:
+        which = "(6)" if error is None else "(31)"
+        return Finding(Verdict.WRONG, f"{which} does not define the error e: it reads {sp.sstr(rel if error is None else rel31)}",
+                       Evidence(Method.PARSE, facts={"printed_form": sp.srepr(rel.as_sympy() if hasattr(rel, 'as_sympy') else rel)}))
+    return compare_expressions(error, error31.subs(alpha, 1), what="the position error (6)",
                                note="it is the error of the scaled case (31) at alpha = 1")
+
+
+def _error_defined(rel: Any) -> sp.Expr | None:
+    """The error ``e`` a printed definition gives (``2 e = x_m - x_s`` -> ``(x_m - x_s)/2``), or
+    None when it does not define e as a function of the positions."""
+    relation = rel.as_sympy() if hasattr(rel, "as_sympy") else rel
+    if not isinstance(relation, sp.Eq) or E_ERR not in relation.free_symbols:
+        return None
+    solved = sp.solve(relation.lhs - relation.rhs, E_ERR)
+    return solved[0] if len(solved) == 1 and E_ERR not in solved[0].free_symbols else None
 
 
 def _restoring_forces(gain: sp.Expr, error: sp.Expr) -> tuple[sp.Expr, sp.Expr]:
@@ -1061,13 +1075,20 @@ def eq30(ctx: AuditContext) -> Finding:
                        Evidence(Method.PARSE))
     cm = solved[0]
     ratio = sp.cancel(cm / CONTROLLERS["C_s"](sp.I * omega))
-    tracking = sp.solve(sp.Eq(rel31.rhs, 0), X_S)[0] / X_M            # x_s/x_m when the error vanishes
+    error = _error_defined(rel31)
+    zero_error = sp.solve(sp.Eq(error, 0), X_S) if error is not None else []
+    if len(zero_error) != 1:
+        return Finding(Verdict.INCONSISTENT, f"(31) ({sp.sstr(rel31)}) does not fix x_s when the error vanishes, so it "
+                       "cannot be the error of the scaled controllers (30)",
+                       Evidence(Method.CANONICAL_FORM, facts={"ids": ["30", "31"], "printed_form": sp.srepr(rel31)}))
+    tracking = sp.cancel(zero_error[0] / X_M)            # x_s/x_m when the error vanishes
     if not (is_identically_zero(ratio - alpha) and is_identically_zero(tracking - alpha)):
         return Finding(Verdict.INCONSISTENT, "(30) and (31) scale differently",
                        Evidence(Method.CANONICAL_FORM, facts={"ids": ["30", "31"], "C_m/C_s": ratio, "x_s/x_m": tracking}))
     return Finding(Verdict.CONFIRMED, "C_m = alpha C_s; with (31) the robots track x_s = alpha x_m, so the text's 'C_m < C_s and "
                    "x_m > x_s' both mean alpha < 1; alpha = 1 is (17)",
-                   Evidence(Method.CANONICAL_FORM, facts={"C_m/C_s": ratio, "x_s/x_m": tracking}))
+                   Evidence(Method.CANONICAL_FORM, facts={"C_m/C_s": ratio, "x_s/x_m": tracking,
+                                                          "printed_form": (sp.srepr(ratio), sp.srepr(tracking))}))
 
 
 @PAPER.equation("30-requisite", kind="claim", after="30", section="III-A",
@@ -1092,12 +1113,26 @@ def requisite(ctx: AuditContext) -> Finding:
 def eq31(ctx: AuditContext) -> Finding:
     (rel,) = _parse(ctx, ERROR_TABLE).relations()
     gain = sp.Symbol("C_gain", positive=True)
-    fm, fs = _restoring_forces(gain, rel.rhs)
+    error = _error_defined(rel)
+    if error is None or not error.free_symbols & {X_M, X_S}:
+        return Finding(Verdict.WRONG, f"(31) must define the error e from the positions; it reads {sp.sstr(rel)}",
+                       Evidence(Method.PARSE, facts={"printed_form": sp.srepr(rel)}), corrected=PRINTED["31"])
+    fm, fs = _restoring_forces(gain, error)
+    if fs == 0:
+        return Finding(Verdict.INCONSISTENT, f"with e = {sp.sstr(error)} the spring C e^2/2 exerts no force on the slave, "
+                       "unlike the controllers (30)", Evidence(Method.CANONICAL_FORM, facts={"forces": (fm, fs)}))
     ratio = sp.cancel(-fm / fs)
+    # the spring's potential is what the controllers (30) implement: e and -e give the same one
+    potential = sp.expand(gain * error**2 / 2)
+    expected = sp.expand(gain * (alpha * X_M - X_S) ** 2 / 2)
+    if is_identically_zero(ratio - alpha) and not is_identically_zero(potential - expected):
+        return Finding(Verdict.INCONSISTENT, f"with e = {sp.sstr(error)} the spring C e^2/2 has stiffness "
+                       f"{sp.sstr(sp.cancel(potential / expected))} C on alpha x_m - x_s, not the C of (30)",
+                       Evidence(Method.CANONICAL_FORM, facts={"forces": (fm, fs), "printed_form": sp.srepr(potential)}))
     if is_identically_zero(ratio - alpha):
         return Finding(Verdict.CONFIRMED, "with e = alpha x_m - x_s the spring C e^2/2 pulls the master with alpha C e = C_m e and "
                        "the slave with -C e = -C_s e: exactly the controllers (30)", Evidence(Method.CANONICAL_FORM,
-                                                                                         facts={"forces": (fm, fs)}))
+                                                                                         facts={"forces": (fm, fs), "printed_form": sp.srepr(potential)}))
     return Finding(Verdict.INCONSISTENT, f"with the printed error the master/slave gain ratio is {ratio}, not alpha as in (30)",
                    Evidence(Method.CANONICAL_FORM, facts={"ids": ["31", "30"], "ratio": ratio}))
 
@@ -1375,6 +1410,17 @@ def intro_less(ctx: AuditContext) -> Finding:
         return Finding(Verdict.WRONG, f"the quoted stability condition {sp.sstr(stable)} is not a lower bound on b ({why}), so "
                        f"it cannot be compared as less conservative than the passivity condition {_bound_reading(passive)}",
                        Evidence(Method.CANONICAL_FORM, facts={"printed_form": sp.srepr(stable)}))
+    # the quoted condition must be the wall's stability condition (intro-routh's reading), not any weaker bound
+    from hapticproof.classics import leading_order_boundary
+
+    leading = leading_order_boundary(0).condition
+    names = {s.name: s for s in stable.free_symbols | passive.free_symbols}
+    leading = leading.xreplace({s: names[s.name] for s in leading.free_symbols if s.name in names})
+    same = compare_bounds(stable, leading, b, what="the quoted stability condition")
+    if same.verdict != Verdict.CONFIRMED:
+        return Finding(Verdict.WRONG, f"the quoted condition {stable_bound} is not the wall's (leading-order) stability "
+                       f"condition {_bound_reading(leading)}: {same.detail}",
+                       Evidence(same.evidence.method, witness=same.evidence.witness, facts={"printed_form": str(stable_bound)}))
     cmp = compare_bounds(passive, sp.Ge(b, stable_bound.bound), b, what="the passivity condition as a stability condition")
     facts = {**dict(cmp.evidence.facts), "printed_form": str(stable_bound)}
     if cmp.verdict == Verdict.CONSERVATIVE:

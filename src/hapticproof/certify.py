@@ -37,6 +37,7 @@ import sympy as sp
 from sympy.core.evalf import PrecisionExhausted
 from sympy.polys.fields import sfield
 
+from hapticproof.errors import HapticproofError
 from hapticproof.evidence import Decision, Evidence, Finding, Method, Outcome, Verdict
 from hapticproof.symbols import c as C_SYM
 
@@ -627,7 +628,12 @@ def _recheck(verify: Callable | None, point: dict, facts: dict) -> str | None:
     """Re-check a not-sufficient witness by the independent decision; the reason it failed, or None."""
     if verify is None:
         return None
-    check = verify(point)
+    try:
+        check = verify(point)
+    except (HapticproofError, ArithmeticError, TypeError, ValueError) as err:
+        # e.g. a bound with a constant like cos(1) puts b at an irrational value: no exact scene
+        facts["recheck"] = f"{type(err).__name__}: {err}"
+        return f"the witness {point} could not be re-checked exactly ({err})"
     facts["recheck"] = check.to_json()
     if check.decision != Decision.DISPROVED:
         return f"the witness {point} was not confirmed by the exact decision ({check.reason})"
@@ -688,6 +694,10 @@ def compare_bounds(
     strictness = "" if p.strict == e.strict else f"; compared up to the boundary ({'>' if p.strict else '>='} vs {'>' if e.strict else '>='})"
     symbols = sorted((p.bound.free_symbols | e.bound.free_symbols) - {var}, key=str)
     form = _printed_form(p, printed)
+    # a condition every admissible value satisfies reads as True (its canonical form on the box)
+    always = floor is not None and sign_on_box(e.bound - floor, box) == -1
+    if always and sign_on_box(p.bound - floor, box) == -1:
+        form = _printed_form(None, printed, always=True)
     if is_identically_zero(difference):
         return Finding(
             Verdict.CONFIRMED,
@@ -695,7 +705,7 @@ def compare_bounds(
             Evidence(Method.CANONICAL_FORM, facts={"printed_bound": p.bound, "exact_bound": e.bound, "printed_form": form}),
             derived=exact,
         )
-    if floor is not None and sign_on_box(e.bound - floor, box) == -1:
+    if always:
         # the exact condition holds for every admissible value of var
         if sign_on_box(p.bound - floor, box) == -1:
             return Finding(

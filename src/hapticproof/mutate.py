@@ -733,11 +733,22 @@ def run_mutant(mutant: Mutant, original: Any, registry: dict[str, Paper] | None 
         return MutantResult(mutant, "equivalent", verdict, result.detail,
                             "identical parse with the paper's table (a declared symmetry or a canonical spelling)", seconds,
                             "parse")
+    if mutant.operator in ("swap", "symbol") and _same_name(mutant, target_paper):
+        return MutantResult(mutant, "equivalent", verdict, result.detail,
+                            f"{mutant.replacement} and {mutant.original} name the same symbol in the paper's table "
+                            "(a declared symmetry)", seconds, "parse")
     form, base = _printed_form(result), _printed_form(original)
     if form is not None and form == base:
         return MutantResult(mutant, "equivalent", verdict, result.detail,
                             f"the check reads the same canonical form: {form[:200]}", seconds, _basis(form))
     return MutantResult(mutant, "survived", verdict, result.detail, "same verdict, detail and correction", seconds)
+
+
+def _same_name(mutant: Mutant, paper: Paper) -> bool:
+    """The replaced name resolves to the very symbol it replaced (``K_{30}`` is ``K_{03}`` when the
+    table declares the family symmetric): equivalent even where the whole display does not parse."""
+    before, after = _resolves(mutant.original, paper.symbols), _resolves(mutant.replacement, paper.symbols)
+    return before is not None and before == after
 
 
 class QuoteError(ValueError):
