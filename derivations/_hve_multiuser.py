@@ -1150,8 +1150,15 @@ P47 = (r"R_{0} =" + "\n" + r"\begin{bmatrix} (K_{01} + K_{12} + K_{13})T & -K_{1
 def eq47(ctx: AuditContext) -> Finding:
     derived = _residue(3)
     rows_text = ctx.equation.printed.split(r"\begin{bmatrix}")[1].split(r"\end{bmatrix}")[0].split(r"\\")
-    rows = [[_align(parse_printed(cell, PAPER.symbols).expressions()[0]) for cell in row.split("&")] for row in rows_text]
+    head = ctx.equation.printed.split(r"\begin{bmatrix}")[0]
+    lhs_text, _, factor_text = head.partition("=")
     problems = []
+    lhs = "".join(ch for ch in lhs_text if ch not in " \n{}")       # R_0 is a name of the text, not of the table
+    if lhs != "R_0":
+        problems.append(f"the left side reads {lhs or 'nothing'}, not R_0")
+    # a factor printed in front of the matrix multiplies every entry
+    factor = parse_printed(factor_text, PAPER.symbols).expressions()[0] if factor_text.strip() else sp.Integer(1)
+    rows = [[factor * _align(parse_printed(cell, PAPER.symbols).expressions()[0]) for cell in row.split("&")] for row in rows_text]
     for i, row in enumerate(rows):
         if len(row) != 3:
             problems.append(f"row {i + 1} has {len(row)} entries (the entry -K_{{{i + 1}3}}T is missing)")

@@ -608,17 +608,19 @@ def eq23a(ctx: AuditContext) -> Finding:
     terms = list(ctx.statement.terms)
     values = []
     for i, term in enumerate(terms):
-        if not isinstance(term, PrintedLimit):
-            values.append(term)
-            continue
-        # where the printed variable reaches its target: the smallest omega >= 0 (omega T -> 0 for cos -> 1)
-        roots = sorted(r for r in sp.solve(sp.Eq(term.variable.subs(omega, theta / T), term.target), theta)
-                       if r.is_real and r.is_nonnegative) if omega in term.variable.free_symbols else []
-        if not roots:
-            return Finding(Verdict.UNDECIDED, f"member {i + 1}: cannot locate where {sp.sstr(term.variable)} -> "
-                           f"{sp.sstr(term.target)} as a function of omega", Evidence(Method.CANONICAL_FORM))
-        value = sp.limit(term.expr.subs({omega: theta / T, t_d: n * T}), theta, roots[0], "+")
-        values.append(sp.simplify(value.subs(n, t_d / T)))
+        # every printed limit inside the member (a member may be 2 lim ..., or lim ... + x)
+        limits = [term] if isinstance(term, PrintedLimit) else sorted(sp.sympify(term).atoms(PrintedLimit), key=sp.srepr)
+        evaluated = {}
+        for lim in limits:
+            # where the printed variable reaches its target: the smallest omega >= 0 (omega T -> 0 for cos -> 1)
+            roots = sorted(r for r in sp.solve(sp.Eq(lim.variable.subs(omega, theta / T), lim.target), theta)
+                           if r.is_real and r.is_nonnegative) if omega in lim.variable.free_symbols else []
+            if not roots:
+                return Finding(Verdict.UNDECIDED, f"member {i + 1}: cannot locate where {sp.sstr(lim.variable)} -> "
+                               f"{sp.sstr(lim.target)} as a function of omega", Evidence(Method.CANONICAL_FORM))
+            value = sp.limit(lim.expr.subs({omega: theta / T, t_d: n * T}), theta, roots[0], "+")
+            evaluated[lim] = sp.simplify(value.subs(n, t_d / T))
+        values.append(evaluated[term] if isinstance(term, PrintedLimit) else sp.simplify(sp.sympify(term).xreplace(evaluated)))
     facts = {"limit": limit, "printed_form": tuple(sp.srepr(sp.simplify(v)) for v in values),
              "member_limits": [sp.sstr(v) for v in values]}
     for i, value in enumerate(values):

@@ -25,7 +25,7 @@ from hapticproof.errors import SceneError
 from hapticproof.evidence import Decision, to_jsonable
 from hapticproof.lazy import clear
 from hapticproof.positivereal import positive_real, transfer_polynomials
-from hapticproof.studies import _certificates
+from hapticproof.checker import certificates as _certificates
 from hapticproof.unitcircle import circle_real_part
 
 F = Fraction

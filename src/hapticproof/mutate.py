@@ -80,6 +80,7 @@ from __future__ import annotations
 
 import dataclasses
 import hashlib
+import itertools
 import os
 import random
 import re
@@ -748,7 +749,22 @@ def _same_name(mutant: Mutant, paper: Paper) -> bool:
     """The replaced name resolves to the very symbol it replaced (``K_{30}`` is ``K_{03}`` when the
     table declares the family symmetric): equivalent even where the whole display does not parse."""
     before, after = _resolves(mutant.original, paper.symbols), _resolves(mutant.replacement, paper.symbols)
-    return before is not None and before == after
+    if before is not None and before == after:
+        return True
+    # letter indices (K_{0i} -> K_{i0}): the same symbol for every concrete index, 1..3 each
+    split = re.fullmatch(r"(.+?_\{?)([^{}]*)(\}?)", mutant.original), re.fullmatch(r"(.+?_\{?)([^{}]*)(\}?)", mutant.replacement)
+    if not all(split) or split[0].group(1) != split[1].group(1) or before is None or after is None:
+        return False
+    letters = sorted({ch for ch in split[0].group(2) if ch.isalpha()})
+    if not letters or len(letters) > 3 or {ch for ch in split[1].group(2) if ch.isalpha()} != set(letters):
+        return False
+    for values in itertools.product("123", repeat=len(letters)):
+        table = str.maketrans(dict(zip(letters, values)))
+        a = _resolves(split[0].group(1) + split[0].group(2).translate(table) + split[0].group(3), paper.symbols)
+        b = _resolves(split[1].group(1) + split[1].group(2).translate(table) + split[1].group(3), paper.symbols)
+        if a is None or a != b:
+            return False
+    return True
 
 
 class QuoteError(ValueError):
