@@ -167,13 +167,31 @@ def _users_range(statement: Any) -> str | None:
     return None
 
 
+class NotInC(ValueError):
+    """A printed expression that is not a function of ``c = cos(omega T)`` alone (M(c) is)."""
+
+
 def _in_c(expr: Any) -> sp.Expr:
     """A printed expression with ``cos(omega T)`` as a polynomial in ``c`` (fast path when
-    ``cos(omega T)`` is the only trigonometric atom)."""
+    ``cos(omega T)`` is the only trigonometric atom); :class:`NotInC` when it is not one."""
     trig = expr.atoms(sp.cos, sp.sin)
     if trig <= {sp.cos(omega * T)}:
-        return sp.expand(expr.xreplace({sp.cos(omega * T): C}))
-    return sp.expand(omega_to_c(expr, omega, T))
+        out = sp.expand(expr.xreplace({sp.cos(omega * T): C}))
+    else:
+        try:
+            out = sp.expand(omega_to_c(expr, omega, T))
+        except (ValueError, sp.PolynomialError) as err:
+            raise NotInC(f"{sp.sstr(expr)} is not a function of cos(omega T) alone ({err})") from None
+    if omega in out.free_symbols or out.atoms(sp.cos, sp.sin):
+        raise NotInC(f"{sp.sstr(expr)} is not a function of cos(omega T) alone")
+    return out
+
+
+def _not_in_c(what: str, err: NotInC) -> Finding:
+    """The verdict on a printed frequency-wise condition that is not a function of c: the
+    derived one is (M(c) is a matrix polynomial in c = cos(omega T)), so they cannot be equal."""
+    return Finding(Verdict.WRONG, f"{what} cannot be the derived condition: {err}, while M(c) is a polynomial in "
+                   "c = cos(omega T)", Evidence(Method.CANONICAL_FORM, facts={"printed_form": ("not in c", str(err))}))
 
 
 @lru_cache(maxsize=None)
@@ -689,7 +707,10 @@ def _minor_in_c(rel: Any, derived: sp.Expr, what: str) -> Finding:
     """A printed frequency-wise minor condition ``minor(c) > 0`` against the derived minor: the
     relation as a sign condition in the parameters and c (reversed relations are wrong), then
     the expression itself."""
-    printed = rel.func(_align(_in_c(rel.lhs)), _align(_in_c(rel.rhs)), evaluate=False)
+    try:
+        printed = rel.func(_align(_in_c(rel.lhs)), _align(_in_c(rel.rhs)), evaluate=False)
+    except NotInC as err:
+        return _not_in_c(what, err)
     sign = compare_sign_conditions(printed, sp.Gt(derived, 0, evaluate=False), what=what, ranges={C: (-1, 1)})
     if sign.verdict == Verdict.CONFIRMED:
         condition = as_sign_condition(printed)
@@ -764,7 +785,10 @@ def eq44(ctx: AuditContext) -> Finding:
         ocr = True
     rhs_rel = _parse(body.replace("I", "T")).relations()[0]
     condition = rhs_rel.as_sympy()
-    printed_rel = condition.func(_align(_in_c(condition.lhs)), _align(_in_c(condition.rhs)), evaluate=False)
+    try:
+        printed_rel = condition.func(_align(_in_c(condition.lhs)), _align(_in_c(condition.rhs)), evaluate=False)
+    except NotInC as err:
+        return _not_in_c("the printed 2x2 minor condition", err)
     derived = sp.expand(principal_minors(_scene(2))[(0, 1)].expr())
     values = {s_: v for s_, v in zip(sorted(_scene(2).parameters, key=str), itertools.cycle([2, 1, 3, 1, 5, 2]))}
     lhs_facts = _lhs_means_inverse(head, 2, values)
@@ -858,7 +882,7 @@ def _frequency_named(relation: sp.Eq) -> Any:
         return relation
     try:
         roots = sp.solve(_in_c(relation.lhs - relation.rhs), C)
-    except (ValueError, NotImplementedError):
+    except (ValueError, NotImplementedError, sp.PolynomialError):
         return relation
     return roots[0] if len(roots) == 1 else relation
 
@@ -1284,7 +1308,10 @@ C51 = (r"d_1 d_2 d_3 + 2w_{12}w_{13}w_{23} - d_1 w_{23}^2 - d_2 w_{13}^2 - d_3 w
 def eq51(ctx: AuditContext) -> Finding:
     rel = ctx.relation()
     condition = as_sign_condition(rel)
-    printed = _align(_in_c(condition.expr))
+    try:
+        printed = _align(_in_c(condition.expr))
+    except NotInC as err:
+        return _not_in_c("the printed determinant condition", err)
     det = sp.expand(principal_minors(_scene(3))[(0, 1, 2)].expr())
     diff = sp.expand(printed - det)
     form = (condition.op, sp.srepr(printed))

@@ -78,7 +78,7 @@ def _compare(a: sp.Basic, b_rel: sp.Basic, ids: list[str], what: str, var: sp.Sy
                        Evidence(Method.CANONICAL_FORM, facts=facts))
     try:
         first, second = as_bound(a, var).bound, as_bound(reference, var).bound
-        how = (f"as bounds on {var}: {sp.sstr(first)} vs {sp.sstr(second)} (difference {sp.sstr(sp.simplify(first - second))}; "
+        how = (f"as bounds on {var}: {_reading(a, var)} vs {_reading(reference, var)} (difference {sp.sstr(sp.simplify(first - second))}; "
                "witness where one holds and the other fails)")
     except NotABound as err:
         how = f"{ids[0]} is not a lower bound on {var} ({err.reason}); {cmp.detail}"

@@ -183,9 +183,15 @@ def _relations(statement: Any) -> list:
     return list(statement.relations())
 
 
-def _line_pairs(statement: Any) -> list[tuple[sp.Expr, sp.Expr]]:
-    """``(lhs, rhs)`` of each two-term relation of a display."""
-    return [(rel.lhs, rel.rhs) for rel in statement.relations()]
+def _line_pairs(statement: Any, count: int = 2) -> list[tuple[sp.Expr, sp.Expr]]:
+    """``(lhs, rhs)`` of each two-term relation of a display of ``count`` lines (master, slave);
+    a display with another number of relations is not the display the check reads."""
+    from hapticproof.errors import LatexParseError
+
+    relations = statement.relations()
+    if len(relations) != count:
+        raise LatexParseError(f"expected {count} relations (one per robot), found {len(relations)}", "", 0)
+    return [(rel.lhs, rel.rhs) for rel in relations]
 
 
 def _integrand_form(expr: sp.Expr) -> tuple[sp.Expr, sp.Expr]:
@@ -640,7 +646,7 @@ def eq9(ctx: AuditContext) -> Finding:
                 derivation="(1), first line, with d x_m'/dt = x_m''")
 def eq10(ctx: AuditContext) -> Finding:
     text = ctx.equation.printed.replace(r"\frac{d\dot{x}_m}{dt}", r"\ddot{x}_m")   # Leibniz notation
-    (lhs, rhs), = _line_pairs(_parse(ctx, TABLE, text))
+    (lhs, rhs), = _line_pairs(_parse(ctx, TABLE, text), 1)
     if is_identically_zero(lhs - rhs + _device_residual(m_m, b_m, F_H, F_M, XD_M, XDD_M)):
         return Finding(Verdict.CONFIRMED, "(10) is the master line of (1) with the acceleration written d x_m'/dt",
                        Evidence(Method.CANONICAL_FORM))

@@ -359,6 +359,38 @@ def test_absolute_stability_regressions(Z, ports, want):
     assert absolute_stability(Z, ports=ports, search=False).decision.value == want
 
 
+#: A non-reciprocal 2-port of the large run (placed 1e-9 below its boundary) whose Llewellyn
+#: quantity is negative only at high frequency (w ~ 1.7e12): the oracle's 60-digit end samples
+#: see -7.9e-13 inside their noise and must say "uncertain", not "yes" (it said "yes" before).
+_D = s**2 + R(770093, 100) * s + 7161
+Z_HIGH_FREQUENCY = sp.Matrix([
+    [(R(33, 5) * s**3 + R(102140275999999999999, 2000000000000000) * s**2 + R(425913949941999999229907, 200000000000000000) * s
+      + R(3876206333999999992839, 2000000000000000)) / _D,
+     (R(66, 5) * s**3 + R(25495319, 250) * s**2 + R(55273025167, 20000) * s + R(496536579, 200)) / _D],
+    [(R(66, 5) * s**3 + R(25513819, 250) * s**2 + R(62604801567, 20000) * s + R(564709299, 200)) / _D,
+     (R(132, 5) * s**3 + R(407707103999999999999, 2000000000000000) * s**2 + R(924028201067999999229907, 200000000000000000) * s
+      + R(8241423035999999992839, 2000000000000000)) / _D]])
+
+
+def test_llewellyn_fails_at_high_frequency():
+    """The toolkit's disproof is checked here by exact arithmetic at its witness (no oracle
+    tolerance): g = 2 Re z11 Re z22 - Re(z12 z21) - |z12 z21| < 0 there."""
+    verdict = llewellyn(Z_HIGH_FREQUENCY)
+    assert verdict.decision.value == "disproved"
+    assert expected_decision(oracle_llewellyn(Z_HIGH_FREQUENCY)) != "proved"
+    w = sp.Rational(verdict.evidence.witness["omega"])
+    def at(i, j):           # z_ij(j w) as an exact Gaussian rational
+        num, den = sp.fraction(sp.cancel(Z_HIGH_FREQUENCY[i, j]))
+        n, d = sp.expand(num.subs(s, sp.I * w)), sp.expand(den.subs(s, sp.I * w))
+        return sp.expand(n * sp.conjugate(d)) / sp.expand(d * sp.conjugate(d))
+
+    a, b = sp.re(at(0, 0)), sp.re(at(1, 1))
+    p = sp.expand(at(0, 1) * at(1, 0))
+    assert a.is_Rational and b.is_Rational and sp.re(p).is_Rational and sp.im(p).is_Rational
+    h = 2 * a * b - sp.re(p)
+    assert h < 0 or h**2 < sp.re(p) ** 2 + sp.im(p) ** 2          # g < 0 exactly
+
+
 def test_issue_termination_destabilises():
     """The issue's counterexample, checked exactly by the oracle: a 0.5 ohm resistor on port 1
     of diag(Z, 1) puts a zero of det(Z + T) in Re s > 0."""

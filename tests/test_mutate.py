@@ -181,6 +181,48 @@ def test_bundled_paper_mutants_are_killed_or_proved_equivalent(paper_id):
     assert report.score == 1.0
 
 
+#: Survivors and crashes of the larger samples (``--sample 200``, seeds 0 and 1), each now
+#: killed or proved equivalent: (paper, equation, text replaced, replacement, expected outcome).
+LARGE_SAMPLE_CASES = [
+    ("hve", "37", "V_{hi}(z)", "V_{hi}(-z)", "killed"),              # a signal at another argument
+    ("hve", "37", r"\cdots, m", r"\cdots, 2 m", "killed"),          # the user range (crashed before)
+    ("hve", "23", r"\cos(\omega t_d - T)", r"\cos(\omega t_d - K)", "killed"),   # not a function of cos(wT) (crashed)
+    ("hve", "23a", r"= \lim", r"= 2 \lim", "killed"),              # a limit inside a member (crashed)
+    ("hve", "47", "R_{0} =", "2 R_{0} =", "killed"),                 # the left side of the matrix display
+    ("hve", "51-worst", r"$\cos(\omega T) = -1$", r"$2 \cos(\omega T) = -1$", "killed"),
+    ("hve", "18", r"B", r"2 B", "equivalent"),                       # both hold for every admissible b
+    ("teleoperator", "31", "e =", "2 e =", "killed"),                 # e's definition, not only its right side
+    ("teleoperator", "31", "e =", "-e =", "equivalent"),              # the same spring potential
+    ("teleoperator", "intro-less-conservative", "KT/2 - B", "KT/2 - 2 B", "killed"),
+    ("cross-paper", "tele32-alpha1-29", None, None, "killed"),        # (29) with its relation reversed
+]
+
+
+@pytest.mark.parametrize("paper_id,eq_id,old,new,expected", LARGE_SAMPLE_CASES,
+                         ids=[f"{c[0]}:{c[1]}:{c[3]}" for c in LARGE_SAMPLE_CASES])
+def test_large_sample_mutants(paper_id, eq_id, old, new, expected):
+    paper = get_paper(paper_id)
+    equation = paper.get(eq_id)
+    candidates = mutants_of(paper, equation)
+    if old is None:       # a reversed relation of a quoted display
+        chosen = [m for m in candidates if m.operator == "relation"]
+    else:
+        chosen = [m for m in candidates if m.printed == _replaced(paper, m, old, new)]
+    assert chosen, "the mutant is not generated any more"
+    from hapticproof.mutate import _audit
+
+    original = _audit(paper, equation)
+    for mutant in chosen:
+        result = run_mutant(mutant, original)
+        assert result.outcome == expected, (mutant.printed, result.outcome, result.detail, result.reason)
+
+
+def _replaced(paper, mutant, old, new):
+    tpaper, _, tid = mutant.target.rpartition(":")
+    text = (get_paper(tpaper) if tpaper else paper).get(tid).printed
+    return text.replace(old, new, 1) if old in text else None
+
+
 # ---------------------------------------------------------------------------------------------
 # the command line
 # ---------------------------------------------------------------------------------------------

@@ -430,6 +430,22 @@ def _interval_text(cert: SignCertificate) -> str:
     return f"[{q_str(cert.lo)}, {'oo' if cert.hi is None else q_str(cert.hi)}]"
 
 
+def _short(value: Any) -> str:
+    """An exact number for a sentence: in full when short, else ~6 digits (the exact value is in
+    the certificate)."""
+    text = q_str(value)
+    if len(text) <= 40:
+        return text
+    q = Fraction(int(value.p), int(value.q)) if hasattr(value, "p") else Fraction(value)
+    sign, q = ("-" if q < 0 else ""), abs(q)
+    # scientific notation from the exact integer parts (floats overflow past 1e308)
+    exponent = len(str(q.numerator)) - len(str(q.denominator))
+    if q < Fraction(10) ** exponent:
+        exponent -= 1
+    mantissa = float(q / Fraction(10) ** exponent)
+    return f"{sign}{mantissa:.6g}e{exponent:+d} (exact value in the certificate)"
+
+
 def sign_outcome(cert: SignCertificate, witness: dict[str, Any] | None, what: str) -> Outcome:
     if cert.holds:
         touching = len(cert.roots)
@@ -443,7 +459,7 @@ def sign_outcome(cert: SignCertificate, witness: dict[str, Any] | None, what: st
     shown = _sympy_witness(witness)
     return Outcome(Decision.DISPROVED,
                    Evidence(Method.ROOT_ISOLATION, witness=shown, facts={"certificate": cert, "value": to_rational(value)}),
-                   f"{what} = {q_str(value)} < 0 at {cert.variable} = {q_str(cert.witness)}",
+                   f"{what} = {_short(value)} < 0 at {cert.variable} = {_short(cert.witness)}",
                    minimiser=None)
 
 

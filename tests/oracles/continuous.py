@@ -287,6 +287,10 @@ def halfline_nonnegative(
         return OracleResult(UNCERTAIN, f"min {name} = {float(value):.3g} inside the band", margin=float(value),
                             band=band, where={"omega": wi})
     wi, value, band, _ = min(points, key=lambda p: p[1])
+    if value < 0:
+        # negative, but inside the noise of an end sample (|terms| huge at w -> oo): never a "yes"
+        return OracleResult(UNCERTAIN, f"min {name} = {float(value):.3g} < 0 at w = {wi:.6g}, inside the noise band",
+                            margin=float(value), band=abs(band), where={"omega": wi})
     return OracleResult(YES, f"min {name} = {float(value):.6g} at w = {wi:.6g}", margin=float(value),
                         band=max(band, 0.0), where={"omega": wi})
 
