@@ -354,7 +354,12 @@ def _h_entry(m: int, i: int, j: int) -> sp.Expr:
 @PAPER.equation("37b", kind="expression", printed=P37B, section=SECTION, assumptions=ASSUME,
                 derivation="H_ii = K_0i + sum_k K_ik + (B_0i + sum_k B_ik)(z-1)/(Tz) (ground plus coupling springs and dampers)")
 def eq37b(ctx: AuditContext) -> Finding:
-    rhs = ctx.relation().rhs
+    relation = ctx.relation()
+    rhs = relation.rhs
+    for i in (1, 2):
+        if _h_entry_of(_instance(relation.lhs, 3, i=i)) != (i - 1, i - 1):
+            return Finding(Verdict.WRONG, f"the left side {sp.sstr(relation.lhs)} does not name the diagonal entry H_ii(z) "
+                           "of the environment matrix", Evidence(Method.PARSE, facts={"printed_form": sp.srepr(relation)}))
     facts = {}
     for m in (2, 3, 4):
         printed = _align(_instance(rhs, m, i=1))
@@ -1547,11 +1552,11 @@ class _Indexed:
 
     def at(self, values: dict) -> sp.Basic:
         lhs, rhs = (_evaluate(side, self.m, values) for side in (self.rel.lhs, self.rel.rhs))
-        return sp.Gt(lhs, rhs, evaluate=False)
+        return self.rel.func(lhs, rhs, evaluate=False)         # the printed relation, whichever it is
 
     def holds(self, scene: MultiUserScene) -> bool:
         rel = self.at(_scene_values(scene))
-        return bool(rel.lhs > rel.rhs)
+        return bool(rel.func(rel.lhs, rel.rhs))
 
     def bound(self, scene: MultiUserScene) -> sp.Expr:
         """The right-hand side: the bound on ``min_i b_i`` (z_a = 0, B on the right)."""

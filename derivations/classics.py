@@ -297,6 +297,17 @@ def _printed_holds_on_axis(conditions: list[sp.Basic], parts: dict, Z: sp.Matrix
     return True, None
 
 
+def _sign_form(condition: Any) -> Any:
+    """A sign condition ``f op g`` up to a positive constant factor of ``f - g`` (Re 2p >= 0 is
+    Re p >= 0): the canonical form of what a condition says."""
+    if not isinstance(condition, sp.core.relational.Relational):
+        return sp.srepr(condition)
+    coeff, rest = sp.factor_terms(sp.expand(condition.lhs - condition.rhs)).as_coeff_Mul()
+    if coeff.is_number and coeff.is_positive:
+        return (type(condition).__name__, sp.srepr(rest))
+    return (type(condition).__name__, sp.srepr(coeff * rest))
+
+
 @PAPER.equation("llewellyn", kind="condition", printed=SRC["llewellyn-1952"].statement, section="1952", parse=False,
                 assumptions="2-port immittance matrix P(s) (impedance form)",
                 derivation="networks.llewellyn on two continuous PEB teleoperators, cross-checked by their terminations")
@@ -311,7 +322,7 @@ def llewellyn(ctx: AuditContext) -> Finding:
                          "reason": reference[name].reason}
         if holds != (exact == "proved"):
             disagree.append(name)
-    facts = {"examples": results, "printed_form": [sp.srepr(c) for c in conditions]}
+    facts = {"examples": results, "printed_form": [_sign_form(c) for c in conditions]}
     if len(conditions) != 3 or disagree:
         return Finding(Verdict.WRONG,
                        f"the printed criterion ({len(conditions)} conditions) disagrees with the exact criterion on "

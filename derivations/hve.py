@@ -239,9 +239,12 @@ def def3(ctx: AuditContext) -> Finding:
 def _approximation_check(ctx: AuditContext, approximation: str, restore_lhs: bool = False) -> Finding:
     """Re-derive a printed approximation: its recurrence (transformed by the shift rule) and its
     final ``X_h(z) = ... V_h(z)`` against the integrator derived from the paper's recurrence."""
-    relations = [rel.as_sympy() for rel in ctx.statement.relations()]
+    relations = []
+    for rel in ctx.statement.relations():        # a chain a = b = c reads as its links
+        r = rel.as_sympy()
+        relations.extend(r.args if isinstance(r, sp.And) else [r])
     derived = integrator(approximation, T)
-    finals = [rel for rel in relations if rel.lhs == X_h and rel.rhs.has(V_h)]
+    finals = [rel for rel in relations if isinstance(rel, sp.Eq) and rel.lhs == X_h and rel.rhs.has(V_h)]
     if not finals:
         return malformed(ctx, "no final relation X_h(z) = ... V_h(z) in the display")
     final = compare_expressions(sp.cancel(finals[-1].rhs / V_h), derived, what="the printed result X_h/V_h")
@@ -251,8 +254,8 @@ def _approximation_check(ctx: AuditContext, approximation: str, restore_lhs: boo
     problems = []
     # the z-domain steps between the recurrence and the result: each must give the same X_h/V_h
     for step in relations[1:-1]:
-        if not (step.has(X_h) and step.has(V_h)) or step.has(x_h) or step.has(xdot_h):
-            continue
+        if not step.has(X_h) or step.has(x_h) or step.has(xdot_h):
+            continue                    # a time-domain step (the recurrence is checked below)
         solved = sp.solve(step, X_h)
         ratio = sp.cancel(solved[0] / V_h) if len(solved) == 1 else None
         if ratio is None or not is_identically_zero(ratio - derived):
@@ -272,6 +275,15 @@ def _approximation_check(ctx: AuditContext, approximation: str, restore_lhs: boo
                 problems.append(f"not even with x_h restored on the left ({again})")
     if from_recurrence is not None and not is_identically_zero(from_recurrence - derived):
         problems.append(f"it gives X_h/V_h = {sp.sstr(from_recurrence)} instead of {sp.sstr(derived)}")
+    from hapticproof.parse import Expression
+
+    def bare(statement):        # expressions that are not part of any relation, at any depth
+        for s in getattr(statement, "statements", ()):
+            yield from ([s.expr] if isinstance(s, Expression) else bare(s))
+
+    stray = list(bare(ctx.statement))
+    if stray:
+        problems.append(f"the display has a stray expression between its steps: {', '.join(map(sp.sstr, stray))}")
     if not problems:
         return Finding(Verdict.CONFIRMED, f"recurrence and result X_h/V_h = {sp.sstr(derived)} both re-derived",
                        Evidence(Method.CANONICAL_FORM, facts={"printed_form": ("equals", sp.srepr(derived))}),
@@ -860,6 +872,8 @@ def extends(ctx: AuditContext) -> Finding:
     reduced = p27.subs({z_a: 0, t_d: 0})
     try:
         reference = as_bound(p3, b)
+        if not reference.lower:
+            raise NotABound(f"it is an upper bound, {reference}")
     except NotABound as err:
         return Finding(Verdict.INCONSISTENT, f"(3) reads {_reading(p3)}: not a lower bound on b ({err.reason}), so (27) at "
                        f"z_a = t_d = 0, {_reading(reduced)}, cannot contain it", Evidence(Method.CANONICAL_FORM,

@@ -227,7 +227,12 @@ def _integrand_form(expr: sp.Expr) -> tuple[sp.Expr, sp.Expr]:
 
 
 def _same_form(a: sp.Expr, b: sp.Expr) -> bool:
-    (sa, ra), (sb, rb) = _integrand_form(a), _integrand_form(b)
+    """Equal integrand forms (a proof of equality); False when either display has none (an
+    integral over another variable, several integrals in a term): nothing is proved then."""
+    try:
+        (sa, ra), (sb, rb) = _integrand_form(a), _integrand_form(b)
+    except ValueError:
+        return False
     return is_identically_zero(sa - sb) and is_identically_zero(ra - rb)
 
 
@@ -971,7 +976,11 @@ def eq28(ctx: AuditContext) -> Finding:
 def less_claim(ctx: AuditContext) -> Finding:
     p27 = _parse(ctx, TABLE, PAPER.get("27").printed).expressions()[0]
     p28 = _parse(ctx, TABLE, PAPER.get("28").printed).expressions()[0]
-    (s27, r27), (s28, r28) = _integrand_form(p27), _integrand_form(p28)
+    try:
+        (s27, r27), (s28, r28) = _integrand_form(p27), _integrand_form(p28)
+    except ValueError as err:
+        return Finding(Verdict.UNDECIDED, f"(27) - (28) cannot be written as one integrand over omega: {err}",
+                       Evidence(Method.CANONICAL_FORM, facts={"error": str(err)}))
     vm, vs = SPECTRA["V_m"](omega, SIG), SPECTRA["V_s"](omega, SIG)
     square = (vm + vs) * sp.conjugate(vm + vs)
     weight = 1 / (omega + n_alias * omega_s) ** 2
@@ -1224,7 +1233,17 @@ def eq35(ctx: AuditContext) -> Finding:
 def colgate_claim(ctx: AuditContext) -> Finding:
     p35 = ctx.parse(PAPER.get("35").printed).relations()[0].as_sympy()
     colgate = classics.colgate_wall(B=B)
-    cmp = compare_bounds(colgate, sp.Ge(p35.lhs, p35.rhs), b, what="Colgate's condition as a condition for (35)")
+    from hapticproof.certify import NotABound, as_bound
+
+    try:
+        bound35 = as_bound(p35, b)
+        if not bound35.lower:
+            raise NotABound(f"it is an upper bound, {bound35}")
+    except NotABound as err:
+        return Finding(Verdict.INCONSISTENT, f"(35) reads {_bound_reading(p35)}: not a lower bound on b ({err.reason}), so it "
+                       f"cannot coincide with Colgate and Schenkel's condition {sp.sstr(colgate)}",
+                       Evidence(Method.CANONICAL_FORM, facts={"printed_form": sp.srepr(p35)}))
+    cmp = compare_bounds(colgate, sp.Ge(b, bound35.bound), b, what="Colgate's condition as a condition for (35)")
     doubled = classics.colgate_wall(K=2 * K, B=2 * B)
     facts = {"ids": ["teleoperator:35", "hve:3", "classics:colgate-wall"], "colgate": colgate,
              "colgate_doubled_gains": doubled, "printed_35": sp.sstr(p35)}
