@@ -251,7 +251,7 @@ def test_absolute_stability_matches_oracle():
         # completeness (issue 10): reciprocal, diagonally symmetrizable and scalar 2-port networks
         # must be decided; others may be undecided without the search
         must_decide = case["route"] in ("reciprocal", "similar") or Z.rows == 2
-        tally.check({**case, "Z": _zstr(Z), "oracle_route": oracle.details.get("route")}, decision, oracle,
+        tally.check({**case, "Z": _zstr(Z), "oracle_route": oracle.details.get("route") if oracle is not None else None}, decision, oracle,
                     call=f"absolute_stability({_zstr(Z)}, ports={ports}, search=False)", error=error,
                     fail_undecided=must_decide, seconds={"toolkit": t_toolkit, "oracle": t_oracle},
                     oracle_error=oracle_error)

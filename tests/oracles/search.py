@@ -372,6 +372,8 @@ def find_destabilizing_termination(Z: Any, ports: Sequence[int] | None = None, s
 
 
 def _verify(Zs: sp.Matrix, terms: list[sp.Matrix], blocks) -> OracleResult | None:
+    if any(e.has(sp.zoo, sp.oo, sp.nan) for T in terms for e in T):
+        return None          # a candidate rounded to a zero capacitance: not a termination
     count, located = rhp_zeros(_terminated(Zs, terms, blocks), S)
     if count:
         zero = located[0] if located else None
