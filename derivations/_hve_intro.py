@@ -147,8 +147,11 @@ def eq5(ctx: AuditContext) -> Finding:
     # the slip the quote suggests: T where Gil et al. have T/2 (derived condition with T/2 -> T)
     half_slip = sp.Gt(derived.lhs, derived.rhs.subs(T, 2 * T), evaluate=False)
     is_half_slip = compare_bounds(printed, sp.Ge(half_slip.lhs, half_slip.rhs), b).verdict == Verdict.CONFIRMED
-    at_zero = printed.subs(t_d, 0)
-    vs4 = compare_bounds(at_zero, sp.Ge(b + B, K * T / 2), b)
+    try:
+        at_zero = printed.subs(t_d, 0)
+        vs4_verdict = compare_bounds(at_zero, sp.Ge(b + B, K * T / 2), b).verdict.value
+    except TypeError:           # the printed bound divides by t_d: no condition at t_d = 0
+        at_zero, vs4_verdict = sp.S.false, "undefined at t_d = 0"
     values = {b: FIG8B["b"], B: FIG8B["B"], T: FIG8B["T"], t_d: FIG8B["n"] * FIG8B["T"]}
     printed_K = _stiffness_limit(printed, values)
     derived_K = _stiffness_limit(derived, values)
@@ -158,7 +161,7 @@ def eq5(ctx: AuditContext) -> Finding:
             + (f"K < {float(printed_K):.2f}" if printed_K is not None else "no upper limit on K")
             + f" against the derived {float(derived_K):.2f} and the exact {float(crit.value):.2f}")
     evidence = Evidence(Method.COUNTEREXAMPLE, witness=cmp.evidence.witness,
-                        facts={"comparison_with_derived": cmp.verdict.value, "at_t_d_0_vs_(4)": vs4.verdict.value,
+                        facts={"comparison_with_derived": cmp.verdict.value, "at_t_d_0_vs_(4)": vs4_verdict,
                                "printed_form": cmp.evidence.facts.get("printed_form"), **numbers})
     corrected = r"K < \frac{B+b}{\frac{T}{2}+t_d}"
     if is_half_slip:
@@ -166,7 +169,7 @@ def eq5(ctx: AuditContext) -> Finding:
             Verdict.TYPO,
             f"(5) reads {reading}; the delayed linear condition derived from the exact ZOH loop (leading order for every n) "
             f"is K (T/2 + t_d) < b + B, as Gil et al. 2009 publish it, and (5) is exactly that with T for T/2: at t_d = 0 it "
-            f"reads {_reading(at_zero)} ({vs4.verdict.value} against (4), b + B > KT/2); {loop}",
+            f"reads {_reading(at_zero)} ({vs4_verdict} against (4), b + B > KT/2); {loop}",
             evidence, derived=derived, corrected=corrected)
     return Finding(cmp.verdict,
                    f"(5) reads {reading}, not the delayed linear condition K (T/2 + t_d) < b + B derived from the exact ZOH "

@@ -421,7 +421,12 @@ P37D = (r"U_{i}(z) = (K_{0i} + \sum_{k=1, k \neq i}^{m} K_{ik} + \frac{(B_{0i} +
 @PAPER.equation("37d", kind="expression", printed=P37D, section=SECTION, assumptions=ASSUME,
                 derivation="U_i = z^{-n_i} sum_j H_ij X_hj, as a result of (37a)")
 def eq37d(ctx: AuditContext) -> Finding:
-    rhs = ctx.relation().rhs
+    relation = ctx.relation()
+    rhs = relation.rhs
+    lhs = _signals(_align(_instance(relation.lhs, 3, i=1)))
+    if lhs != sp.Symbol("U_1"):
+        return Finding(Verdict.WRONG, f"the left side reads {sp.sstr(lhs)} for user 1, not the environment force U_1(z)",
+                       Evidence(Method.PARSE, facts={"printed_form": sp.srepr(lhs)}))
     X = [sp.Symbol(f"X_h{j}") for j in (1, 2, 3)]
     facts = {}
     for delay in (0, 1):
@@ -461,7 +466,12 @@ def eq38(ctx: AuditContext) -> Finding:
                        Evidence(Method.PARSE, facts={"printed_form": sp.srepr(reading)}),
                        corrected=r"F_h(z) = G^{-1}(z)V_h(z)")
     # independent route: the printed (37) and (37d), the forward difference, solved for F in terms of V
-    body37 = parse_printed(PAPER.get("37").printed, PAPER.symbols).body.as_sympy()
+    statement37 = parse_printed(PAPER.get("37").printed, PAPER.symbols)
+    wrong_range = _users_range(statement37)
+    if wrong_range is not None:
+        return Finding(Verdict.INCONSISTENT, f"(37), which (38) collects, is not one balance per user: {wrong_range}",
+                       Evidence(Method.PARSE, facts={"ids": ["38", "37"], "printed_form": ("range", wrong_range)}))
+    body37 = statement37.body.as_sympy()
     rhs37d = _parse(PAPER.get("37d").printed).relations()[0].as_sympy().rhs
     m = 3
     V = [sp.Symbol(f"V_h{j}") for j in range(1, m + 1)]
@@ -524,6 +534,15 @@ P39 = r"""\begin{aligned}
  b_1 + \frac{(K_{01} + K_{12})T}{z - 1} + \frac{(B_{01} + B_{12})}{z} & -(\frac{K_{12}T}{z - 1} + \frac{B_{12}}{z}) \\
  -(\frac{K_{12}T}{z - 1} + \frac{B_{12}}{z}) & b_2 + \frac{(K_{02} + K_{12})T}{z - 1} + \frac{(B_{02} + B_{12})}{z}
  \end{aligned}"""
+
+
+def _not_ginv(statement: Any) -> Finding | None:
+    """``wrong`` when the display's left side is not ``G^{-1}(z)`` (``2 G^{-1}(z) = ...``)."""
+    lhs = statement.relations()[0].lhs
+    if lhs != _SIGNALS["Ginv"]:
+        return Finding(Verdict.WRONG, f"the left side {sp.sstr(lhs)} is not G^-1(z)",
+                       Evidence(Method.PARSE, facts={"printed_form": sp.srepr(lhs)}))
+    return None
 
 
 def _matrix_of(statement: Any) -> sp.Matrix:
@@ -1556,7 +1575,12 @@ class _Indexed:
 
     def holds(self, scene: MultiUserScene) -> bool:
         rel = self.at(_scene_values(scene))
-        return bool(rel.func(rel.lhs, rel.rhs))
+        value = rel.func(rel.lhs, rel.rhs)
+        if value not in (sp.true, sp.false):
+            # e.g. K_{ij} under max_i: an index the display never binds
+            raise LatexParseError(f"the printed condition does not evaluate at numeric parameters (left free: "
+                                  f"{', '.join(sorted(map(str, value.free_symbols)))})", "", 0)
+        return bool(value)
 
     def bound(self, scene: MultiUserScene) -> sp.Expr:
         """The right-hand side: the bound on ``min_i b_i`` (z_a = 0, B on the right)."""
@@ -1794,6 +1818,9 @@ P56 = (r"G^{-1}(z) = \begin{bmatrix} b_1 + z^{-n_1}(\frac{K_1T}{z-1} + \frac{B_1
 @PAPER.equation("56", kind="expression", printed=P56, section=SECTION, assumptions=ASSUME,
                 derivation="G^-1 = diag(b) + D(z)(Kmat T/(z-1) + Bmat/z), D = diag(z^-n_i): row i is delayed by n_i")
 def eq56(ctx: AuditContext) -> Finding:
+    wrong_lhs = _not_ginv(ctx.statement)
+    if wrong_lhs is not None:
+        return wrong_lhs
     printed = _matrix_of(ctx.statement).xreplace(_sums(2))
     n1, n2 = (sp.Symbol(f"n_{i}", integer=True, nonnegative=True) for i in (1, 2))
     names = {s.name: s for s in printed.free_symbols}
@@ -2029,12 +2056,19 @@ def eq59(ctx: AuditContext) -> Finding:
         condition = as_sign_condition(relations[0].as_sympy())
         printed = _align(condition.expr)
         value = _at_theta(printed, values, 2)
+        # a second point: a display that differs from another one may agree with it at one point
+        second = {p: v for p, v in zip(params, itertools.cycle([3, 2, 7, 1, 5, 2]))}
+        second[T] = sp.Rational(1, 3)
+        value2 = _at_theta(printed, second, 2)
         b1 = _scene(2).b[0]
-        degree = sp.Poly(_at_theta(printed, {k: v for k, v in values.items() if k != b1}, 2), b1).degree()
+        try:
+            degree = sp.Poly(_at_theta(printed, {k: v for k, v in values.items() if k != b1}, 2), b1).degree()
+        except (sp.PolynomialError, ValueError):
+            degree = "not a polynomial"
         facts.update({"repaired_value": value, "repaired_degree_in_b_1": degree, "printed_form": (condition.op, sp.srepr(printed))})
         reading = (f"{'with the stray parentheses removed ' if error is not None else ''}it reads an expression {condition.op} 0 "
-                   f"of degree {degree} in b_1 whose value at the witness (n = 2, c = 3/5) is {sp.sstr(value)}, while "
-                   f"det(M/2) = {sp.sstr(det_value)} there")
+                   f"of degree {degree} in b_1 whose value at the witness (n = 2, c = 3/5) is {sp.sstr(value)} "
+                   f"({sp.sstr(value2)} at a second point), while det(M/2) = {sp.sstr(det_value)} there")
         same = value == det_value and degree == 2 and condition.op in (">", ">=")
     except LatexParseError as err:
         facts["repaired_parse_error"] = err.reason

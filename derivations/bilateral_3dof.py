@@ -653,10 +653,20 @@ def eq1(ctx: AuditContext) -> Finding:
         Verdict.INCONSISTENT,
         f"the display prints {', '.join(sp.sstr(d) for d in printed_diag)} on the diagonal while the text after it (claim "
         f"1-diagonal) names the DOF terminations {', '.join(sp.sstr(t) for t in text)} (entries "
-        f"{[i + 1 for i in differ]} differ); {passivity}",
+        f"{[i + 1 for i in differ]} differ; off the diagonal it reads {_off_diagonal(T)}); {passivity}",
         Evidence(Method.CANONICAL_FORM, witness={"entries": [[i + 1, i + 1] for i in differ]}, facts=facts),
         derived=variant,
     )
+
+
+def _off_diagonal(T: sp.Matrix) -> str:
+    """The off-diagonal entries as read (the couplings the passivity verdicts depend on)."""
+    upper = [sp.sstr(sp.cancel(T[i, j])) for i in range(T.rows) for j in range(i + 1, T.cols)]
+    symmetric = all(is_identically_zero(T[i, j] - T[j, i]) for i in range(T.rows) for j in range(i + 1, T.cols))
+    if symmetric:
+        return f"{', '.join(upper)} (symmetric)"
+    lower = [sp.sstr(sp.cancel(T[j, i])) for i in range(T.rows) for j in range(i + 1, T.cols)]
+    return f"{', '.join(upper)} above and {', '.join(lower)} below (not symmetric)"
 
 
 @PAPER.equation("1-diagonal", kind="claim", after="1", section="2",
@@ -2553,7 +2563,8 @@ def fig3_46(ctx: AuditContext) -> Finding:
     failing = _failing(conditions, table1_gains(kvmyz))
     lines = [str(c) if isinstance(c, _RatioChain) else sp.sstr(c) for c in conditions]
     holding = [line for line in lines if line not in failing]
-    facts = {"failing": failing, "holding": holding, "k_vmyz": kvmyz}
+    # the lines as read (after the index rule) are what the claim is about
+    facts = {"failing": failing, "holding": holding, "k_vmyz": kvmyz, "printed_form": ("lines of (46) as read", tuple(lines))}
     if failing:
         return Finding(Verdict.INCONSISTENT,
                        f"Table 1 with k_vmyz = {kvmyz} violates line(s) {failing} of (46), so it is not 'selected according to "

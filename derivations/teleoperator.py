@@ -509,8 +509,9 @@ def eq6(ctx: AuditContext) -> Finding:
     error, error31 = _error_defined(rel), _error_defined(rel31)
     if error is None or error31 is None:
         which = "(6)" if error is None else "(31)"
-        return Finding(Verdict.WRONG, f"{which} does not define the error e: it reads {sp.sstr(rel if error is None else rel31)}",
-                       Evidence(Method.PARSE, facts={"printed_form": sp.srepr(rel.as_sympy() if hasattr(rel, 'as_sympy') else rel)}))
+        shown = (rel if error is None else rel31).as_sympy()
+        return Finding(Verdict.WRONG, f"{which} does not define the error e: it reads {sp.sstr(shown)}",
+                       Evidence(Method.PARSE, facts={"printed_form": sp.srepr(shown)}))
     return compare_expressions(error, error31.subs(alpha, 1), what="the position error (6)",
                                note="it is the error of the scaled case (31) at alpha = 1")
 
@@ -1093,9 +1094,9 @@ def eq30(ctx: AuditContext) -> Finding:
     error = _error_defined(rel31)
     zero_error = sp.solve(sp.Eq(error, 0), X_S) if error is not None else []
     if len(zero_error) != 1:
-        return Finding(Verdict.INCONSISTENT, f"(31) ({sp.sstr(rel31)}) does not fix x_s when the error vanishes, so it "
-                       "cannot be the error of the scaled controllers (30)",
-                       Evidence(Method.CANONICAL_FORM, facts={"ids": ["30", "31"], "printed_form": sp.srepr(rel31)}))
+        return Finding(Verdict.INCONSISTENT, f"(31) ({sp.sstr(rel31.as_sympy())}) does not fix x_s when the error vanishes, "
+                       "so it cannot be the error of the scaled controllers (30)",
+                       Evidence(Method.CANONICAL_FORM, facts={"ids": ["30", "31"], "printed_form": sp.srepr(rel31.as_sympy())}))
     tracking = sp.cancel(zero_error[0] / X_M)            # x_s/x_m when the error vanishes
     if not (is_identically_zero(ratio - alpha) and is_identically_zero(tracking - alpha)):
         return Finding(Verdict.INCONSISTENT, "(30) and (31) scale differently",
@@ -1130,8 +1131,8 @@ def eq31(ctx: AuditContext) -> Finding:
     gain = sp.Symbol("C_gain", positive=True)
     error = _error_defined(rel)
     if error is None or not error.free_symbols & {X_M, X_S}:
-        return Finding(Verdict.WRONG, f"(31) must define the error e from the positions; it reads {sp.sstr(rel)}",
-                       Evidence(Method.PARSE, facts={"printed_form": sp.srepr(rel)}), corrected=PRINTED["31"])
+        return Finding(Verdict.WRONG, f"(31) must define the error e from the positions; it reads {sp.sstr(rel.as_sympy())}",
+                       Evidence(Method.PARSE, facts={"printed_form": sp.srepr(rel.as_sympy())}), corrected=PRINTED["31"])
     fm, fs = _restoring_forces(gain, error)
     if fs == 0:
         return Finding(Verdict.INCONSISTENT, f"with e = {sp.sstr(error)} the spring C e^2/2 exerts no force on the slave, "
@@ -1752,7 +1753,9 @@ def eq38(ctx: AuditContext) -> Finding:
     if defect is None and rhs_ok and lhs_ok:
         return Finding(Verdict.CONFIRMED, "Lemma 3 (>=) by Cauchy-Schwarz", Evidence(Method.STRUCTURAL, facts=facts))
     if defect is not None and rhs_ok and lhs_ok:
-        return Finding(Verdict.TYPO, f"the left side prints j n omega for j n omega_s (its denominator vanishes at n = {defect['n']}); "
+        slips = ctx.equation.printed.count(r"jn\omega)") + ctx.equation.printed.count(r"jn\omega}")
+        return Finding(Verdict.TYPO, f"the left side prints j n omega for j n omega_s ({slips} time{'s' if slips != 1 else ''}; "
+                       f"its denominator vanishes at n = {defect['n']}); "
                        "corrected, the lemma holds with >=: |sum_n X_n|^2 <= sum_n 1/(w + n w_s)^2 sum_n |V_n|^2 "
                        f"(Cauchy-Schwarz, alias weight T^2/(2(1 - cos wT)) checked to {error:.0e}) and Cbar^- <= 0",
                        Evidence(Method.COUNTEREXAMPLE, witness={"n": defect["n"]}, facts=facts), corrected=corrected_text)
