@@ -148,3 +148,19 @@ def test_the_audit_runs_the_checker_on_every_certificate():
     assert "rejected" in bad.evidence.facts["checker"] and "checker rejected" in bad.detail
     plain = Finding(Verdict.CONFIRMED, "no certificate", Evidence(Method.CANONICAL_FORM))
     assert rechecked(plain) is plain
+
+
+def test_network_absolute_stability_carries_the_certificates_it_rests_on(capsys, tmp_path):
+    """``derive network``: the absolute-stability entry carries the decision that settles it
+    (here Z positive real), so ``hapticproof check`` re-verifies every entry."""
+    matrix = tmp_path / "z.txt"
+    matrix.write_text("9/(s+3), 1/(s+1)\n1/(s+1), 2/(s+2)\n")
+    report = tmp_path / "net.json"
+    assert main(["derive", "network", "--matrix", str(matrix), "--format", "json", "-o", str(report)]) == 0
+    data = json.loads(report.read_text())
+    entry = next(c for c in data["conditions"] if c["name"] == "absolute stability")
+    assert entry["decision"] == "proved" and entry["rests_on"]["decision"] == "proved"
+    capsys.readouterr()
+    assert main(["check", str(report)]) == 0
+    out = capsys.readouterr().out
+    assert "0 without a certificate" in out and "0 certificate(s) failed" in out

@@ -147,6 +147,11 @@ def analyse(Z: sp.Matrix, ports: tuple[int, ...] | None, search: bool = True, de
         out["zprime_positive_real"] = {"decision": verdict.zprime.decision.value, "reason": verdict.zprime.reason}
     summary = {"decision": verdict.decision.value, "method": verdict.method, "reason": verdict.reason}
     entry = {"name": "absolute stability", **summary, "evidence": {"method": verdict.evidence.method}}
+    # the decision that settles it, with its certificates (what `hapticproof check` re-verifies)
+    basis = {"positive real": pr, "open-circuit instability": pr, "Llewellyn": verdict.llewellyn,
+             "Youla symmetrization": verdict.zprime}.get(verdict.method)
+    if basis is not None:
+        entry["rests_on"] = basis.to_json()
     if verdict.certificate is not None:
         entry["certificate"] = verdict.certificate.to_json()
         summary["certificate"] = {k: v for k, v in entry["certificate"].items() if k in ("terminations", "rhp_roots", "strategy")}
