@@ -842,7 +842,9 @@ class MutationReport:
     def summary(self) -> str:
         c = self.counts()
         basis = ", ".join(f"{k} {n}" for k, n in self.equivalence().items() if n)
-        return (f"{self.paper}: {self.total} mutants (of {self.generated}), {c['equivalent']} proved equivalent"
+        # a sample generates only the mutants of the equations it visits (see choose)
+        pool = "every mutant" if self.total == self.generated else f"a sample of the {self.generated} generated for the equations it visits"
+        return (f"{self.paper}: {self.total} mutants ({pool}), {c['equivalent']} proved equivalent"
                 f"{f' ({basis})' if basis else ''}, "
                 f"{c['killed']} killed, {c['survived']} survived, {c['crashed']} crashed; "
                 f"score {100 * self.score:.1f}% ({self.seconds:.0f} s)")
