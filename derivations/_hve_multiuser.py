@@ -561,10 +561,9 @@ def eq39(ctx: AuditContext) -> Finding:
         repaired = ctx.equation.printed.replace(r"\end{aligned}", "\\end{bmatrix}\n \\end{aligned}")
         statement = ctx.parse(repaired)
         note = f"; the transcription closes the bmatrix with \\end{{aligned}} ({err.reason}), read with \\end{{bmatrix}} restored"
-    rel = statement.relations()[0]
-    if rel.lhs != _SIGNALS["Ginv"]:
-        return Finding(Verdict.WRONG, f"the left side {sp.sstr(rel.lhs)} is not G^-1(z)",
-                       Evidence(Method.PARSE, facts={"printed_form": sp.srepr(rel.lhs)}))
+    wrong_lhs = _not_ginv(statement)
+    if wrong_lhs is not None:
+        return wrong_lhs
     printed = _matrix_of(statement)
     derived = inverse_transfer_matrix(_scene(2))
     finding = _matrix_mismatch(printed, derived, "the printed G^-1")
@@ -1140,10 +1139,9 @@ def _sums(m: int) -> dict:
 @PAPER.equation("46a", kind="expression", printed=P46A, section=SECTION, assumptions=ASSUME,
                 derivation="G^-1(z) = diag(b) + Kmat T/(z-1) + Bmat/z for m = 3, with K_i, B_i the diagonal sums")
 def eq46a(ctx: AuditContext) -> Finding:
-    rel = ctx.statement.relations()[0]
-    if rel.lhs != _SIGNALS["Ginv"]:
-        return Finding(Verdict.WRONG, f"the left side {sp.sstr(rel.lhs)} is not G^-1(z)",
-                       Evidence(Method.PARSE, facts={"printed_form": sp.srepr(rel.lhs)}))
+    wrong_lhs = _not_ginv(ctx.statement)
+    if wrong_lhs is not None:
+        return wrong_lhs
     printed = _matrix_of(ctx.statement).xreplace(_sums(3))
     derived = inverse_transfer_matrix(_scene(3))
     finding = _matrix_mismatch(printed, derived, "the printed 3x3 G^-1")

@@ -11,7 +11,7 @@ from typing import Any
 import sympy as sp
 
 from hapticproof.audit import AuditContext, Paper
-from hapticproof.certify import NotABound, as_bound, compare_bounds, is_identically_zero
+from hapticproof.certify import NotABound, as_bound, as_lower_bound, compare_bounds, is_identically_zero
 from hapticproof.evidence import Evidence, Finding, Method, Verdict
 from hapticproof.parse import parse_printed
 from hapticproof.registry import get_paper
@@ -57,10 +57,7 @@ def _reading(rel: sp.Basic, var: sp.Symbol = b) -> str:
 def _as_ge(rel: sp.Basic, var: sp.Symbol = b) -> sp.Basic:
     """A printed condition as the non-strict reference of :func:`compare_bounds` (a lower bound
     on ``var``); :class:`NotABound` when it is not one."""
-    bound = as_bound(rel, var)
-    if not bound.lower:
-        raise NotABound(f"it is an upper bound, {bound}")
-    return sp.Ge(var, bound.bound, evaluate=False)
+    return sp.Ge(var, as_lower_bound(rel, var).bound, evaluate=False)
 
 
 def _compare(a: sp.Basic, b_rel: sp.Basic, ids: list[str], what: str, var: sp.Symbol = b, note: str = "") -> Finding:

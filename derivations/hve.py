@@ -18,7 +18,7 @@ import functools
 import sympy as sp
 
 from hapticproof.audit import AuditContext, Paper, malformed
-from hapticproof.certify import NotABound, as_bound, as_sign_condition, compare_bounds, compare_expressions, is_identically_zero
+from hapticproof.certify import NotABound, as_bound, as_lower_bound, as_sign_condition, compare_bounds, compare_expressions, is_identically_zero
 from hapticproof.classics import colgate_bound
 from hapticproof.errors import LatexParseError
 from hapticproof.evidence import Decision, Evidence, Finding, Method, Outcome, Verdict
@@ -449,13 +449,9 @@ def identical_to_colgate(ctx: AuditContext) -> Finding:
     mine = ctx.parse(PAPER.get("20").printed).relations()[0].as_sympy()
     theirs = ctx.parse(PAPER.get("3").printed).relations()[0].as_sympy()
     try:
-        reference = as_bound(theirs, b)
+        reference = as_lower_bound(theirs, b)
     except NotABound as err:
-        reference = None
-        why = err.reason
-    if reference is None or not reference.lower:
-        why = why if reference is None else f"it is an upper bound, {reference}"
-        return Finding(Verdict.INCONSISTENT, f"(3) reads {_reading(theirs)} ({why}), (20) reads {_reading(mine)}: they differ",
+        return Finding(Verdict.INCONSISTENT, f"(3) reads {_reading(theirs)} ({err.reason}), (20) reads {_reading(mine)}: they differ",
                        Evidence(Method.CANONICAL_FORM, facts={"ids": ["20", "3"]}))
     finding = compare_bounds(mine, sp.Ge(b, reference.bound), b, what="(20)")
     identity = is_identically_zero(colgate_bound(virtual_wall(K, B, T), T) + sp.expand(hermitian(scene()).expr()) - b)
@@ -871,9 +867,7 @@ def extends(ctx: AuditContext) -> Finding:
     p3 = ctx.parse(PAPER.get("3").printed).relations()[0].as_sympy()
     reduced = p27.subs({z_a: 0, t_d: 0})
     try:
-        reference = as_bound(p3, b)
-        if not reference.lower:
-            raise NotABound(f"it is an upper bound, {reference}")
+        reference = as_lower_bound(p3, b)
     except NotABound as err:
         return Finding(Verdict.INCONSISTENT, f"(3) reads {_reading(p3)}: not a lower bound on b ({err.reason}), so (27) at "
                        f"z_a = t_d = 0, {_reading(reduced)}, cannot contain it", Evidence(Method.CANONICAL_FORM,

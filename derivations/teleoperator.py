@@ -1234,12 +1234,10 @@ def eq35(ctx: AuditContext) -> Finding:
 def colgate_claim(ctx: AuditContext) -> Finding:
     p35 = ctx.parse(PAPER.get("35").printed).relations()[0].as_sympy()
     colgate = classics.colgate_wall(B=B)
-    from hapticproof.certify import NotABound, as_bound
+    from hapticproof.certify import NotABound, as_lower_bound
 
     try:
-        bound35 = as_bound(p35, b)
-        if not bound35.lower:
-            raise NotABound(f"it is an upper bound, {bound35}")
+        bound35 = as_lower_bound(p35, b)
     except NotABound as err:
         return Finding(Verdict.INCONSISTENT, f"(35) reads {_bound_reading(p35)}: not a lower bound on b ({err.reason}), so it "
                        f"cannot coincide with Colgate and Schenkel's condition {sp.sstr(colgate)}",
@@ -1424,19 +1422,15 @@ def intro_routh(ctx: AuditContext) -> Finding:
 def intro_less(ctx: AuditContext) -> Finding:
     passive = intro_condition("colgate")
     stable = _single_relation(ctx.parse(_quoted(ctx.equation.printed, last=False)))
-    from hapticproof.certify import NotABound, as_bound
+    from hapticproof.certify import NotABound, as_lower_bound
 
     try:
-        stable_bound = as_bound(stable, b)
+        stable_bound = as_lower_bound(stable, b)
     except NotABound as err:
-        stable_bound = None
-        reason = err.reason
-    if stable_bound is None or not stable_bound.lower:
-        why = reason if stable_bound is None else f"it is an upper bound, {stable_bound}"
-        return Finding(Verdict.WRONG, f"the quoted stability condition {sp.sstr(stable)} is not a lower bound on b ({why}), so "
+        return Finding(Verdict.WRONG, f"the quoted stability condition {sp.sstr(stable)} is not a lower bound on b ({err.reason}), so "
                        f"it cannot be compared as less conservative than the passivity condition {_bound_reading(passive)}",
                        Evidence(Method.CANONICAL_FORM, facts={"printed_form": sp.srepr(stable)}))
-    # the quoted condition must be the wall's stability condition (intro-routh's reading), not any weaker bound
+    # the quoted condition must be the wall's stability condition (its leading order), not any weaker bound
     from hapticproof.classics import leading_order_boundary
 
     leading = leading_order_boundary(0).condition

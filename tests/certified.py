@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from hapticproof.checker import certificates, check_certificate
+from hapticproof.checker import check_certificates
 from hapticproof.evidence import to_jsonable
 
 
@@ -18,7 +18,7 @@ def assert_certified(result: Any, call: str = "") -> int:
     if result is None:
         return 0
     data = to_jsonable(result.to_json() if hasattr(result, "to_json") else result)
-    certs = list(certificates(data))
-    rejected = [(c.get("certificate"), r.reason) for c in certs for r in [check_certificate(c)] if not r.ok]
+    results = check_certificates(data)
+    rejected = [r.reason for r in results if not r.ok]
     assert not rejected, f"the checker rejected certificate(s) of {call or 'the result'}: {rejected}"
-    return len(certs)
+    return len(results)

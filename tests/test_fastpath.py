@@ -20,7 +20,7 @@ from hypothesis import strategies as st
 
 from hapticproof import fastpath as fp
 from hapticproof import trigpoly
-from hapticproof.checker import check_certificate
+from hapticproof.checker import check_certificate, check_certificates
 from hapticproof.errors import SceneError
 from hapticproof.evidence import Decision, to_jsonable
 from hapticproof.lazy import clear
@@ -46,7 +46,7 @@ def reference(scene):
 
 
 def certificates_ok(outcome) -> tuple[int, int]:
-    results = [check_certificate(c) for c in _certificates(to_jsonable(outcome.to_json()))]
+    results = check_certificates(to_jsonable(outcome.to_json()))
     assert all(r.ok for r in results), [r.reason for r in results if not r.ok]
     return len(results), sum(r.verified for r in results)
 
@@ -130,7 +130,7 @@ def test_interior_zeros_touching_fall_back_to_the_kernel(chebyshev):
 def test_above_the_checker_limit_it_says_so(monkeypatch, chebyshev):
     monkeypatch.setenv("HAPTICPROOF_CHECK_MAX_DEGREE", "20")
     out = fp.decide(wall(n=40, b=1))
-    results = [check_certificate(c) for c in _certificates(to_jsonable(out.to_json()))]
+    results = check_certificates(to_jsonable(out.to_json()))
     assert all(r.ok for r in results)
     assert any(not r.verified and "limit" in r.reason for r in results)
 

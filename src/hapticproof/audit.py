@@ -442,12 +442,11 @@ def rechecked(finding: Finding) -> Finding:
     (:mod:`hapticproof.checker`); the tally goes to ``evidence.facts["checker"]``. A certificate
     the checker rejects makes the verdict ``undecided`` -- the decision and its proof disagree,
     so neither is reported as established."""
-    from hapticproof.checker import certificates, check_certificate
+    from hapticproof.checker import check_certificates
 
-    certs = list(certificates(finding.evidence.to_json()))
-    if not certs:
+    results = check_certificates(finding.evidence.to_json())
+    if not results:
         return finding
-    results = [check_certificate(c) for c in certs]
     tally: dict[str, Any] = {"certificates": len(results), "re-verified": sum(r.ok and r.verified for r in results)}
     skipped = [r.reason for r in results if r.ok and not r.verified]
     failed = [r.reason for r in results if not r.ok]

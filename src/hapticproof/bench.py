@@ -49,7 +49,8 @@ __all__ = [
 ]
 
 
-def _median_time(func: Callable[[], Any], repeat: int) -> tuple[Any, float]:
+def median_time(func: Callable[[], Any], repeat: int) -> tuple[Any, float]:
+    """``(result, median seconds)`` of ``repeat`` calls of ``func`` (the studies time with it too)."""
     times, result = [], None
     for _ in range(max(1, repeat)):
         start = time.perf_counter()
@@ -105,20 +106,20 @@ def margin_study(
 
         # one-time preparations (exact c-forms / compiled float and mpmath evaluators) are
         # measured separately and excluded from every method's per-margin time
-        compute, prep_exact = _median_time(lambda: exact_margin_prepared(G), 1)
-        exact, seconds = _median_time(lambda: compute(53), repeat)
+        compute, prep_exact = median_time(lambda: exact_margin_prepared(G), 1)
+        exact, seconds = median_time(lambda: compute(53), repeat)
         rows.append({"case": name, "method": "exact", "points": None, "digits": None, "seconds": seconds,
                      "setup_seconds": prep_exact,
                      "relative_error": max(error(exact.lo), error(exact.hi)), "certified": True})
-        evaluator, prep_float = _median_time(lambda: stable_evaluator(G), 1)
+        evaluator, prep_float = median_time(lambda: stable_evaluator(G), 1)
         for points in float_points:
             reps = 1 if points >= 100_000 else repeat
-            (value, _), seconds = _median_time(lambda: float_margin(G, points, evaluator), reps)
+            (value, _), seconds = median_time(lambda: float_margin(G, points, evaluator), reps)
             rows.append({"case": name, "method": "float64", "points": points, "digits": 16, "seconds": seconds,
                          "setup_seconds": prep_float, "relative_error": error(repr(value)), "certified": False})
         for digits in mp_digits:
             for points in mp_points:
-                value, seconds = _median_time(lambda: mp_margin(G, points, digits), 1)
+                value, seconds = median_time(lambda: mp_margin(G, points, digits), 1)
                 rows.append({"case": name, "method": f"mpmath-{digits}", "points": points, "digits": digits,
                              "seconds": seconds, "relative_error": error(value), "certified": False})
     return rows
@@ -173,12 +174,12 @@ def boundary_study(quick: bool = False, repeat: int = 3) -> list[dict[str, Any]]
                 ("spectral", lambda: find_boundary(family, "K", at=at, search=bracket, scan=2, rtol=tol)),
             ):
                 reps = 1 if method == "simulation" and steps > 10_000 else repeat
-                bnd, seconds = _median_time(func, reps)
+                bnd, seconds = median_time(func, reps)
                 err = abs(bnd.value - ref) / ref if bnd.value else float("nan")
                 rows.append({"case": name, "method": method, "tolerance": tol, "seconds": seconds,
                              "relative_error": err})
         for bits in (53, 100) if quick else (53, 80, 120):
-            cs, seconds = _median_time(lambda: critical_stiffness(**exact_args, bits=bits), repeat)
+            cs, seconds = median_time(lambda: critical_stiffness(**exact_args, bits=bits), repeat)
             # the certified tolerance is the ball's relative radius (cancellation in the closed form
             # costs digits, so it is wider than 2^-bits at low working precision)
             certified = float(cs.K.rad()) / abs(float(cs.K.mid()))
@@ -272,8 +273,8 @@ def lazy_study(repeat: int = 3) -> list[dict[str, Any]]:
             force(scene, single_user_stages())
             return computed_stages(scene)
 
-        stages, lazy_s = _median_time(lazy, repeat)
-        _, full_s = _median_time(full, repeat)
+        stages, lazy_s = median_time(lazy, repeat)
+        _, full_s = median_time(full, repeat)
         rows.append({"scene": name, "lazy_seconds": lazy_s, "full_seconds": full_s,
                      "ratio": full_s / lazy_s if lazy_s else None, "lazy_stages": sorted(stages),
                      "skipped": sorted({f.stage_name for f in single_user_stages()} - stages)})

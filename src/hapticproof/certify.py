@@ -54,6 +54,7 @@ __all__ = [
     "as_sign_condition",
     "compare_sign_conditions",
     "as_bound",
+    "as_lower_bound",
     "compare_bounds",
     "sign_on_box",
 ]
@@ -557,6 +558,15 @@ def as_bound(condition: sp.Basic, var: sp.Symbol) -> Bound:
     bound = -rest / coeff
     bound = canonical_rational(bound) if bound.is_rational_function() else sp.cancel(bound)
     return Bound(var, bound, strict, sign > 0)
+
+
+def as_lower_bound(condition: sp.Basic, var: sp.Symbol) -> Bound:
+    """:func:`as_bound`, and :class:`NotABound` ("it is an upper bound, ...") unless the
+    condition bounds ``var`` from below (the reading every comparison of quoted bounds needs)."""
+    bound = as_bound(condition, var)
+    if not bound.lower:
+        raise NotABound(f"it is an upper bound, {bound}")
+    return bound
 
 
 def _provable_sign(expr: sp.Expr) -> int | None:

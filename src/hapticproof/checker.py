@@ -44,7 +44,8 @@ from typing import Any
 
 import flint
 
-__all__ = ["CheckResult", "check_certificate", "check_report", "ReportCheck", "MAX_DEGREE"]
+__all__ = ["CheckResult", "certificates", "check_certificate", "check_certificates", "check_report", "ReportCheck",
+           "MAX_DEGREE"]
 
 #: Sturm sequences above this degree are not computed (the certificate is reported as not
 #: re-verified rather than taking minutes); ``HAPTICPROOF_CHECK_MAX_DEGREE`` overrides it.
@@ -747,6 +748,11 @@ def certificates(node: Any) -> Iterator[dict]:
             yield from certificates(value)
 
 
+def check_certificates(node: Any) -> list[CheckResult]:
+    """:func:`check_certificate` on every certificate inside a JSON value (in document order)."""
+    return [check_certificate(c) for c in certificates(node)]
+
+
 def _entries(report: Any) -> list[tuple[str, Any]]:
     """Top-level entries: audit equations, derive conditions, or the report itself."""
     if isinstance(report, dict) and "papers" in report:
@@ -768,5 +774,5 @@ def check_report(report: Any) -> ReportCheck:
         report = json.loads(report)
     out = []
     for name, entry in _entries(report):
-        out.append((name, [check_certificate(c) for c in certificates(entry)]))
+        out.append((name, check_certificates(entry)))
     return ReportCheck(out)

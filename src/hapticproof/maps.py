@@ -103,6 +103,19 @@ def grid(text: str) -> tuple[str, np.ndarray]:
     return name.strip(), np.linspace(start, stop, count)
 
 
+def with_paper_names(v: dict[str, float], *, delay: int, users: int, system: str) -> dict[str, float]:
+    """Complete a scene's values with the names the papers' printed conditions use: ``t_d = n T``,
+    ``n``, ``users``, ``b`` of a teleoperator (the smaller robot damping) and ``B`` (0 if absent)."""
+    if "T" in v:
+        v["t_d"] = delay * v["T"]
+    v["n"] = float(delay)
+    v["users"] = float(users)
+    if system == "teleoperator":
+        v.setdefault("b", min(v.get("b_m", math.inf), v.get("b_s", math.inf)))
+    v.setdefault("B", 0.0)
+    return v
+
+
 # --------------------------------------------------------------------------------------------
 # families
 # --------------------------------------------------------------------------------------------
@@ -255,14 +268,7 @@ class SceneFamily:
         if "z_a" not in v:
             term = self._termination(self.operator, v) if self.operator else None
             v["z_a"] = float(term.shortage_of_passivity()) if isinstance(term, Impedance) else 0.0
-        if "T" in v:
-            v["t_d"] = self.delay * v["T"]
-        v["n"] = float(self.delay)
-        v["users"] = float(self.users)
-        if self.system == "teleoperator":
-            v.setdefault("b", min(v.get("b_m", math.inf), v.get("b_s", math.inf)))
-        v.setdefault("B", 0.0)
-        return v
+        return with_paper_names(v, delay=self.delay, users=self.users, system=self.system)
 
 
 # --------------------------------------------------------------------------------------------

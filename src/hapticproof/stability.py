@@ -17,7 +17,6 @@ are parameters like any other: ``m`` (or ``m_1``... for m users, ``m_m``/``m_s``
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, replace
 from typing import Any
 
@@ -126,14 +125,9 @@ class SceneLoops:
                                            for k, x in overrides.items()})
             term = self._termination(scene.operator, scene) if isinstance(scene.operator, sp.Basic) else None
             v["z_a"] = float(term.shortage_of_passivity()) if isinstance(term, Impedance) else 0.0
-        if "T" in v:
-            v["t_d"] = self.delay * v["T"]
-        v["n"] = float(self.delay)
-        v["users"] = float(self.users)
-        if self.system == "teleoperator":
-            v.setdefault("b", min(v.get("b_m", math.inf), v.get("b_s", math.inf)))
-        v.setdefault("B", 0.0)
-        return v
+        from hapticproof.maps import with_paper_names     # loaded already: SceneLoops serves maps.find_boundary
+
+        return with_paper_names(v, delay=self.delay, users=self.users, system=self.system)
 
     def is_paper_scene(self) -> bool:
         """The papers' own scene (virtual wall, or the PD teleoperator): a printed condition applies."""

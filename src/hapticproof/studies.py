@@ -26,20 +26,13 @@ from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
+from hapticproof.bench import median_time
+
 __all__ = ["peer_cases", "peer_study", "delay_study", "margin_search_study", "map_study", "plot_peers", "plot_delays",
            "peer_available"]
 
 #: The scene of the comparison (HVE forward-difference virtual wall, Phantom-like numbers).
 PEER_SCENE = {"K": Fraction(2), "B": Fraction(1, 1000), "T": Fraction(1, 1000)}
-
-
-def _median(func: Callable[[], Any], repeat: int) -> tuple[Any, float]:
-    times, result = [], None
-    for _ in range(max(1, repeat)):
-        start = time.perf_counter()
-        result = func()
-        times.append(time.perf_counter() - start)
-    return result, statistics.median(times)
 
 
 def peer_available() -> str | None:
@@ -140,7 +133,7 @@ def peer_study(delays: Sequence[int] = (0, 3, 10), rels: Sequence[float] = (1e-2
     :func:`hapticproof.positivereal.positive_real` (the SymPy path) gives the same decision;
     ``check``: re-verify every certificate with :mod:`hapticproof.checker` (untimed).
     """
-    from hapticproof.checker import certificates, check_certificate
+    from hapticproof.checker import check_certificates
     from hapticproof.evidence import to_jsonable
 
     cases = peer_cases(delays, rels)
@@ -148,15 +141,14 @@ def peer_study(delays: Sequence[int] = (0, 3, 10), rels: Sequence[float] = (1e-2
     variants = {"ispassive": 0.0, "ispassive (pole damped to 1 - 1e-6)": 1e-6} if missing is None else {}
     rows = []
     for case in cases:
-        out, seconds = _median(_ours(case), repeat)
+        out, seconds = median_time(_ours(case), repeat)
         verdict = out.decision.value == "proved"
         row = {k: (str(v) if isinstance(v, Fraction) else v) for k, v in case.items()}
         row["hapticproof"] = {"seconds": seconds, "verdict": verdict, "decision": out.decision.value,
                               "wrong": verdict != case["truth"]}
         if check:
-            certs = list(certificates(to_jsonable(out.to_json())))
-            results = [check_certificate(c) for c in certs]
-            row["hapticproof"]["certificates"] = len(certs)
+            results = check_certificates(to_jsonable(out.to_json()))
+            row["hapticproof"]["certificates"] = len(results)
             row["hapticproof"]["certificates_verified"] = sum(r.ok and r.verified for r in results)
             row["hapticproof"]["certificates_failed"] = sum(not r.ok for r in results)
         if reference:
@@ -166,7 +158,7 @@ def peer_study(delays: Sequence[int] = (0, 3, 10), rels: Sequence[float] = (1e-2
             scene = NumericScene.virtual_wall(K=case["K"], B=case["B"], b=case["b"], T=case["T"], delay=case["delay"])
             row["hapticproof"]["reference_agrees"] = positive_real(scene.to_scene()).decision == out.decision
         for name, damping in variants.items():
-            value, seconds = _median(_peer(case, damping), repeat)
+            value, seconds = median_time(_peer(case, damping), repeat)
             row[name] = {"seconds": seconds, "verdict": value, "wrong": value != case["truth"]}
         rows.append(row)
         log(f"  n={case['delay']:<3d} {case['side']:5s} rel {case['rel']:.0e}: hapticproof {row['hapticproof']['seconds'] * 1e3:7.2f} ms "
@@ -236,7 +228,7 @@ def delay_study(delays: Sequence[int] = (10, 100, 1000, 3000, 10_000), rels: Seq
     rows = []
     for n in delays:
         base = NumericScene.virtual_wall(K=K, B=B, b=1, T=T, delay=n)
-        (lo, hi), boundary_seconds = _median(lambda: critical_damping(base), repeat)
+        (lo, hi), boundary_seconds = median_time(lambda: critical_damping(base), repeat)
         for rel in rels:
             r = Fraction(rel).limit_denominator(10**12)
             sides = (("above", hi * (1 + r), True), ("below", lo * (1 - r), False)) if r else (("at", lo, True),)
@@ -244,7 +236,7 @@ def delay_study(delays: Sequence[int] = (10, 100, 1000, 3000, 10_000), rels: Seq
                 continue
             for side, b, truth in sides:
                 scene = base.with_b(b)
-                out, seconds = _median(lambda: decide(scene), repeat)
+                out, seconds = median_time(lambda: decide(scene), repeat)
                 tracemalloc.start()
                 decide(scene)
                 peak = tracemalloc.get_traced_memory()[1]
@@ -323,7 +315,7 @@ def margin_search_study(delays: Sequence[int] = (10, 100, 1000), repeat: int = 3
                     bad = mid
             return good, probes
 
-        (found, probes), seconds = _median(search, repeat)
+        (found, probes), seconds = median_time(search, repeat)
         rows.append({"delay": n, "found": found, "probes": probes, "seconds": seconds, "correct": found == n})
         log(f"  margin n = {n:<6d}: found {found} with {probes} exact probes in {seconds * 1e3:.1f} ms")
     return {"rows": rows}
