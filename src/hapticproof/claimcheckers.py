@@ -175,6 +175,14 @@ def _at_delay(state: State, n: int) -> Any:
     return replace(state.model, delay=sp.Integer(n))
 
 
+def _at_delay_n(f: Finding, n: int, note: str) -> Finding:
+    """A finding at the delay instance ``n``: the same verdict, ``n`` added to its witness."""
+    witness = dict(f.evidence.witness or {})
+    witness["n"] = n
+    return Finding(f.verdict, f.detail + note, Evidence(f.evidence.method, witness=witness, facts=dict(f.evidence.facts)),
+                   derived=f.derived)
+
+
 def hermitian_part(state: State) -> Finding:
     """The display is ``Re G^{-1}(e^{j omega T})`` (or the condition ``Re G^{-1} >= 0`` at each frequency)."""
     system = _system(state, ("single-user", "multi-user", "teleoperator"), "hermitian-part")
@@ -232,10 +240,7 @@ def _delay_instances_expression(state: State, member: Any) -> Finding:
         derived = hermitian(_at_delay(state, n)).expr()
         f = compare_expressions(printed, derived, on_mismatch=Verdict.WRONG, what=f"the printed Re G^-1 at n = {n}")
         if f.verdict != Verdict.CONFIRMED:
-            witness = dict(f.evidence.witness or {})
-            witness["n"] = n
-            return Finding(f.verdict, f.detail + " (its canonical theta-form differs from the derived one)",
-                           Evidence(f.evidence.method, witness=witness, facts=dict(f.evidence.facts)), derived=f.derived)
+            return _at_delay_n(f, n, " (its canonical theta-form differs from the derived one)")
     return Finding(Verdict.UNDECIDED, "the canonical theta-forms differ but the expressions agree at n = 1, 2, 3",
                    Evidence(Method.INSTANCES, instances=3))
 
@@ -312,10 +317,7 @@ def _hermitian_condition(state: State, form: Any, symbolic_delay: bool) -> Findi
                                what=f"{what} at n = {n}", verify=_verify_at_delay(state, n), derived=exact_n)
         last = f
         if f.verdict != Verdict.CONFIRMED:
-            witness = dict(f.evidence.witness or {})
-            witness["n"] = n
-            return Finding(f.verdict, f.detail + " (the display is not Re G^-1 >= 0 for every n)",
-                           Evidence(f.evidence.method, witness=witness, facts=dict(f.evidence.facts)), derived=f.derived)
+            return _at_delay_n(f, n, " (the display is not Re G^-1 >= 0 for every n)")
     return Finding(Verdict.UNDECIDED, "the canonical theta-forms differ, but the conditions agree at n = 1, 2, 3",
                    Evidence(Method.INSTANCES, instances=3), derived=last.derived if last else None)
 
