@@ -49,9 +49,9 @@ def cold_run(target: str | None, single_core: bool = True, jobs: int = 1) -> tup
 
 def derivation_times(repeat: int) -> dict[str, float]:
     """Median time of each single-user derivation (cold scene cache, warm process)."""
-    from hapticproof.lazy import clear
-    from hapticproof.scene import SingleUserScene
-    from hapticproof.summary import summarize_single_user
+    from hapticproof.core.lazy import clear
+    from hapticproof.systems.singleuser import SingleUserScene
+    from hapticproof.report.summary import summarize_single_user
 
     cases = {
         "symbolic forward": dict(),
@@ -64,7 +64,7 @@ def derivation_times(repeat: int) -> dict[str, float]:
     out = {}
     for name, kw in cases.items():
         if kw.get("delay") == "n":
-            from hapticproof.scene import SYMBOLS
+            from hapticproof.systems.singleuser import SYMBOLS
 
             kw = dict(kw, delay=SYMBOLS["n"])
         times = []

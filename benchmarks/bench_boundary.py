@@ -9,7 +9,7 @@ For each case and tolerance, three methods find the stability boundary in K:
 * ``doubling`` -- the same exact propagation over 2**52 samples by repeated squaring, with
   the same bisection;
 * ``spectral`` -- spectral radius of the exact closed loop, Brent's method in the same
-  bracket, certified tolerance (hapticproof.maps.find_boundary with ``search``);
+  bracket, certified tolerance (hapticproof.analysis.maps.find_boundary with ``search``);
 * ``spectral-auto`` -- the full default pipeline: automatic bracket by doubling, a 48-point
   batched scan for multiple crossings, Brent, certification.
 
@@ -38,9 +38,9 @@ from pathlib import Path
 
 import mpmath
 
-from hapticproof.borderlines import printed_borderline
-from hapticproof.maps import SceneFamily, find_boundary, refine_boundary_mp
-from hapticproof.sampled import free_device_boundary
+from hapticproof.analysis.borderlines import printed_borderline
+from hapticproof.analysis.maps import SceneFamily, find_boundary, refine_boundary_mp
+from hapticproof.analysis.sampled import free_device_boundary
 
 RESULTS = Path(__file__).parent / "results"
 

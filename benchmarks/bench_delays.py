@@ -2,7 +2,7 @@
 
 The HVE virtual wall (K = 2, B = 0.001, T = 1 ms) with ``b`` 1e-2 and 1e-9 relative above and
 below, and exactly at, the exact boundary of each delay: median time of the whole decision with
-certificates (``hapticproof.fastpath.decide``), peak memory (traced Python allocations, and the
+certificates (``hapticproof.analysis.fastpath.decide``), peak memory (traced Python allocations, and the
 resident set of a fresh process deciding n = 10 000), the critical damping ``b*`` alone (one map
 line), and a delay-margin search (doubling + bisection over exact decisions). Writes
 ``benchmarks/results/delays.json`` and ``delays.png``.
@@ -24,7 +24,7 @@ RESULTS = Path(__file__).resolve().parent / "results"
 CHILD = """
 import resource, time
 from fractions import Fraction
-from hapticproof.fastpath import NumericScene, critical_damping, decide
+from hapticproof.analysis.fastpath import NumericScene, critical_damping, decide
 n = {n}
 scene = NumericScene.virtual_wall(K=2, B=Fraction(1, 1000), b=1, T=Fraction(1, 1000), delay=n)
 lo, hi = critical_damping(scene)
@@ -36,7 +36,7 @@ print(time.perf_counter() - start, out.decision.value, resource.getrusage(resour
 
 def resident(n: int) -> dict:
     """Peak resident set (MB) of a fresh process that imports hapticproof and decides delay n."""
-    base = subprocess.run([sys.executable, "-c", "import resource, hapticproof.fastpath; "
+    base = subprocess.run([sys.executable, "-c", "import resource, hapticproof.analysis.fastpath; "
                            "print(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024)"],
                           capture_output=True, text=True, check=True).stdout.split()
     seconds, decision, peak = subprocess.run([sys.executable, "-c", CHILD.format(n=n)], capture_output=True, text=True,
@@ -46,8 +46,8 @@ def resident(n: int) -> dict:
 
 
 def main() -> None:
-    from hapticproof.bench import _jsonable, _machine
-    from hapticproof.studies import delay_study, margin_search_study, plot_delays
+    from hapticproof.bench.timing import jsonable, machine_info
+    from hapticproof.bench.speed import delay_study, margin_search_study, plot_delays
 
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--delays", type=int, nargs="+", default=[10, 100, 1000, 3000, 10_000])
@@ -62,9 +62,9 @@ def main() -> None:
     data["resident"] = resident(max(args.delays))
     print(f"fresh process deciding n = {max(args.delays)}: peak RSS {data['resident']['peak_rss_mb']:.0f} MB "
           f"(import alone {data['resident']['import_rss_mb']:.0f} MB), {data['resident']['seconds_cold']:.2f} s")
-    data["machine"] = _machine() | {"load_average": os.getloadavg()}
+    data["machine"] = machine_info() | {"load_average": os.getloadavg()}
     print(f"wrong verdicts: {data['wrong_verdicts']} of {len(data['rows'])}")
-    (out / "delays.json").write_text(json.dumps(_jsonable(data), indent=1))
+    (out / "delays.json").write_text(json.dumps(jsonable(data), indent=1))
     plot_delays(data, out / "delays.png")
     print(f"wrote {out / 'delays.json'}, {out / 'delays.png'}", file=sys.stderr)
 

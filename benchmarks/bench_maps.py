@@ -22,8 +22,8 @@ RESULTS = Path(__file__).resolve().parent / "results"
 
 
 def main() -> None:
-    from hapticproof.bench import _jsonable, _machine
-    from hapticproof.studies import map_study
+    from hapticproof.bench.timing import jsonable, machine_info
+    from hapticproof.bench.speed import map_study
 
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--size", type=int, default=316, help="K values; b has size + 1 (316: 100 172 points)")
@@ -37,8 +37,8 @@ def main() -> None:
     out.mkdir(parents=True, exist_ok=True)
     data = map_study(size=args.size, delays=args.delays, workers=args.workers, dask=not args.no_dask,
                      stability_size=args.stability_size, plot=out / "map_passivity.png", log=print)
-    data["machine"] = _machine() | {"load_average": os.getloadavg()}
-    (out / "maps.json").write_text(json.dumps(_jsonable(data), indent=1))
+    data["machine"] = machine_info() | {"load_average": os.getloadavg()}
+    (out / "maps.json").write_text(json.dumps(jsonable(data), indent=1))
     print(f"wrote {out / 'maps.json'}, {out / 'map_passivity.png'}, {out / 'map_stability.png'}", file=sys.stderr)
 
 

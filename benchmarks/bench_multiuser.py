@@ -5,7 +5,7 @@ Cases (each run in a fresh child process, so its peak RSS is its own):
 
 * ``minors-flint`` -- the Hermitian part of a complete-graph scene with fully general
   parameters (every b_i, K_0i, B_0i, K_ij, B_ij, z_ai its own symbol) built from the kernels,
-  and ALL its principal minors as ``fmpq_mpoly`` (hapticproof.multiuser/psd), m = 2..5 (m = 6 takes
+  and ALL its principal minors as ``fmpq_mpoly`` (hapticproof.analysis.multiuser/psd), m = 2..5 (m = 6 takes
   ~3 s but ~10 GB: its determinant has 4.2 million terms);
 * ``minors-sympy-c`` -- the same minors as SymPy determinants of the entrywise c-matrix
   (``Matrix.det`` + ``expand``), m = 2..4: the "SymPy expressions" route;
@@ -45,8 +45,9 @@ RESULTS = Path(__file__).parent / "results"
 
 
 def _minors_flint(m: int) -> dict:
-    from hapticproof.multiuser import MultiUserScene, hermitian
-    from hapticproof.psd import principal_minors
+    from hapticproof.systems.multiuser import MultiUserScene
+    from hapticproof.analysis.multiuser import hermitian
+    from hapticproof.exact.psd import principal_minors
 
     hermitian(MultiUserScene.symbolic(2))          # warm the kernel cache (shared by every m)
     scene = MultiUserScene.symbolic(m, active=True)
@@ -63,7 +64,8 @@ def _minors_sympy_c(m: int) -> dict:
 
     import sympy as sp
 
-    from hapticproof.multiuser import MultiUserScene, hermitian
+    from hapticproof.systems.multiuser import MultiUserScene
+    from hapticproof.analysis.multiuser import hermitian
 
     scene = MultiUserScene.symbolic(m, active=True)
     M = hermitian(scene).matrix()
@@ -81,8 +83,8 @@ def _minors_naive(m: int) -> dict:
 
     import sympy as sp
 
-    from hapticproof.multiuser import MultiUserScene, inverse_transfer_matrix
-    from hapticproof.symbols import z
+    from hapticproof.systems.multiuser import MultiUserScene, inverse_transfer_matrix
+    from hapticproof.core.symbols import z
 
     scene = MultiUserScene.symbolic(m, active=True)
     G = sp.Matrix(inverse_transfer_matrix(scene))
@@ -99,7 +101,7 @@ def _minors_naive(m: int) -> dict:
 def _random_scene(m: int, seed: int, delays):
     import sympy as sp
 
-    from hapticproof.multiuser import MultiUserScene, complete_graph
+    from hapticproof.systems.multiuser import MultiUserScene, complete_graph
 
     rng = random.Random(seed)
     R = lambda lo, hi: sp.Rational(rng.randint(lo, hi), 1000)  # noqa: E731
@@ -125,7 +127,7 @@ def _random_scene(m: int, seed: int, delays):
 
 
 def _decide(m: int, seed: int, delays) -> dict:
-    from hapticproof.multiuser import hermitian, worst_case
+    from hapticproof.analysis.multiuser import hermitian, worst_case
 
     worst_case(_random_scene(2, 99, 0))          # warm imports and kernel caches
     scene = _random_scene(m, seed, delays)

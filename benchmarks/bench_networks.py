@@ -41,9 +41,9 @@ import numpy as np
 import sympy as sp
 
 import hapticproof.derivations.bilateral_3dof as paper
-from hapticproof.evidence import Decision
-from hapticproof.networks import absolute_stability, symmetrization_conditions, symmetrize
-from hapticproof.symbols import s
+from hapticproof.core.evidence import Decision
+from hapticproof.analysis.networks import absolute_stability, symmetrization_conditions, symmetrize
+from hapticproof.core.symbols import s
 
 RESULTS = Path(__file__).parent / "results"
 

@@ -3,7 +3,7 @@
 For the HVE forward-difference virtual wall (K = 2, B = 0.001, T = 1 ms) with delays 0, 3, 10 and
 ``b`` at 1e-2, 1e-6 and 1e-9 relative above and below the exact boundary, both libraries decide
 the same 18 scenes in this process: hapticproof builds the scene from numbers and returns the
-whole positive-real decision with certificates (``hapticproof.fastpath.decide``); python-control
+whole positive-real decision with certificates (``hapticproof.analysis.fastpath.decide``); python-control
 builds ``G^-1`` as a transfer function and calls ``control.ispassive`` (its KYP LMI, solved by
 cvxopt), once as it is and once with the integrator pole damped to ``z = 1 - 1e-6``. Medians over
 ``--repeat`` runs; every verdict is judged against the exact answer. Writes
@@ -25,8 +25,8 @@ RESULTS = Path(__file__).resolve().parent / "results"
 
 
 def main() -> None:
-    from hapticproof.bench import _jsonable, _machine
-    from hapticproof.studies import peer_study, plot_peers
+    from hapticproof.bench.timing import jsonable, machine_info
+    from hapticproof.bench.speed import peer_study, plot_peers
 
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeat", type=int, default=15)
@@ -36,7 +36,7 @@ def main() -> None:
     out = Path(args.output)
     out.mkdir(parents=True, exist_ok=True)
     data = peer_study(delays=args.delays, repeat=args.repeat, log=print)
-    data["machine"] = _machine() | {"load_average": os.getloadavg()}
+    data["machine"] = machine_info() | {"load_average": os.getloadavg()}
     summary = data["summary"]
     print()
     for name, s in summary.items():
@@ -46,7 +46,7 @@ def main() -> None:
                   f"wrong verdicts {s['wrong_verdicts']} of {s['of']}{ratio}")
     if "peer_note" in summary:
         print(summary["peer_note"])
-    (out / "peers.json").write_text(json.dumps(_jsonable(data), indent=1))
+    (out / "peers.json").write_text(json.dumps(jsonable(data), indent=1))
     plot_peers(data, out / "peers.png")
     print(f"wrote {out / 'peers.json'}, {out / 'peers.png'}", file=sys.stderr)
 

@@ -3,7 +3,7 @@ and (36) are "identical to" Gil et al. 2009 ([7]). Registered onto
 :data:`hapticproof.derivations.hve.PAPER` (imported at the end of ``hve.py``).
 
 Each quote is compared with the classic result *derived* by the toolkit
-(:mod:`hapticproof.classics`, :mod:`hapticproof.boundary`): the exact ZOH stability boundary of
+(:mod:`hapticproof.analysis.classics`, :mod:`hapticproof.analysis.boundary`): the exact ZOH stability boundary of
 the device on the wall (with a continuous operator for (2)) and its small-damping expansion.
 """
 
@@ -13,12 +13,12 @@ import functools
 
 import sympy as sp
 
-from hapticproof import boundary as bnd
-from hapticproof import classics
-from hapticproof.audit import AuditContext
-from hapticproof.certify import NotABound, as_bound, compare_bounds
+from hapticproof.analysis import boundary as bnd
+from hapticproof.analysis import classics
+from hapticproof.audit.runner import AuditContext
+from hapticproof.audit.compare import NotABound, as_bound, compare_bounds
 from hapticproof.derivations.hve import PAPER, TABLE
-from hapticproof.evidence import Evidence, Finding, Method, Verdict
+from hapticproof.core.evidence import Evidence, Finding, Method, Verdict
 
 K, B, b, T, t_d, z_a = (TABLE.lookup(name) for name in ("K", "B", "b", "T", "t_d", "z_a"))
 b_h, k_h = TABLE.lookup("b_h"), TABLE.lookup("k_h")

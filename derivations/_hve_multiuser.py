@@ -5,8 +5,8 @@ Registered onto :data:`hapticproof.derivations.hve.PAPER` (this module is import
 from the transcription (OCR damage included); displays the transcription splits into two
 ``$$`` blocks are registered as the two blocks joined by a newline.
 
-Derivations come from :mod:`hapticproof.multiuser` (scenes, ``G^{-1}(z)``, Hermitian parts by
-kernels, structured worst cases) and :mod:`hapticproof.psd` (all principal minors, exact PSD
+Derivations come from :mod:`hapticproof.analysis.multiuser` (scenes, ``G^{-1}(z)``, Hermitian parts by
+kernels, structured worst cases) and :mod:`hapticproof.exact.psd` (all principal minors, exact PSD
 decisions over ``c``). The worst-case symbols ``b``, ``K_0``, ``B_0``, ``K``, ``B`` of
 (45)-(46), (52)-(53), (60)-(61) are read as the *uniform* values; which aggregate (min or
 max) of the per-user values makes a uniform condition sufficient is decided separately
@@ -26,46 +26,25 @@ from typing import Any
 
 import sympy as sp
 
-from hapticproof.audit import AuditContext
-from hapticproof.certify import SignCondition as SignConditionT
-from hapticproof.certify import (
-    NotABound,
-    as_bound,
-    as_sign_condition,
-    compare_bounds,
-    compare_expressions,
-    compare_sign_conditions,
-    is_identically_zero,
-)
+from hapticproof.audit.runner import AuditContext
+from hapticproof.audit.compare import SignCondition as SignConditionT
+from hapticproof.audit.compare import NotABound, as_bound, as_sign_condition, compare_bounds, compare_expressions, compare_sign_conditions
+from hapticproof.exact.canonical import is_identically_zero
 from hapticproof.derivations.hve import PAPER, omega
-from hapticproof.errors import LatexParseError
-from hapticproof.evidence import Decision, Evidence, Finding, Method, Verdict
-from hapticproof.multiuser import (
-    UNIFORM_SYMBOLS,
-    MultiUserScene,
-    complete_graph,
-    hermitian,
-    hve_leading_minor_counterexample,
-    inverse_transfer_matrix,
-    kernel_bounds,
-    principal_minors,
-    residues,
-    stiffness_matrix,
-    damping_matrix,
-    sufficient_condition,
-    to_sampled,
-    uniform_condition,
-    uniform_modes,
-    user_symbols,
-    worst_case,
-)
-from hapticproof.parse import IndexedExtremum, IndexedFamily, IndexedMin, expand_indexed, index_symbol, parse_printed
-from hapticproof.psd import HermitianPart, PolyRing, is_psd
-from hapticproof.psd import principal_minors as psd_minors
-from hapticproof.scene import SYMBOLS
-from hapticproof.symbols import c as C
-from hapticproof.symbols import z
-from hapticproof.unitcircle import canonical_theta, omega_to_c
+from hapticproof.core.errors import LatexParseError
+from hapticproof.core.evidence import Decision, Evidence, Finding, Method, Verdict
+from hapticproof.systems.multiuser import UNIFORM_SYMBOLS, MultiUserScene, complete_graph, inverse_transfer_matrix, stiffness_matrix, damping_matrix, to_sampled, user_symbols
+from hapticproof.analysis.multiuser import hermitian, hve_leading_minor_counterexample, kernel_bounds, principal_minors, residues, sufficient_condition, uniform_condition, uniform_modes, worst_case
+from hapticproof.audit.reader.statements import IndexedExtremum, IndexedMin, expand_indexed
+from hapticproof.audit.reader.names import IndexedFamily, index_symbol
+from hapticproof.audit.reader.printed import parse_printed
+from hapticproof.exact.psd import HermitianPart, PolyRing
+from hapticproof.exact.charpoly import is_psd
+from hapticproof.exact.psd import principal_minors as psd_minors
+from hapticproof.systems.singleuser import SYMBOLS
+from hapticproof.core.symbols import c as C
+from hapticproof.core.symbols import z
+from hapticproof.exact.unitcircle import canonical_theta, omega_to_c
 
 K, B, b, T, z_a, t_d, n = (SYMBOLS[name] for name in ("K", "B", "b", "T", "z_a", "t_d", "n"))
 K_0, B_0 = UNIFORM_SYMBOLS["K_0"], UNIFORM_SYMBOLS["B_0"]
@@ -155,7 +134,7 @@ def _signals(expr: Any) -> Any:
 
 def _users_range(statement: Any) -> str | None:
     """Why the printed index range of a per-user statement is not ``i = 1, ..., m`` (None if it is)."""
-    from hapticproof.parse import Elision, Qualified
+    from hapticproof.audit.reader.statements import Elision, Qualified
 
     if not isinstance(statement, Qualified) or len(statement.ranges) != 1:
         return "it is not one statement for the index range i = 1, ..., m"
@@ -880,7 +859,7 @@ def minors44(ctx: AuditContext) -> Finding:
 def _quoted_choices(ctx: AuditContext) -> tuple[dict[sp.Symbol, Any], Any]:
     """The aggregates a claim chooses (``$b = \\min(b_1, b_2)$`` ...) and the worst frequency it
     names (``$\\cos(\\omega T) = -1$``, or None), parsed from its quoted mathematics."""
-    from hapticproof.audit import quoted_math
+    from hapticproof.audit.runner import quoted_math
 
     choices: dict[sp.Symbol, Any] = {}
     worst_c = None
@@ -1915,7 +1894,7 @@ P58 = r"b_1 + (B_{01} + B_{12})\cos(\omega(t_d - T)) - \frac{(K_{01} + K_{12})T}
 
 def _theta_entry(scene_m: int, i: int, j: int) -> sp.Expr:
     """(M/2)_ij for equal symbolic delays n in canonical theta variables."""
-    from hapticproof.unitcircle import theta_form
+    from hapticproof.exact.unitcircle import theta_form
     scene = _scene(scene_m)
     Kmat, Bmat = stiffness_matrix(scene), damping_matrix(scene)
     F = Kmat[i, j] * T / (z - 1) + Bmat[i, j] / z
@@ -2016,7 +1995,7 @@ def _at_theta(expr: Any, values: dict, k: int) -> sp.Expr:
 
 
 def _at_theta_canonical(expr: Any, values: dict, k: int) -> sp.Expr:
-    from hapticproof.symbols import cos_n, sin_n, sin_theta
+    from hapticproof.core.symbols import cos_n, sin_n, sin_theta
 
     ck, sk = _circle_power(k)
     c1, s1 = _circle_power(1)
@@ -2094,7 +2073,7 @@ def eq59(ctx: AuditContext) -> Finding:
                         "for (57) and (59) occurs when *S* has its maximum value.",
                 derivation="uniform modes: single-user delayed walls K_0 + lambda K, B_0 + lambda B; small-damping thresholds kappa_n")
 def worst59(ctx: AuditContext) -> Finding:
-    from hapticproof.delayed import small_damping_threshold
+    from hapticproof.analysis.delayed import small_damping_threshold
 
     thresholds = {k: (small_damping_threshold(k).lo, small_damping_threshold(k).hi) for k in range(1, 5)}
     # B = 0: the worst case is c -> 1 exactly (Dirichlet), for every n (structural)
@@ -2132,8 +2111,8 @@ def worst59(ctx: AuditContext) -> Finding:
                         "$\\cos(\\omega T) = 1$.",
                 derivation="S = (1 + c) U_{n-1}(c)/2; dS/dw = -T sin(wT) S'(c): stationary points c = +-1 and roots of S'")
 def s_argument(ctx: AuditContext) -> Finding:
-    from hapticproof.audit import quoted_math
-    from hapticproof.realroots import real_roots
+    from hapticproof.audit.runner import quoted_math
+    from hapticproof.exact.realroots import real_roots
 
     claimed = set()
     for quote in quoted_math(ctx.equation.printed):
@@ -2178,9 +2157,9 @@ P59B = r"\lim_{\cos(\omega T)\to 1} \frac{\sin(\omega t_d)\sin(\omega T)}{2(1-\c
 @PAPER.equation("59b", kind="expression", printed=P59B, section=SECTION, assumptions=ASSUME,
                 derivation="S(c) = (1 + c)U_{n-1}(c)/2, S(1) = U_{n-1}(1) = n; n - S(c) >= 0 on [-1, 1]")
 def eq59b(ctx: AuditContext) -> Finding:
-    from hapticproof.parse import PrintedLimit
-    from hapticproof.realroots import nonnegative_on
-    from hapticproof.symbols import sin_theta
+    from hapticproof.audit.reader.statements import PrintedLimit
+    from hapticproof.exact.realroots import nonnegative_on
+    from hapticproof.core.symbols import sin_theta
 
     rel = ctx.relation()
     limit = rel.lhs
@@ -2281,7 +2260,7 @@ def _c1_condition(delay: int) -> sp.Basic:
                 section=SECTION, assumptions=ASSUME + "; uniform b, K_0, B_0 (b = min, K_0 = max)",
                 derivation="uniform modes lambda = 0, 2: b + B_0 + lambda B >= (n + 1/2)T(K_0 + lambda K) when the damping is small")
 def eq61(ctx: AuditContext) -> Finding:
-    from hapticproof.delayed import small_damping_threshold
+    from hapticproof.analysis.delayed import small_damping_threshold
 
     rel = _uniform_names(ctx.relation())
     reading = _bound_text(rel)
@@ -2489,17 +2468,17 @@ def vs55(ctx: AuditContext) -> Finding:
 @PAPER.equation("56-small-B", kind="claim", after="56", section=SECTION,
                 printed="For a delayed *m*-user HVE system, assuming that $t_{di}/T = n_i$ is an integer and B_{0i} and B_{ij} "
                         "are small enough, the stability condition will be derived below.",
-                derivation="the exact small-damping region per uniform mode (kappa_n of hapticproof.delayed)")
+                derivation="the exact small-damping region per uniform mode (kappa_n of hapticproof.analysis.delayed)")
 def small_b(ctx: AuditContext) -> Finding:
-    from hapticproof.delayed import small_damping_threshold
+    from hapticproof.analysis.delayed import small_damping_threshold
 
     kappas = {k: (small_damping_threshold(k).lo, small_damping_threshold(k).hi) for k in range(1, 6)}
     closed = {k: sp.Rational(k * (2 * k + 1), 6 * (k + 1)) for k in range(1, 6)}
     # the restriction is real: above the threshold the worst frequency leaves c = 1 (n = 1, one mode)
     above = MultiUserScene.uniform(1, b=10, K0=1, B0=kappas[1][1] + sp.Rational(1, 10), T=1, delay=1)
     below = MultiUserScene.uniform(1, b=10, K0=1, B0=kappas[1][0], T=1, delay=1)
-    from hapticproof.positivereal import hermitian as wall_hermitian
-    from hapticproof.realroots import minimise_rational
+    from hapticproof.analysis.positivereal import hermitian as wall_hermitian
+    from hapticproof.exact.realroots import minimise_rational
 
     def argmin(scene):
         form = wall_hermitian(uniform_modes(scene)[0].scene).numeric()
@@ -2522,7 +2501,7 @@ def small_b(ctx: AuditContext) -> Finding:
         "(61)-(63) do not reduce to the undelayed (46), (54), (55) when B > 0 (for B = 0, (61) at t_d = 0 is (46))",
         Evidence(Method.ROOT_ISOLATION, facts={"kappa_n": kappas, "n(2n+1)/(6(n+1))": closed,
                                               "worst_c_n1_B0_at_kappa": argmin(below), "worst_c_n1_B0_above": argmin(above)}),
-        corrected=r"B_0 + \lambda B \le k_n (K_0 + \lambda K)T \text{ for every Laplacian eigenvalue } \lambda \text{ (} k_n \text{ of hapticproof.delayed)}",
+        corrected=r"B_0 + \lambda B \le k_n (K_0 + \lambda K)T \text{ for every Laplacian eigenvalue } \lambda \text{ (} k_n \text{ of hapticproof.analysis.delayed)}",
     )
 
 
@@ -2549,7 +2528,7 @@ def _borderline(condition: Any, values: dict, gain: sp.Symbol) -> sp.Expr | None
 
 @lru_cache(maxsize=8)
 def _stability_boundary(delay: int, mass: str, damping: sp.Rational, za: sp.Rational, Tv: sp.Rational) -> float:
-    from hapticproof.maps import SceneFamily, find_boundary
+    from hapticproof.analysis.maps import SceneFamily, find_boundary
 
     fam = SceneFamily("multi-user", {"m": float(sp.Rational(mass)), "b": float(damping), "B": 0, "z_a": float(za)},
                       operator="-z_a + 1/s", delay=delay, users=2)
@@ -2586,13 +2565,14 @@ def _section4(delay: int, mass: str, damping: str, printed_key: str) -> dict[str
 
 @PAPER.equation("sec4-dual", kind="claim", after="63", section="4", printed=SEC4_DUAL,
                 derivation="printed borderlines (55), (63) at the stated parameters vs the exact PR condition and the exact "
-                           "ZOH sampled-data stability boundary (operator -z_a + 1/s, hapticproof.sampled)")
+                           "ZOH sampled-data stability boundary (operator -z_a + 1/s, hapticproof.analysis.sampled)")
 def sec4_dual(ctx: AuditContext) -> Finding:
     undelayed = _section4(0, "0.015", "0.01822", "55")
     delayed = _section4(5, "0.15", "0.1822", "63")
     safe = all(r["printed/boundary"] is not None and r["printed/boundary"] <= 1 for r in undelayed["rows"])
     # witness: T = 1 ms, z_a = 0, K = 30 -- below the printed (63) borderline, the sampled-data loop is unstable
-    from hapticproof.sampled import Impedance, spectral_radius
+    from hapticproof.systems.impedance import Impedance
+    from hapticproof.analysis.sampled import spectral_radius
 
     Kw = 30
     scene = MultiUserScene.uniform(2, b="0.1822", K0=sp.Rational(Kw, 2), B0=0, K=sp.Rational(Kw, 2), B=0, T="0.001", delay=5)

@@ -43,25 +43,18 @@ from typing import Any
 import numpy as np
 import sympy as sp
 
-from hapticproof.audit import AuditContext, Paper, malformed
-from hapticproof.certify import compare_expressions, is_identically_zero
-from hapticproof.energy import Sinusoid, input_energy, port_admittance
-from hapticproof.evidence import Decision, Evidence, Finding, Method, Plot, Series, Verdict
-from hapticproof.latex import to_latex
-from hapticproof.networks import (
-    absolute_stability,
-    find_destabilizing_terminations,
-    input_impedance,
-    llewellyn,
-    port_blocks,
-    positive_real,
-    symmetrization_conditions,
-    symmetrize,
-    verify_certificate,
-)
-from hapticproof.parse import IndexedFamily, SymbolTable, parse_printed
-from hapticproof.rationalmatrix import RationalMatrix, matrix_psd
-from hapticproof.symbols import s
+from hapticproof.audit.runner import AuditContext, Paper, malformed
+from hapticproof.audit.compare import compare_expressions
+from hapticproof.exact.canonical import is_identically_zero
+from hapticproof.analysis.energy import Sinusoid, input_energy, port_admittance
+from hapticproof.core.evidence import Decision, Evidence, Finding, Method, Plot, Series, Verdict
+from hapticproof.report.latex import to_latex
+from hapticproof.analysis.networks import absolute_stability, find_destabilizing_terminations, llewellyn, port_blocks, symmetrization_conditions, symmetrize, verify_certificate
+from hapticproof.analysis.nport import input_impedance, positive_real
+from hapticproof.audit.reader.names import IndexedFamily, SymbolTable
+from hapticproof.audit.reader.printed import parse_printed
+from hapticproof.exact.rationalmatrix import RationalMatrix, matrix_psd
+from hapticproof.core.symbols import s
 
 #: Every display of the paper, verbatim (OCR damage included), by audit id. ``3a`` continues
 #: (3); ``14a``-``14e`` are Theorem 9's conditions A-E; ``23c`` is the unnumbered C_m display.
@@ -601,7 +594,7 @@ def _certificate_facts(cert) -> dict[str, Any]:
 
 def text_diagonal() -> tuple[sp.Expr, ...]:
     """The DOF terminations the text names after (1), parsed from the claim ``1-diagonal``."""
-    from hapticproof.audit import quoted_math
+    from hapticproof.audit.runner import quoted_math
 
     return tuple(parse_printed(q, TABLE).expressions()[0] for q in quoted_math(PAPER.get("1-diagonal").printed))
 
@@ -674,7 +667,7 @@ def _off_diagonal(T: sp.Matrix) -> str:
                         "three DOFs are passive",
                 derivation="positive realness of each scalar termination")
 def diagonal_passive(ctx: AuditContext) -> Finding:
-    from hapticproof.audit import quoted_math
+    from hapticproof.audit.runner import quoted_math
 
     terms = [ctx.parse(q).expressions()[0] for q in quoted_math(ctx.equation.printed)]
     for t in terms:
@@ -747,7 +740,7 @@ def _partition() -> tuple[Any, Any]:
 @PAPER.equation("3a", kind="expression", printed=PRINTED["3a"], section="2", parse=False,
                 derivation="the printed 6x6 impedance: open-circuit stability, symmetrization conditions", quotes=('5',))
 def eq3a(ctx: AuditContext) -> Finding:
-    from hapticproof.rationalmatrix import pole_report
+    from hapticproof.exact.rationalmatrix import pole_report
 
     Z = printed_matrix("3a", prefix=r"\mathcal{Z} ")
     bad = _not_in_s(Z, "the impedance (3)")
@@ -1021,7 +1014,8 @@ for _id in ("8", "9", "10", "11", "13"):
 @PAPER.equation("12", kind="expression", printed=PRINTED["12"], section="4",
                 derivation="the printed index map z_{3i-2,3j-2}, ... for i, j = 1, 2 vs the 3x3 partition of a 6x6 matrix")
 def eq12(ctx: AuditContext) -> Finding:
-    from hapticproof.parse import expand_indexed, index_symbol
+    from hapticproof.audit.reader.statements import expand_indexed
+    from hapticproof.audit.reader.names import index_symbol
 
     rel = ctx.statement.relations()[0]
     if rel.lhs != TABLE.lookup(r"\mathbf{Z}_{ij}"):
@@ -1058,7 +1052,7 @@ def _zprime_entry(i: int, j: int) -> sp.Expr:
 
 def _zprime_reading(ctx: AuditContext) -> Finding | None:
     """The printed Z' (rows and columns 1, 2, ..., 6 with ellipses) against Youla's construction."""
-    from hapticproof.parse import Elision
+    from hapticproof.audit.reader.statements import Elision
 
     rel = ctx.statement.relations()[0]
     M = sp.Matrix(rel.rhs)
@@ -1152,7 +1146,8 @@ def _expected_prose(eq_id: str) -> list[Any]:
 @PAPER.equation("14a", kind="condition", printed=PRINTED["14a"], section="4",
                 derivation="A and B vs Youla's equivalence (identical principal and block-compatible minors)")
 def condition_a(ctx: AuditContext) -> Finding:
-    from hapticproof.parse import expand_indexed, index_symbol
+    from hapticproof.audit.reader.statements import expand_indexed
+    from hapticproof.audit.reader.names import index_symbol
 
     statement = ctx.statement
     i, j, k = (index_symbol(x) for x in "ijk")
@@ -1219,7 +1214,7 @@ def condition_c(ctx: AuditContext) -> Finding:
     reading = _prose_reading(ctx, _expected_prose("14c"), "condition C")
     if reading is not None:
         return reading
-    from hapticproof.rationalmatrix import pole_report
+    from hapticproof.exact.rationalmatrix import pole_report
 
     Z = sp.Matrix([[1, 1 / (s - 1)], [0, 1]])
     sym = symmetrize(sp.Matrix([[1, 0], [0, 1]]))
@@ -1286,8 +1281,9 @@ def condition_e(ctx: AuditContext) -> Finding:
 @PAPER.equation("15a", kind="condition", printed=PRINTED["15a"], section="4",
                 derivation="1x1 principal minors of Re Z': z'_ii = z_ii by (14)")
 def eq15a(ctx: AuditContext) -> Finding:
-    from hapticproof.certify import as_sign_condition
-    from hapticproof.parse import expand_indexed, index_symbol
+    from hapticproof.audit.compare import as_sign_condition
+    from hapticproof.audit.reader.statements import expand_indexed
+    from hapticproof.audit.reader.names import index_symbol
 
     statement = ctx.statement
     ranges = [tuple(map(str, r.values)) for r in getattr(statement, "ranges", ())]
@@ -1326,7 +1322,7 @@ def eq15a(ctx: AuditContext) -> Finding:
 @PAPER.equation("15b", kind="condition", printed=PRINTED["15b"], section="4",
                 derivation="2nd leading minor of Re Z' with (20): Re z11 Re z22 - (|z12 z21| + Re z12 z21)/2")
 def eq15b(ctx: AuditContext) -> Finding:
-    from hapticproof.certify import as_sign_condition
+    from hapticproof.audit.compare import as_sign_condition
 
     condition = as_sign_condition(ctx.relation())
     printed_lhs = condition.expr
@@ -1357,7 +1353,7 @@ def eq15b(ctx: AuditContext) -> Finding:
 @PAPER.equation("15c", kind="condition", printed=PRINTED["15c"], section="4",
                 derivation="the 6th principal minor of Re Z' (exact for Table 1)")
 def eq15c(ctx: AuditContext) -> Finding:
-    from hapticproof.certify import as_sign_condition
+    from hapticproof.audit.compare import as_sign_condition
 
     condition = as_sign_condition(ctx.relation())
     Zp = TABLE.lookup(r"\mathcal{Z}'")
@@ -1544,7 +1540,8 @@ def eq19(ctx: AuditContext) -> Finding:
 def eq20(ctx: AuditContext) -> Finding:
     rel = ctx.statement.relations()[0]
     zij, zji = TABLE.concrete("z_{i,j}", (1, 2)), TABLE.concrete("z_{i,j}", (2, 1))
-    from hapticproof.parse import expand_indexed, index_symbol
+    from hapticproof.audit.reader.statements import expand_indexed
+    from hapticproof.audit.reader.names import index_symbol
 
     i, j = index_symbol("i"), index_symbol("j")
     lhs = expand_indexed(rel.lhs.subs({i: 1, j: 2}), 6, TABLE)
@@ -1959,7 +1956,7 @@ def sufficient_38(ctx: AuditContext) -> Finding:
                         "thus satisfying Condition C",
                 derivation="poles of the entries (k_p + k_v s + m s^2)/s; Table 1 instance")
 def poles_38(ctx: AuditContext) -> Finding:
-    from hapticproof.rationalmatrix import pole_report
+    from hapticproof.exact.rationalmatrix import pole_report
 
     report = pole_report(RationalMatrix.from_sympy(table1_impedance(60)))
     labels = [p.label() for p, m in report.axis if m == 1]
@@ -2022,7 +2019,7 @@ def _minor_of(expr: sp.Expr, minors: dict) -> tuple[tuple[int, ...] | None, sp.E
 def _minor_check(ctx: AuditContext, which: str, what: str) -> Finding:
     """Each printed relation must say 'a principal minor >= 0' (up to a positive factor), and
     together they must be the minors the display stands for (:data:`EXPECTED_MINORS`)."""
-    from hapticproof.certify import as_sign_condition
+    from hapticproof.audit.compare import as_sign_condition
 
     minors = _low_order_minors(which)
     unmatched, matched, reversed_ = [], [], []
@@ -2114,7 +2111,7 @@ def residues_39(ctx: AuditContext) -> Finding:
 
 @PAPER.equation("40", kind="condition", printed=PRINTED["40"], section="5.1", derivation="restates (39c)", quotes=('39c',))
 def eq40(ctx: AuditContext) -> Finding:
-    from hapticproof.certify import compare_sign_conditions
+    from hapticproof.audit.compare import compare_sign_conditions
 
     rel = ctx.relation()
     (other,) = [r.as_sympy() for r in parse_printed(PAPER.get("39c").printed, TABLE).relations()]
@@ -2232,7 +2229,7 @@ for _id in ("41a", "41b", "42", "43"):
 @PAPER.equation("44", kind="condition", printed=PRINTED["44"], section="5.1", assumptions=ASSUME_CASE,
                 derivation="the 4th leading principal minor of Re Z'(j omega) under (38)")
 def eq44(ctx: AuditContext) -> Finding:
-    from hapticproof.certify import as_sign_condition
+    from hapticproof.audit.compare import as_sign_condition
 
     rel = ctx.relation()
     capital = TABLE.lookup("K_{vmxx}")
@@ -2426,8 +2423,9 @@ MASSES_PRINTED = ("$M_{mxx} = 1.7$, $M_{mxy} = 0.2$, $M_{myy} = 1.9$, $M_{mxz} =
 def masses(ctx: AuditContext) -> Finding:
     import re
 
-    from hapticproof.audit import quoted_math
-    from hapticproof.parse import SymbolTable, parse_expression
+    from hapticproof.audit.runner import quoted_math
+    from hapticproof.audit.reader.names import SymbolTable
+    from hapticproof.audit.reader.printed import parse_expression
 
     printed: dict[str, sp.Expr] = {}
     for quote in quoted_math(ctx.equation.printed):
@@ -2514,7 +2512,7 @@ FIG3_PRINTED_46 = ("if the control gains are selected according to (46), e.g., a
 def _quoted_kvmyz(text: str) -> tuple[sp.Expr | None, str]:
     """The value of k_vmyz a Fig. 3 claim quotes in its mathematics (``$K_{vmyz} = 60$``), read
     as a relation and solved; ``(None, reason)`` when it quotes no such value."""
-    from hapticproof.audit import quoted_math
+    from hapticproof.audit.runner import quoted_math
 
     k = TABLE.lookup("k_{vmyz}")
     table = TABLE.with_symbols({"K_{vmyz}": k})           # the paper writes K_{vmyz} for the gain k_{vmyz}

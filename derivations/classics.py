@@ -1,5 +1,5 @@
 r"""Classic sampled-data haptic results as a "paper": each published statement (recorded in
-:mod:`hapticproof.classics` with its source) is audited against the toolkit's derivation of the
+:mod:`hapticproof.analysis.classics` with its source) is audited against the toolkit's derivation of the
 same result from its model.
 
 * Colgate & Schenkel 1997: the frequency form (derived by the energy-leak route: ZOH of the
@@ -8,7 +8,7 @@ same result from its model.
   ZOH stability boundary (Jury closed form in ``alpha, delta, beta``), and where it is sufficient.
 * Gil, Sanchez, Hulin, Preusche & Hirzinger 2009: ``K(T/2 + t_d) < b + B`` as the leading order
   of the exact delayed boundary, for every integer delay.
-* Llewellyn 1952: the criterion as implemented by :func:`hapticproof.networks.llewellyn` on a
+* Llewellyn 1952: the criterion as implemented by :func:`hapticproof.analysis.networks.llewellyn` on a
   passive and on a non-passive continuous teleoperator, each cross-checked by its terminations.
 """
 
@@ -19,16 +19,17 @@ from typing import Any
 
 import sympy as sp
 
-from hapticproof import boundary as bnd
-from hapticproof import classics
-from hapticproof.audit import AuditContext, Paper
-from hapticproof.certify import NotABound, as_bound, compare_bounds, is_identically_zero
-from hapticproof.evidence import Evidence, Finding, Method, Verdict
-from hapticproof.latex import to_latex
-from hapticproof.parse import SymbolTable
-from hapticproof.scene import SYMBOLS
-from hapticproof.symbols import c as C_SYM
-from hapticproof.symbols import z as Z_SYM
+from hapticproof.analysis import boundary as bnd
+from hapticproof.analysis import classics
+from hapticproof.audit.runner import AuditContext, Paper
+from hapticproof.audit.compare import NotABound, as_bound, compare_bounds
+from hapticproof.exact.canonical import is_identically_zero
+from hapticproof.core.evidence import Evidence, Finding, Method, Verdict
+from hapticproof.report.latex import to_latex
+from hapticproof.audit.reader.names import SymbolTable
+from hapticproof.systems.singleuser import SYMBOLS
+from hapticproof.core.symbols import c as C_SYM
+from hapticproof.core.symbols import z as Z_SYM
 
 K, B, b, T, t_d = (SYMBOLS[name] for name in ("K", "B", "b", "T", "t_d"))
 B_REAL = sp.Symbol("B", real=True)
@@ -56,13 +57,13 @@ def _conditions() -> list[tuple[str, str, str]]:
         ("Gil et al. 2004, small damping", r"b + B > \frac{KT}{2}", SRC["gil-2004"].citation()),
         ("exact ZOH boundary, n = 0 (complex pair)",
          r"\beta < " + to_latex(cf.complex_pair, names) + r",\ l_0 = 1 - (1+\alpha)e^{-\alpha}",
-         "derived (hapticproof.boundary, Jury)"),
+         "derived (hapticproof.analysis.boundary, Jury)"),
         ("exact ZOH boundary, n = 0 (flip, damping limit)",
          r"\beta < " + to_latex(cf.flip, names) + r",\quad \delta\,(1 - (1+\alpha)e^{-\alpha}) < \alpha^2",
-         "derived (hapticproof.boundary, Jury)"),
+         "derived (hapticproof.analysis.boundary, Jury)"),
         ("Gil et al. 2009, delayed linear", r"K\left(\frac{T}{2} + t_d\right) < b + B", SRC["gil-2009"].citation()),
         ("Minsky et al., with operator (as quoted)", SRC["minsky-1990"].statement, SRC["minsky-1990"].citation()),
-        ("operator, leading order (derived)", r"b + b_h + B > \frac{KT}{2}", "derived (hapticproof.classics)"),
+        ("operator, leading order (derived)", r"b + b_h + B > \frac{KT}{2}", "derived (hapticproof.analysis.classics)"),
         ("Llewellyn", SRC["llewellyn-1952"].statement, SRC["llewellyn-1952"].citation()),
     ]
 
@@ -70,7 +71,7 @@ def _conditions() -> list[tuple[str, str, str]]:
 PAPER = Paper(
     "classics",
     title="Classic sampled-data haptic stability and passivity conditions",
-    source="hapticproof.classics (published statements with their sources)",
+    source="hapticproof.analysis.classics (published statements with their sources)",
     authors="Colgate & Schenkel 1997; Gil et al. 2004; Gil et al. 2009; Llewellyn 1952",
     symbols=TABLE,
     aliases=("classic", "literature"),
@@ -103,9 +104,9 @@ def colgate_frequency(ctx: AuditContext) -> Finding:
     difference = sp.expand_complex(sp.expand((bound.bound - derived).subs(value, u + sp.I * v)))
     generic = is_identically_zero(difference)
     # second route: the HVE paper's G_1^-1 (forward difference) has Re G^-1 = b - bound
-    from hapticproof.positivereal import hermitian
-    from hapticproof.scene import SingleUserScene
-    from hapticproof.teleoperator import filtered_pd_controller
+    from hapticproof.analysis.positivereal import hermitian
+    from hapticproof.systems.singleuser import SingleUserScene
+    from hapticproof.systems.teleoperator import filtered_pd_controller
 
     routes = []
     for H in (K + B * (Z_SYM - 1) / (T * Z_SYM), filtered_pd_controller(K, B, T, sp.Rational(1, 2))):
@@ -129,7 +130,7 @@ def colgate_frequency(ctx: AuditContext) -> Finding:
                 assumptions="H(z) = K + B(z-1)/(Tz), B of either sign",
                 derivation="supremum over c of KT/2 - Bc (endpoint analysis, classics.colgate_wall)")
 def colgate_wall(ctx: AuditContext) -> Finding:
-    from hapticproof.parse import parse_printed
+    from hapticproof.audit.reader.printed import parse_printed
 
     (rel,) = parse_printed(ctx.equation.printed, SIGNED_TABLE).relations()
     return compare_bounds(rel.as_sympy(), classics.colgate_wall(), b, what="Colgate's virtual-wall condition",
@@ -175,7 +176,7 @@ def gil_2004_region(ctx: AuditContext) -> Finding:
                            "stiffness limit", Evidence(Method.PARSE, facts={"condition": sp.sstr(condition)}))
         linear = limit.bound
         checks[str(Bv)] = {"mode": cs.mode, "K*": cs.K.str(12), "linear": linear,
-                           "sufficient": bool(cs.mode != "unstable" and cs.K > bnd._arb(linear))}
+                           "sufficient": bool(cs.mode != "unstable" and cs.K > bnd.arb_of(linear))}
     # the first-order threshold from the expansion 1 + alpha/6 - delta: sufficient iff delta <= alpha/6, i.e. B <= b/6
     threshold = sp.solve(sp.Eq(expansion - 1, 0), bnd.DELTA)[0] / bnd.ALPHA        # delta/alpha = B/b at the threshold
     predicted = {k: sp.Rational(k) <= threshold for k in checks}
@@ -225,7 +226,7 @@ def gil_2009(ctx: AuditContext) -> Finding:
 
 
 def _llewellyn_examples() -> dict[str, sp.Matrix]:
-    from hapticproof.symbols import s
+    from hapticproof.core.symbols import s
 
     m, bb, Kv, Bv = sp.Rational(15, 1000), sp.Rational(1822, 100000), 2, sp.Rational(1, 100)
     out = {}
@@ -239,7 +240,7 @@ def _llewellyn_examples() -> dict[str, sp.Matrix]:
 
 def _printed_criterion(ctx: AuditContext) -> list[sp.Basic]:
     """The printed conditions with p_ij read as complex numbers a_ij + j b_ij (real a, b)."""
-    from hapticproof.parse import parse_printed
+    from hapticproof.audit.reader.printed import parse_printed
 
     parts = {}
     names = {}
@@ -254,7 +255,7 @@ def _printed_criterion(ctx: AuditContext) -> list[sp.Basic]:
 
 @functools.lru_cache(maxsize=1)
 def _llewellyn_reference() -> dict[str, Any]:
-    from hapticproof.networks import llewellyn as criterion
+    from hapticproof.analysis.networks import llewellyn as criterion
 
     return {name: criterion(Z) for name, Z in _llewellyn_examples().items()}
 
@@ -263,7 +264,7 @@ def _printed_holds_on_axis(conditions: list[sp.Basic], parts: dict, Z: sp.Matrix
     """Do the printed conditions hold at s = jw on a grid of w (60 frequencies, 30-digit mpmath)?"""
     import mpmath
 
-    from hapticproof.symbols import s
+    from hapticproof.core.symbols import s
 
     symbols = [x for pair in parts.values() for x in pair]
     entries = sp.lambdify(s, [Z[i - 1, j - 1] for (i, j) in parts], "mpmath")
@@ -331,7 +332,7 @@ def llewellyn(ctx: AuditContext) -> Finding:
                                    f" exact {r['llewellyn_exact']}" for n, r in results.items()),
                        Evidence(Method.COUNTEREXAMPLE, facts=facts))
     # the free/free loops cross-check the two teleoperators' exact decisions
-    from hapticproof.symbols import s
+    from hapticproof.core.symbols import s
 
     roots = {}
     for name in ("restoring", "anti-restoring"):

@@ -10,12 +10,13 @@ from typing import Any
 
 import sympy as sp
 
-from hapticproof.audit import AuditContext, Paper
-from hapticproof.certify import NotABound, as_bound, as_lower_bound, compare_bounds, is_identically_zero
-from hapticproof.evidence import Evidence, Finding, Method, Verdict
-from hapticproof.parse import parse_printed
-from hapticproof.registry import get_paper
-from hapticproof.scene import SYMBOLS
+from hapticproof.audit.runner import AuditContext, Paper
+from hapticproof.audit.compare import NotABound, as_bound, as_lower_bound, compare_bounds
+from hapticproof.exact.canonical import is_identically_zero
+from hapticproof.core.evidence import Evidence, Finding, Method, Verdict
+from hapticproof.audit.reader.printed import parse_printed
+from hapticproof.audit.registry import get_paper
+from hapticproof.systems.singleuser import SYMBOLS
 
 K, B, b, T, t_d, z_a = (SYMBOLS[name] for name in ("K", "B", "b", "T", "t_d", "z_a"))
 
@@ -96,7 +97,7 @@ def tele35(ctx: AuditContext) -> Finding:
     finding = _compare(_relation("teleoperator", "35"), _relation("hve", "3"), ["teleoperator:35", "hve:3"],
                        "teleoperator (35) against HVE (3)")
     if finding.verdict == Verdict.INCONSISTENT:
-        from hapticproof import classics
+        from hapticproof.analysis import classics
 
         doubled = classics.colgate_wall(K=2 * K, B=2 * B)
         try:
@@ -122,9 +123,9 @@ def tele_routh(ctx: AuditContext) -> Finding:
                 printed="teleoperator introduction 'b > KT/2 + B' (Colgate and Schenkel) vs HVE (3) 'b > KT/2 + B'",
                 derivation="both quotes as bounds on b", quotes=('teleoperator:intro-colgate', 'hve:3'))
 def tele_colgate(ctx: AuditContext) -> Finding:
-    from hapticproof.audit import quoted_math
+    from hapticproof.audit.runner import quoted_math
     from hapticproof.derivations import teleoperator as tele
-    from hapticproof.parse import parse_printed
+    from hapticproof.audit.reader.printed import parse_printed
 
     # both quote Colgate and Schenkel's condition for the wall K + sB: the quoted wall must be it
     quotes = quoted_math(tele.PAPER.get("intro-colgate").printed)

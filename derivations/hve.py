@@ -17,19 +17,20 @@ import functools
 
 import sympy as sp
 
-from hapticproof.audit import AuditContext, Paper, malformed
-from hapticproof.certify import NotABound, as_bound, as_lower_bound, as_sign_condition, compare_bounds, compare_expressions, is_identically_zero
-from hapticproof.classics import colgate_bound
-from hapticproof.errors import LatexParseError
-from hapticproof.evidence import Decision, Evidence, Finding, Method, Outcome, Verdict
-from hapticproof.models import RECURRENCES, integrator, inverse_transfer, transfer_from_recurrence
-from hapticproof.parse import IndexedFamily, SymbolTable
-from hapticproof.positivereal import hermitian, residues, poles, worst_case
-from hapticproof.realroots import minimise_rational
-from hapticproof.scene import SYMBOLS, SingleUserScene, virtual_wall
-from hapticproof.symbols import c as C
-from hapticproof.symbols import z
-from hapticproof.unitcircle import canonical_theta, omega_to_c
+from hapticproof.audit.runner import AuditContext, Paper, malformed
+from hapticproof.audit.compare import NotABound, as_bound, as_lower_bound, as_sign_condition, compare_bounds, compare_expressions
+from hapticproof.exact.canonical import is_identically_zero
+from hapticproof.analysis.classics import colgate_bound
+from hapticproof.core.errors import LatexParseError
+from hapticproof.core.evidence import Decision, Evidence, Finding, Method, Outcome, Verdict
+from hapticproof.systems.models import RECURRENCES, integrator, inverse_transfer, transfer_from_recurrence
+from hapticproof.audit.reader.names import IndexedFamily, SymbolTable
+from hapticproof.analysis.positivereal import hermitian, residues, poles, worst_case
+from hapticproof.exact.realroots import minimise_rational
+from hapticproof.systems.singleuser import SYMBOLS, SingleUserScene, virtual_wall
+from hapticproof.core.symbols import c as C
+from hapticproof.core.symbols import z
+from hapticproof.exact.unitcircle import canonical_theta, omega_to_c
 
 K, B, b, T, z_a, t_d, n = (SYMBOLS[name] for name in ("K", "B", "b", "T", "z_a", "t_d", "n"))
 omega = sp.Symbol("omega", real=True)
@@ -275,7 +276,7 @@ def _approximation_check(ctx: AuditContext, approximation: str, restore_lhs: boo
                 problems.append(f"not even with x_h restored on the left ({again})")
     if from_recurrence is not None and not is_identically_zero(from_recurrence - derived):
         problems.append(f"it gives X_h/V_h = {sp.sstr(from_recurrence)} instead of {sp.sstr(derived)}")
-    from hapticproof.parse import Expression
+    from hapticproof.audit.reader.statements import Expression
 
     def bare(statement):        # expressions that are not part of any relation, at any depth
         for s in getattr(statement, "statements", ()):
@@ -608,7 +609,7 @@ def eq23(ctx: AuditContext) -> Finding:
                 printed=r"\lim_{\cos(\omega T)\to 1} KTS = \lim_{\cos(\omega T)\to 1} KT \frac{\sin(\omega t_d)\sin(\omega T)}{2(1-\cos(\omega T))} = Kt_d",
                 derivation="limit theta -> 0 of KT sin(n theta) sin(theta) / (2(1 - cos theta)), t_d = nT")
 def eq23a(ctx: AuditContext) -> Finding:
-    from hapticproof.parse import PrintedLimit
+    from hapticproof.audit.reader.statements import PrintedLimit
 
     theta = sp.Symbol("theta", positive=True)
     limit = sp.limit(K * T * sp.sin(n * theta) * sp.sin(theta) / (2 * (1 - sp.cos(theta))), theta, 0)
@@ -652,7 +653,7 @@ def eq23a(ctx: AuditContext) -> Finding:
 @functools.lru_cache(maxsize=None)
 def delay_analysis() -> dict:
     """Exact facts about the worst case of the delayed wall, for the (23)-(27) verdicts."""
-    from hapticproof.delayed import check_dirichlet_identity, small_damping_threshold
+    from hapticproof.analysis.delayed import check_dirichlet_identity, small_damping_threshold
 
     thresholds = {}
     for k in range(1, 5):
@@ -761,7 +762,7 @@ def _reading(condition: sp.Basic) -> str:
                 printed=r"b + B - \frac{KT}{2} - t_d / T \cos(\omega T/2) > 0",
                 assumptions=ASSUME, derivation="(23) in the limit c -> 1 (S -> n)")
 def eq24(ctx: AuditContext) -> Finding:
-    from hapticproof.parse import slash_readings
+    from hapticproof.audit.reader.printed import slash_readings
 
     derived_limit = b + B - K * T / 2 - K * t_d
     texts = slash_readings(ctx.equation.printed, PAPER.symbols) or {"as printed": ctx.equation.printed}
@@ -792,7 +793,7 @@ def eq24(ctx: AuditContext) -> Finding:
 
 
 def find_point(readings: dict, derived: sp.Expr) -> dict:
-    from hapticproof.certify import find_difference
+    from hapticproof.audit.compare import find_difference
 
     first = next(iter(readings.values()))
     found = find_difference(first, derived)
@@ -901,21 +902,21 @@ OPERAND_TABLE = SymbolTable(
 
 
 def _derived_r() -> sp.Expr:
-    from hapticproof.smallgain import region_factor
+    from hapticproof.analysis.smallgain import region_factor
 
     return region_factor(omega, T, t_d)
 
 
 @functools.lru_cache(maxsize=None)
 def _derived_M(argument: sp.Expr) -> sp.Expr:
-    from hapticproof.smallgain import disk_map
+    from hapticproof.analysis.smallgain import disk_map
 
     return disk_map(G_T(argument), R_FUN(argument), BETA)
 
 
 @functools.lru_cache(maxsize=None)
 def _derived_N(argument: sp.Expr) -> sp.Expr:
-    from hapticproof.smallgain import lft_partner
+    from hapticproof.analysis.smallgain import lft_partner
 
     return lft_partner(_derived_M(argument), G_T(argument), H_FUN(sp.exp(argument * T))).subs(G_sym, G_T(argument))
 
@@ -925,7 +926,7 @@ def _derived_N(argument: sp.Expr) -> sp.Expr:
                 assumptions="t_d an integer multiple of T",
                 derivation="convex hull of R_1 weighted by sum_k 1/(w + k w_s)^2 = T^2/(2(1 - cos wT)) (checked with mpmath)")
 def eq28(ctx: AuditContext) -> Finding:
-    from hapticproof.smallgain import check_weights_sum
+    from hapticproof.analysis.smallgain import check_weights_sum
 
     relation = ctx.relation()
     if not isinstance(relation, sp.Eq) or relation.lhs != R_FUN(sp.I * omega):
@@ -942,8 +943,9 @@ def eq28(ctx: AuditContext) -> Finding:
 @PAPER.equation("29", kind="condition", printed=r"\|\mathscr{M}\mathscr{N}\|_{\infty} < 1", section="3.1.2",
                 derivation="small-gain theorem for 1 + MN = 0 with M mapping the region of G_T^* into the unit disk")
 def eq29(ctx: AuditContext) -> Finding:
-    from hapticproof.parse import Norm, parse_printed
-    from hapticproof.smallgain import disk_identity
+    from hapticproof.audit.reader.statements import Norm
+    from hapticproof.audit.reader.printed import parse_printed
+    from hapticproof.analysis.smallgain import disk_identity
 
     relations = parse_printed(ctx.equation.printed, OPERAND_TABLE).relations()
     if len(relations) != 1:
@@ -1030,7 +1032,7 @@ for _id, _printed in (("31", r"\mathcal{N}\{s, G_T^*(s)\} = \frac{r(s)H(e^{sT})}
 @PAPER.equation("32", kind="condition", printed=r"1 + \mathcal{MN} = 0", section="3.1.2",
                 derivation="1 + MN with the derived M and N equals 2(b - z_a)(1 + H G_T^*)/(2(b - z_a) + rH)")
 def eq32(ctx: AuditContext) -> Finding:
-    from hapticproof.parse import parse_printed
+    from hapticproof.audit.reader.printed import parse_printed
 
     relation = parse_printed(ctx.equation.printed, OPERAND_TABLE).relations()[0].as_sympy()
     printed = relation.lhs - relation.rhs
@@ -1079,7 +1081,7 @@ def _rhs36_canonical(expr: sp.Expr) -> sp.Expr:
                 printed=r"b - z_a > \frac{T}{2} \frac{1}{1 - \cos(\omega T)} \Re\{e^{-j\omega t_d} (1 - e^{-j\omega T}) H(e^{j\omega T})\}",
                 derivation="|w| < |2 beta + w| <=> beta + Re w > 0 with w = rH (and -r written out)")
 def eq36(ctx: AuditContext) -> Finding:
-    from hapticproof.smallgain import small_gain_margin
+    from hapticproof.analysis.smallgain import small_gain_margin
 
     relation = ctx.relation()
     derived_bound = z_a - sp.re(_derived_r() * H_FUN(sp.exp(sp.I * omega * T)))

@@ -21,17 +21,19 @@ from typing import Any
 
 import sympy as sp
 
-from hapticproof import boundary as bnd
-from hapticproof import classics, teleoperator as tele
-from hapticproof.audit import AuditContext, Paper, malformed
-from hapticproof.certify import NotABound, as_bound, compare_bounds, compare_expressions, is_identically_zero
-from hapticproof.evidence import Evidence, Finding, Method, Plot, Series, Verdict
-from hapticproof.parse import SymbolTable
-from hapticproof.symbols import c as C_SYM
-from hapticproof.symbols import z as Z_SYM
-from hapticproof.unitcircle import omega_to_c
+from hapticproof.analysis import boundary as bnd
+from hapticproof.analysis import classics, teleoperator as tele
+from hapticproof.systems import teleoperator as telemodel
+from hapticproof.audit.runner import AuditContext, Paper, malformed
+from hapticproof.audit.compare import NotABound, as_bound, compare_bounds, compare_expressions
+from hapticproof.exact.canonical import is_identically_zero
+from hapticproof.core.evidence import Evidence, Finding, Method, Plot, Series, Verdict
+from hapticproof.audit.reader.names import SymbolTable
+from hapticproof.core.symbols import c as C_SYM
+from hapticproof.core.symbols import z as Z_SYM
+from hapticproof.exact.unitcircle import omega_to_c
 
-SYM = tele.TELE_SYMBOLS
+SYM = telemodel.TELE_SYMBOLS
 K, B, T, b, b_m, b_s, m_m, m_s, alpha = (SYM[k] for k in ("K", "B", "T", "b", "b_m", "b_s", "m_m", "m_s", "alpha"))
 omega = sp.Symbol("omega", real=True)
 omega_s = sp.Symbol("omega_s", positive=True)
@@ -114,7 +116,7 @@ PAPER.conditions.extend([
     ("teleoperator (35), PD (33)", r"\min(b_m, b_s) > KT + 2B", "Jazayeri & Tavakoli, eq. (35) (confirmed)"),
     ("teleoperator, error coordinate (less conservative)",
      r"\frac{b_m b_s}{b_m + \alpha^2 b_s} \ge \frac{T}{2}\frac{1}{1-\cos\omega T}\operatorname{Re}\{(1-e^{-j\omega T})C(e^{j\omega T})\}",
-     "derived (hapticproof.teleoperator)"),
+     "derived (hapticproof.analysis.teleoperator)"),
 ])
 
 ASSUME = "m_i, b_i, T > 0; K > 0, B >= 0 (PD); alpha > 0; robots at rest at t = 0"
@@ -174,7 +176,7 @@ PRINTED: dict[str, str] = {
 
 def _parse(ctx: AuditContext, table: SymbolTable, text: str | None = None) -> Any:
     """Parse the display (or ``text``) with another of the paper's tables."""
-    from hapticproof.parse import parse_printed
+    from hapticproof.audit.reader.printed import parse_printed
 
     return parse_printed(ctx.equation.printed if text is None else text, table)
 
@@ -186,7 +188,7 @@ def _relations(statement: Any) -> list:
 def _line_pairs(statement: Any, count: int = 2) -> list[tuple[sp.Expr, sp.Expr]]:
     """``(lhs, rhs)`` of each two-term relation of a display of ``count`` lines (master, slave);
     a display with another number of relations is not the display the check reads."""
-    from hapticproof.errors import LatexParseError
+    from hapticproof.core.errors import LatexParseError
 
     relations = statement.relations()
     if len(relations) != count:
@@ -389,12 +391,12 @@ def _alias_typo_finding(ctx: AuditContext, derived: sp.Expr, what: str, lhs_only
 
 def _device_residual(mass: sp.Symbol, damping: sp.Symbol, port: sp.Symbol, control: sp.Symbol,
                      vel: sp.Symbol, acc: sp.Symbol) -> sp.Expr:
-    """``m a - (f_port - b v - u)`` of the device model of :mod:`hapticproof.sampled`."""
+    """``m a - (f_port - b v - u)`` of the device model of :mod:`hapticproof.analysis.sampled`."""
     return mass * acc - (port - damping * vel - control)
 
 
 @PAPER.equation("1", kind="expression", printed=PRINTED["1"], section="II", assumptions=ASSUME,
-                derivation="device model m dv/dt = f - b v - u (controller force subtracted), as in hapticproof.sampled")
+                derivation="device model m dv/dt = f - b v - u (controller force subtracted), as in hapticproof.analysis.sampled")
 def eq1(ctx: AuditContext) -> Finding:
     (l1, r1), (l2, r2) = _line_pairs(ctx.statement)
     derived = (_device_residual(m_m, b_m, F_H, F_M, XD_M, XDD_M), _device_residual(m_s, b_s, F_E, F_S, XD_S, XDD_S))
@@ -415,7 +417,7 @@ def eq2(ctx: AuditContext) -> Finding:
                FUN["tildeF_e"](s) - FUN["F_e"](s) - FUN["Z_e"](s) * s * FUN["X_s"](s))
     if is_identically_zero(l1 - r1 - derived[0]) and is_identically_zero(l2 - r2 - derived[1]):
         return Finding(Verdict.CONFIRMED, "both terminations apply the exogenous force minus impedance times velocity "
-                       "(passive Z absorbs energy), the convention of hapticproof.sampled.Impedance",
+                       "(passive Z absorbs energy), the convention of hapticproof.systems.impedance.Impedance",
                        Evidence(Method.CANONICAL_FORM, facts={"derived": derived}))
     return Finding(Verdict.WRONG, "a termination law differs from F = F_ext - Z s X", Evidence(Method.CANONICAL_FORM))
 
@@ -537,7 +539,9 @@ def _restoring_forces(gain: sp.Expr, error: sp.Expr) -> tuple[sp.Expr, sp.Expr]:
 def _printed_sign_is_unstable() -> dict:
     """Exact ZOH loop of the paper's teleoperator at Table I's stable point (K = 0.4, T = 7 ms,
     free/free) with the restoring sign and with (7)'s sign (controller -C)."""
-    from hapticproof.sampled import DiscreteTF, Teleoperator, spectral_radius
+    from hapticproof.systems.impedance import DiscreteTF
+    from hapticproof.systems.loops import Teleoperator
+    from hapticproof.analysis.sampled import spectral_radius
 
     m, bb = PHANTOM["m"], PHANTOM["b"]
     Kv, Tv = sp.Rational(2, 5), sp.Rational(7, 1000)
@@ -1015,7 +1019,7 @@ def _generic_bound(name: str, weight: sp.Expr) -> sp.Expr:
 
 def _controller_instances() -> list[tuple[str, sp.Expr]]:
     a = sp.Rational(1, 2)
-    return [("PD (33)", tele.pd_controller()), ("PD with filtered derivative (a = 1/2)", tele.filtered_pd_controller(a=a))]
+    return [("PD (33)", telemodel.pd_controller()), ("PD with filtered derivative (a = 1/2)", telemodel.filtered_pd_controller(a=a))]
 
 
 def _bound_check(ctx: AuditContext, alpha_value: sp.Expr | None) -> Finding:
@@ -1045,7 +1049,7 @@ def _bound_check(ctx: AuditContext, alpha_value: sp.Expr | None) -> Finding:
                        Evidence(Method.CANONICAL_FORM, facts={"lines_match": generic_ok}))
     instances = {}
     for label, controller in _controller_instances():
-        scene = tele.TeleoperatorScene(m_m, m_s, b_m, b_s, T, controller, al if alpha_value is None else alpha_value)
+        scene = telemodel.TeleoperatorScene(m_m, m_s, b_m, b_s, T, controller, al if alpha_value is None else alpha_value)
         derived = tele.bounds(scene)
         for (lhs, rhs), name, bound in zip(lines, ("C_m", "C_s"), (derived.master, derived.slave)):
             ctrl = scene.C_m if name == "C_m" else scene.C_s
@@ -1167,7 +1171,7 @@ def eq33(ctx: AuditContext) -> Finding:
         return Finding(Verdict.TYPO, f"(33) must give both controllers, C_s(z) = C_m(z) = ...; it reads "
                        f"{' = '.join(map(sp.sstr, rel.terms[:-1]))} = ...",
                        Evidence(Method.PARSE, facts={"printed_form": [sp.srepr(x) for x in rel.terms[:-1]]}))
-    return compare_expressions(rel.terms[-1], tele.discretize_pd("backward"),
+    return compare_expressions(rel.terms[-1], telemodel.discretize_pd("backward"),
                                what="the PD controller (33)", note="it is the backward-difference discretisation of K + Bs")
 
 
@@ -1176,16 +1180,16 @@ def eq33(ctx: AuditContext) -> Finding:
                 derivation="sympy.physics.control.bilinear of K + Bs vs (33)", quotes=('33',))
 def bilinear_claim(ctx: AuditContext) -> Finding:
     (rel,) = _relations(_parse(ctx, TABLE, PAPER.get("33").printed))
-    finding = compare_expressions(rel.terms[-1], tele.discretize_pd("bilinear"), what="(33)", on_mismatch=Verdict.WRONG)
+    finding = compare_expressions(rel.terms[-1], telemodel.discretize_pd("bilinear"), what="(33)", on_mismatch=Verdict.WRONG)
     if finding.verdict == Verdict.CONFIRMED:
         return finding
-    backward = compare_expressions(rel.terms[-1], tele.discretize_pd("backward"), what="(33)")
+    backward = compare_expressions(rel.terms[-1], telemodel.discretize_pd("backward"), what="(33)")
     return Finding(
         Verdict.WRONG,
         "the bilinear (Tustin) transform of K + Bs is K + 2B(z - 1)/(T(z + 1)), not (33); (33) is the backward difference "
         f"s -> (z - 1)/(Tz) ({backward.verdict.value} against sympy's backward_diff), the controller all results (34)-(35) use",
         finding.evidence,
-        derived=tele.discretize_pd("bilinear"),
+        derived=telemodel.discretize_pd("bilinear"),
         corrected=r"C_s(z) = C_m(z) = K + B\frac{z-1}{Tz} \ \text{(backward difference } s \to \frac{z-1}{Tz}\text{)}",
     )
 
@@ -1197,7 +1201,7 @@ def _in_c(relation: sp.Basic) -> sp.Basic:
 @PAPER.equation("34", kind="condition", printed=PRINTED["34"], section="III-B", assumptions=ASSUME,
                 derivation="(29) for the PD controller (33): teleoperator.bounds, exact in c")
 def eq34(ctx: AuditContext) -> Finding:
-    bound = tele.bounds(tele.TeleoperatorScene.pd()).master
+    bound = tele.bounds(telemodel.TeleoperatorScene.pd()).master
     return compare_bounds(_in_c(ctx.relation()), sp.Ge(b, bound), b, what="the PD bound at one frequency")
 
 
@@ -1209,7 +1213,7 @@ def min_claim(ctx: AuditContext) -> Finding:
     agree = all(
         (bool(x > X) and bool(y > X)) == bool(min(x, y) > X) for x in grid for y in grid for X in grid
     )
-    series = tele.error_coordinate_damping(tele.TeleoperatorScene.pd())
+    series = tele.error_coordinate_damping(telemodel.TeleoperatorScene.pd())
     if not agree:  # pragma: no cover - elementary logic
         return Finding(Verdict.WRONG, "min does not capture both conditions", Evidence(Method.INSTANCES))
     return Finding(Verdict.CONFIRMED, "both per-robot conditions hold iff the smaller damping exceeds the bound (the least "
@@ -1221,7 +1225,7 @@ def min_claim(ctx: AuditContext) -> Finding:
 @PAPER.equation("35", kind="condition", printed=PRINTED["35"], section="III-B", assumptions=ASSUME,
                 derivation="exact worst case over c of (34): endpoint c = -1 for B >= 0")
 def eq35(ctx: AuditContext) -> Finding:
-    wc = tele.worst_case(tele.TeleoperatorScene.pd())
+    wc = tele.worst_case(telemodel.TeleoperatorScene.pd())
     return compare_bounds(ctx.relation(), sp.Ge(b, wc.sup_master), b, what="the PD worst case",
                           note=f"maximiser c = {wc.maximiser}; for B < 0 it would be KT + 2|B|")
 
@@ -1234,7 +1238,7 @@ def eq35(ctx: AuditContext) -> Finding:
 def colgate_claim(ctx: AuditContext) -> Finding:
     p35 = ctx.parse(PAPER.get("35").printed).relations()[0].as_sympy()
     colgate = classics.colgate_wall(B=B)
-    from hapticproof.certify import NotABound, as_lower_bound
+    from hapticproof.audit.compare import NotABound, as_lower_bound
 
     try:
         bound35 = as_lower_bound(p35, b)
@@ -1294,11 +1298,11 @@ def monotone(ctx: AuditContext) -> Finding:
 
 def _quoted(text: str, last: bool = True) -> str:
     """The ``$...$`` mathematics a claim quotes (the last one by default)."""
-    from hapticproof.audit import quoted_math
+    from hapticproof.audit.runner import quoted_math
 
     quotes = quoted_math(text)
     if not quotes:
-        from hapticproof.errors import LatexParseError
+        from hapticproof.core.errors import LatexParseError
 
         raise LatexParseError("the claim quotes no $...$ condition", text, 0)
     return quotes[-1] if last else quotes[0]
@@ -1307,7 +1311,7 @@ def _quoted(text: str, last: bool = True) -> str:
 def intro_condition(which: str) -> sp.Basic:
     """The condition the introduction quotes, parsed from the registered claim (``colgate``:
     ``intro-colgate``, ``routh``: ``intro-routh``)."""
-    from hapticproof.parse import parse_printed
+    from hapticproof.audit.reader.printed import parse_printed
 
     text = PAPER.get({"colgate": "intro-colgate", "routh": "intro-routh"}[which]).printed
     return _single_relation(parse_printed(_quoted(text), TABLE))
@@ -1316,7 +1320,7 @@ def intro_condition(which: str) -> sp.Basic:
 def _single_relation(statement: Any) -> sp.Basic:
     relations = statement.relations()
     if len(relations) != 1:
-        from hapticproof.errors import LatexParseError
+        from hapticproof.core.errors import LatexParseError
 
         raise LatexParseError(f"expected one relation, found {len(relations)}", "", 0)
     return relations[0].as_sympy()
@@ -1327,7 +1331,7 @@ def _quoted_relation(ctx: AuditContext) -> sp.Basic:
 
 
 def _bound_reading(condition: sp.Basic, var: sp.Symbol = b) -> str:
-    from hapticproof.certify import NotABound, as_bound
+    from hapticproof.audit.compare import NotABound, as_bound
 
     try:
         return str(as_bound(condition, var))
@@ -1422,7 +1426,7 @@ def intro_routh(ctx: AuditContext) -> Finding:
 def intro_less(ctx: AuditContext) -> Finding:
     passive = intro_condition("colgate")
     stable = _single_relation(ctx.parse(_quoted(ctx.equation.printed, last=False)))
-    from hapticproof.certify import NotABound, as_lower_bound
+    from hapticproof.audit.compare import NotABound, as_lower_bound
 
     try:
         stable_bound = as_lower_bound(stable, b)
@@ -1431,7 +1435,7 @@ def intro_less(ctx: AuditContext) -> Finding:
                        f"it cannot be compared as less conservative than the passivity condition {_bound_reading(passive)}",
                        Evidence(Method.CANONICAL_FORM, facts={"printed_form": sp.srepr(stable)}))
     # the quoted condition must be the wall's stability condition (its leading order), not any weaker bound
-    from hapticproof.classics import leading_order_boundary
+    from hapticproof.analysis.classics import leading_order_boundary
 
     leading = leading_order_boundary(0).condition
     names = {s.name: s for s in stable.free_symbols | passive.free_symbols}
@@ -1471,7 +1475,7 @@ def intro_zoh(ctx: AuditContext) -> Finding:
 
 
 def _pd_limits() -> dict[str, sp.Basic]:
-    bound = tele.worst_case(tele.TeleoperatorScene.pd()).sup_master
+    bound = tele.worst_case(telemodel.TeleoperatorScene.pd()).sup_master
     out = {}
     for var in (K, B, T):
         sol = sp.solve(b - bound, var)[0]
@@ -1515,7 +1519,8 @@ TABLE_I = {  # (T in ms, K) -> MSE percent or "Unstable"
 
 
 def _ff_radius(Kv: sp.Rational, Tv: sp.Rational) -> float:
-    from hapticproof.sampled import Teleoperator, spectral_radius
+    from hapticproof.systems.loops import Teleoperator
+    from hapticproof.analysis.sampled import spectral_radius
 
     return float(spectral_radius(Teleoperator.symmetric(m=PHANTOM["m"], b=PHANTOM["b"], T=Tv, K=Kv), "mp", 30))
 
@@ -1600,7 +1605,7 @@ def table1_mse(ctx: AuditContext) -> Finding:
 def _passivity_gain(Tv: sp.Rational) -> sp.Expr:
     """The largest K allowed by the registered (35) at the PHANToM's b, B = 0 and the period ``Tv``
     (read from the printed display, so a changed (35) moves the Fig. 5/6 verdicts)."""
-    from hapticproof.parse import parse_printed
+    from hapticproof.audit.reader.printed import parse_printed
 
     (rel,) = parse_printed(PAPER.get("35").printed, TABLE).relations()
     at = rel.as_sympy().subs({b: PHANTOM["b"], B: 0, T: Tv})
@@ -1661,7 +1666,9 @@ def fig5(ctx: AuditContext) -> Finding:
                         "predicted by the passivity region for the teleoperator in the FF case (Fig. 5)",
                 derivation="exact FC stability boundary: the free robot on the spring K (slave clamped)")
 def fig6(ctx: AuditContext) -> Finding:
-    from hapticproof.sampled import CLAMPED, Teleoperator, spectral_radius
+    from hapticproof.systems.impedance import CLAMPED
+    from hapticproof.systems.loops import Teleoperator
+    from hapticproof.analysis.sampled import spectral_radius
 
     try:
         ratios = _boundary_ratios((1, 5, 10, 15))

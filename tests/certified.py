@@ -1,7 +1,7 @@
 """The independent checker on a decision returned to a differential test.
 
 Every certificate inside the toolkit's result (found by walking its JSON) is re-verified by
-:mod:`hapticproof.checker`; a rejected one fails the test whatever the oracle said. (The oracles
+:mod:`hapticproof.exact.checker`; a rejected one fails the test whatever the oracle said. (The oracles
 under ``tests/oracles`` import nothing from the package; this helper is on the toolkit's side.)
 """
 
@@ -9,8 +9,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from hapticproof.checker import check_certificates
-from hapticproof.evidence import to_jsonable
+from hapticproof.exact.checker import check_certificates
+from hapticproof.core.evidence import to_jsonable
 
 
 def assert_certified(result: Any, call: str = "") -> int:

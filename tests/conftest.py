@@ -15,8 +15,8 @@ ROOT = Path(__file__).resolve().parents[1]
 @pytest.fixture(scope="session")
 def audit_reports():
     """The audit of every registered paper, in registry order (about 30 s, once)."""
-    from hapticproof.audit import audit_paper
-    from hapticproof.registry import papers
+    from hapticproof.audit.runner import audit_paper
+    from hapticproof.audit.registry import papers
 
     return [audit_paper(paper) for paper in papers().values()]
 

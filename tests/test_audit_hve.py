@@ -5,9 +5,9 @@ import functools
 import pytest
 import sympy as sp
 
-from hapticproof.audit import audit_paper
-from hapticproof.evidence import Verdict
-from hapticproof.registry import get_paper
+from hapticproof.audit.runner import audit_paper
+from hapticproof.core.evidence import Verdict
+from hapticproof.audit.registry import get_paper
 
 # Every registered equation of Sections 1-3.1 and its verdict. A change here is a change of a
 # mathematical finding: re-derive by hand before editing.
@@ -85,8 +85,8 @@ def test_single_user_section_is_complete():
 
 
 def test_witnesses_are_exact_and_recheck():
-    from hapticproof.positivereal import worst_case
-    from hapticproof.scene import SingleUserScene
+    from hapticproof.analysis.positivereal import worst_case
+    from hapticproof.systems.singleuser import SingleUserScene
 
     w = report()["25"].evidence.witness
     scene = SingleUserScene.virtual_wall(K=w["K"], B=w["B"], b=w["b"], T=w["T"], delay=w["n"])

@@ -4,11 +4,13 @@ from __future__ import annotations
 
 import json
 
-from hapticproof.audit import audit_paper
-from hapticproof.auditpool import audit_reports
+from hapticproof.audit.runner import audit_paper
+from hapticproof.audit.pool import audit_reports
 from hapticproof.cli import main
-from hapticproof.export import export_document, reports_from_json
-from hapticproof.registry import get_paper
+from hapticproof.report.export import export_document, reports_from_json
+from hapticproof.audit.registry import get_paper
+from hapticproof.report.latex import audit_document
+from hapticproof.report.tables import audit_table
 
 
 def without_seconds(report_json):
@@ -22,7 +24,7 @@ def test_workers_give_the_serial_reports():
     serial = audit_paper(paper)
     (parallel,) = audit_reports([paper], jobs=2)
     assert without_seconds(parallel.to_json()) == without_seconds(serial.to_json())
-    assert parallel.to_table() == serial.to_table() and parallel.to_latex() == serial.to_latex()
+    assert audit_table(parallel) == audit_table(serial) and audit_document([parallel]) == audit_document([serial])
     # a saved audit read back renders the same export as the audit in memory (no re-derivation)
     assert export_document([paper], reports=reports_from_json(serial.to_json(), [paper])) == export_document([paper], reports=[serial])
 
@@ -44,7 +46,7 @@ def test_export_from_a_saved_audit(tmp_path, capsys):
 def test_a_check_that_raises_raises_in_the_parent():
     import pytest
 
-    from hapticproof.audit import Evidence, Finding, Paper, Verdict
+    from hapticproof.audit.runner import Evidence, Finding, Paper, Verdict
 
     paper = Paper("demo-errors", title="Demo", source="none")
 

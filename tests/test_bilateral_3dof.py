@@ -8,11 +8,11 @@ import pytest
 import sympy as sp
 
 import hapticproof.derivations.bilateral_3dof as paper
-from hapticproof.audit import audit_paper
-from hapticproof.evidence import Decision
-from hapticproof.networks import positive_real
-from hapticproof.rationalmatrix import RationalMatrix
-from hapticproof.registry import get_paper
+from hapticproof.audit.runner import audit_paper
+from hapticproof.core.evidence import Decision
+from hapticproof.analysis.nport import positive_real
+from hapticproof.exact.rationalmatrix import RationalMatrix
+from hapticproof.audit.registry import get_paper
 
 # A change here is a change of a mathematical finding: re-derive by hand before editing.
 EXPECTED = {
@@ -118,7 +118,7 @@ def test_counterexamples_of_theorem9_are_passive_and_unstable():
         roots, degree, passive = paper._certified(name)
         assert passive and roots and all(r.real > 0 for r in roots)
     # the cycle network really satisfies A and B (no symmetrization condition survives)
-    from hapticproof.networks import symmetrization_conditions
+    from hapticproof.analysis.networks import symmetrization_conditions
 
     assert symmetrization_conditions(paper.cycle_network(), ports=(3, 3)) == []
 

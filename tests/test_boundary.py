@@ -1,6 +1,6 @@
-"""Exact virtual-wall stability boundary (hapticproof.boundary) against independent methods:
-the sampled loop's spectral radius (hapticproof.sampled, matrix exponential, 50 digits), the
-free-device formula of hapticproof.sampled, and the certified eigenvalue enclosure."""
+"""Exact virtual-wall stability boundary (hapticproof.analysis.boundary) against independent methods:
+the sampled loop's spectral radius (hapticproof.analysis.sampled, matrix exponential, 50 digits), the
+free-device formula of hapticproof.analysis.sampled, and the certified eigenvalue enclosure."""
 
 from __future__ import annotations
 
@@ -10,9 +10,10 @@ import sympy as sp
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from hapticproof import boundary as bnd
-from hapticproof.errors import SceneError
-from hapticproof.sampled import SingleUser, closed_loop_matrix, free_device_boundary, spectral_radius
+from hapticproof.analysis import boundary as bnd
+from hapticproof.core.errors import SceneError
+from hapticproof.systems.loops import SingleUser
+from hapticproof.analysis.sampled import closed_loop_matrix, free_device_boundary, spectral_radius
 
 R = sp.Rational
 CASES = [
@@ -73,7 +74,7 @@ def test_free_device_closed_form_agrees_with_sampled_formula():
 def test_closed_form_agrees_with_crossing_analysis():
     for alpha, delta in ((R(1, 100), 0), (R(1, 100), R(1, 100)), (R(1, 2), R(3, 4)), (10, 2)):
         norm = bnd.Normalised(alpha, delta)
-        closed, _, mode_a = bnd._closed_form_stiffness(norm, 160)
+        closed, _, mode_a = bnd.closed_form_stiffness(norm, 160)
         with bnd.flint_precision(160):
             crossing, _, mode_b, _ = bnd._crossing_stiffness(norm, 0, 160)
         assert closed.overlaps(crossing) and mode_a == mode_b

@@ -7,8 +7,8 @@ from __future__ import annotations
 import pytest
 import sympy as sp
 
-from hapticproof.audit import audit_paper
-from hapticproof.paperfile import loads
+from hapticproof.audit.runner import audit_paper
+from hapticproof.audit.paperfile import loads
 
 SYMBOLS = '''
 b = "positive"

@@ -1,4 +1,4 @@
-"""Classic conditions derived from their models (hapticproof.classics) and compared with the
+"""Classic conditions derived from their models (hapticproof.analysis.classics) and compared with the
 published statements recorded with their sources."""
 
 from __future__ import annotations
@@ -11,16 +11,17 @@ import sympy as sp
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from hapticproof import boundary as bnd
-from hapticproof import classics
-from hapticproof.audit import audit_paper
-from hapticproof.certify import compare_bounds
-from hapticproof.parse import SymbolTable, parse_printed
-from hapticproof.positivereal import hermitian
-from hapticproof.registry import get_paper
-from hapticproof.scene import SYMBOLS, SingleUserScene, virtual_wall
-from hapticproof.symbols import c, z
-from hapticproof.teleoperator import filtered_pd_controller
+from hapticproof.analysis import boundary as bnd
+from hapticproof.analysis import classics
+from hapticproof.audit.runner import audit_paper
+from hapticproof.audit.compare import compare_bounds
+from hapticproof.audit.reader.names import SymbolTable
+from hapticproof.audit.reader.printed import parse_printed
+from hapticproof.analysis.positivereal import hermitian
+from hapticproof.audit.registry import get_paper
+from hapticproof.systems.singleuser import SYMBOLS, SingleUserScene, virtual_wall
+from hapticproof.core.symbols import c, z
+from hapticproof.systems.teleoperator import filtered_pd_controller
 
 K, B, b, T, t_d = (SYMBOLS[k] for k in ("K", "B", "b", "T", "t_d"))
 R = sp.Rational
@@ -113,7 +114,7 @@ def test_published_statements_are_confirmed_by_the_derivations():
 def test_a_misquoted_classic_is_not_confirmed():
     from dataclasses import replace
 
-    from hapticproof.audit import run_equation
+    from hapticproof.audit.runner import run_equation
 
     paper = get_paper("classics")
     wrong_2009 = replace(paper.get("gil-2009"), printed=r"K < \frac{b + B}{T + t_d}")

@@ -67,7 +67,7 @@ def test_audit_one_equation_formats(capsys, tmp_path):
 
 
 def test_audit_sections_select_subsections_only(capsys):
-    from hapticproof.registry import get_paper
+    from hapticproof.audit.registry import get_paper
 
     code, out, _ = run(capsys, "audit", "classics", "--section", "2004", "--format", "json")
     ids = [e["id"] for e in json.loads(out)["equations"]]

@@ -12,9 +12,9 @@ from fractions import Fraction
 import numpy as np
 import pytest
 
-from hapticproof import designmap as dm
+from hapticproof.analysis import designmap as dm
 from hapticproof.cli import main
-from hapticproof.errors import InputFormatError
+from hapticproof.core.errors import InputFormatError
 
 
 def pointwise(spec: dm.MapSpec) -> np.ndarray:
@@ -43,7 +43,8 @@ def test_passivity_lines_equal_pointwise_decisions(x, y, fixed, approximation):
 
 
 def test_users_map_equals_the_m_user_decision():
-    from hapticproof.multiuser import MultiUserScene, positive_real
+    from hapticproof.systems.multiuser import MultiUserScene
+    from hapticproof.analysis.multiuser import positive_real
 
     spec = dm.MapSpec.build("passivity", "K=0.5:20:5", "users=1:4:4",
                             {"b": "0.05", "T": "0.001", "B": "0.001", "delay": 2, "K0": 1, "B0": "0.0005"})
@@ -70,7 +71,7 @@ def test_serial_processes_and_dask_write_the_same_file(tmp_path):
     spec = dm.MapSpec.build("passivity", "b=0.001:0.04:15", "K=0.5:12:12", {"T": "0.001", "B": "0.001", "delay": 2})
     files = {}
     for mode in ("serial", "processes", "dask"):
-        sink = dm._Writer(tmp_path / f"{mode}.csv", spec)
+        sink = dm.MapWriter(tmp_path / f"{mode}.csv", spec)
         if mode == "dask":
             with LocalCluster(n_workers=1, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
                     Client(cluster) as client:

@@ -3,7 +3,7 @@
 Random m-user haptic virtual environments (HVE paper, Section 3.2) -- 2 to 4 users, random
 coupling graphs (possibly disconnected or empty) with random stiffness and damping weights,
 ground couplings, unequal per-user delays 0-5, all three approximations of ``1/s``, active
-operators -- are decided by :func:`hapticproof.multiuser.positive_real` and by the numeric oracle
+operators -- are decided by :func:`hapticproof.analysis.multiuser.positive_real` and by the numeric oracle
 of ``tests/oracles/discrete.py`` (written from the paper: ``G^-1 = diag(b - z_a) + D(z) H(z)
 I(z)``; it imports nothing from the package). The dampings ``b_i - z_ai`` are shifted together so
 that the smallest eigenvalue of the Hermitian part sits on the oracle's estimate of the boundary,
@@ -32,7 +32,8 @@ from oracles.discrete import multi_user_positive_real  # noqa: E402
 from oracles.harness import Tally, examples, expected_decision, timed  # noqa: E402
 from certified import assert_certified  # noqa: E402
 
-from hapticproof.multiuser import MultiUserScene, positive_real  # noqa: E402
+from hapticproof.systems.multiuser import MultiUserScene
+from hapticproof.analysis.multiuser import positive_real  # noqa: E402
 
 R = sp.Rational
 APPROXIMATIONS = ("forward", "backward", "tustin")

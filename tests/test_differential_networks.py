@@ -7,8 +7,8 @@ matrices, often rank-deficient), shifted so that their Hermitian part sits on th
 estimate of the boundary, ``1e-9`` (relative) above or below it; entries with a negative real part
 only near ``w = 0`` (``1 - 2/(s + 1) + 10/(s + 10^4)``); non-reciprocal couplings; networks
 ``D S D^-1`` symmetrizable by a diagonal similarity; grouped ports (2, 2) -- are decided by
-:func:`hapticproof.networks.positive_real`, :func:`~hapticproof.networks.llewellyn` and
-:func:`~hapticproof.networks.absolute_stability` and by the oracles of
+:func:`hapticproof.analysis.nport.positive_real`, :func:`~hapticproof.analysis.networks.llewellyn` and
+:func:`~hapticproof.analysis.networks.absolute_stability` and by the oracles of
 ``tests/oracles/continuous.py``, ``absolute.py`` and ``search.py`` (which import nothing from the
 package). Every destabilising termination the toolkit returns is checked by the oracle
 (terminations positive real, an exact right-half-plane zero of ``det(Z + T)``).
@@ -42,7 +42,8 @@ from oracles.result import YES, OracleResult  # noqa: E402
 from oracles.search import check_termination  # noqa: E402
 from certified import assert_certified  # noqa: E402
 
-from hapticproof.networks import absolute_stability, llewellyn, positive_real  # noqa: E402
+from hapticproof.analysis.networks import absolute_stability, llewellyn
+from hapticproof.analysis.nport import positive_real  # noqa: E402
 
 s = S
 R = sp.Rational

@@ -3,7 +3,7 @@
 Random single-user scenes (HVE paper, Section 3.1) -- virtual walls, virtual masses, filtered
 dampers and random rational environments ``H(z)`` with poles inside, on and outside the unit
 circle, negative gains, all three approximations of ``1/s``, delays 0-5, active operators --
-are decided by :func:`hapticproof.positivereal.positive_real` (and by the verdict that
+are decided by :func:`hapticproof.analysis.positivereal.positive_real` (and by the verdict that
 ``hapticproof derive single-user`` prints) and by the numeric oracle of
 ``tests/oracles/discrete.py``, which is written from the paper and imports nothing from the
 package. Parameters are exact rationals; both sides get the same ones. The device damping is
@@ -38,9 +38,9 @@ from oracles.harness import Tally, examples, expected_decision, timed  # noqa: E
 from oracles.result import OracleResult  # noqa: E402
 from certified import assert_certified  # noqa: E402
 
-from hapticproof.positivereal import positive_real  # noqa: E402
-from hapticproof.scene import SingleUserScene  # noqa: E402
-from hapticproof.summary import summarize_single_user  # noqa: E402
+from hapticproof.analysis.positivereal import positive_real  # noqa: E402
+from hapticproof.systems.singleuser import SingleUserScene  # noqa: E402
+from hapticproof.report.summary import summarize_single_user  # noqa: E402
 
 z = Z
 R = sp.Rational

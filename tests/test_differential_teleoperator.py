@@ -2,7 +2,7 @@
 
 Random sampled-data position-error-based teleoperators (teleoperator paper) -- PD, filtered-PD
 and random stable rational controllers ``C(z)``, negative gains, scalings ``alpha`` -- are decided
-by :func:`hapticproof.teleoperator.passivity` (the per-robot bounds ``b_s >= (alpha + 1) L``,
+by :func:`hapticproof.analysis.teleoperator.passivity` (the per-robot bounds ``b_s >= (alpha + 1) L``,
 ``b_m >= (alpha + 1) alpha L`` with ``L = T/(2(1 - cos wT)) Re{(1 - e^{-jwT}) C}``, the printed
 ``b > T/(1 - cos wT) Re{...}`` at ``alpha = 1``) and by the oracle of
 ``tests/oracles/discrete.py`` (``L = Re{T C(z)/(1 - z)}`` on the circle, minimised numerically).
@@ -32,7 +32,8 @@ from oracles.discrete import Z, teleoperator_passivity  # noqa: E402
 from oracles.harness import Tally, examples, expected_decision, timed  # noqa: E402
 from certified import assert_certified  # noqa: E402
 
-from hapticproof.teleoperator import TeleoperatorScene, passivity  # noqa: E402
+from hapticproof.systems.teleoperator import TeleoperatorScene
+from hapticproof.analysis.teleoperator import passivity  # noqa: E402
 
 z = Z
 R = sp.Rational

@@ -9,10 +9,10 @@ import scipy.signal
 import sympy as sp
 from sympy.physics.control import TransferFunction, backward_diff, bilinear, forward_diff
 
-from hapticproof.discretize import discretize, is_rational
-from hapticproof.errors import SceneError
-from hapticproof.expr import read_expression
-from hapticproof.symbols import s, z
+from hapticproof.systems.discretize import discretize, is_rational
+from hapticproof.core.errors import SceneError
+from hapticproof.core.expr import read_expression
+from hapticproof.core.symbols import s, z
 
 R = sp.Rational
 DESIGNS = {

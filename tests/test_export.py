@@ -2,9 +2,9 @@
 
 import sympy as sp
 
-from hapticproof.export import export_document
-from hapticproof.latex import display_breaks, display_lines, escape_text, is_typesettable, safe_math, to_latex
-from hapticproof.registry import get_paper
+from hapticproof.report.export import export_document
+from hapticproof.report.latex import display_breaks, display_lines, escape_text, is_typesettable, safe_math, to_latex
+from hapticproof.audit.registry import get_paper
 
 
 def test_document_structure(audit_reports):

@@ -1,7 +1,7 @@
 """The numeric fast path and the closed-form long-delay prover.
 
 Differential tests: the fast path gives the same four decisions as the SymPy path
-(:func:`hapticproof.positivereal.positive_real`), every certificate re-verifies with the
+(:func:`hapticproof.analysis.positivereal.positive_real`), every certificate re-verifies with the
 independent checker (Sturm sequences on the monomial form, the transfer function evaluated at the
 witness), and the Hermitian verdicts agree with a 50-digit mpmath evaluation of ``G^{-1}`` on the
 circle -- near and exactly at the boundary, for tiny and huge scales and long delays. Sizes are
@@ -18,15 +18,15 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from hapticproof import fastpath as fp
-from hapticproof import trigpoly
-from hapticproof.checker import check_certificate, check_certificates
-from hapticproof.errors import SceneError
-from hapticproof.evidence import Decision, to_jsonable
-from hapticproof.lazy import clear
-from hapticproof.positivereal import positive_real, transfer_polynomials
-from hapticproof.checker import certificates as _certificates
-from hapticproof.unitcircle import circle_real_part
+from hapticproof.analysis import fastpath as fp
+from hapticproof.exact import trigpoly
+from hapticproof.exact.checker import check_certificate, check_certificates
+from hapticproof.core.errors import SceneError
+from hapticproof.core.evidence import Decision, to_jsonable
+from hapticproof.core.lazy import clear
+from hapticproof.analysis.positivereal import positive_real, transfer_polynomials
+from hapticproof.exact.checker import certificates as _certificates
+from hapticproof.exact.unitcircle import circle_real_part
 
 F = Fraction
 

@@ -17,18 +17,9 @@ import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from hapticproof.checker import check_certificate, check_report
-from hapticproof.evidence import to_jsonable
-from hapticproof.kernel import (
-    circle_point,
-    axis_point,
-    decide_psd,
-    decide_rational_sign,
-    decide_sign,
-    locate_roots,
-    residue_outcome,
-    simplest_between,
-)
+from hapticproof.exact.checker import check_certificate, check_report
+from hapticproof.core.evidence import to_jsonable
+from hapticproof.exact.kernel import circle_point, axis_point, decide_psd, decide_rational_sign, decide_sign, locate_roots, residue_outcome, simplest_between
 
 small = st.integers(-6, 6)
 coefficient_lists = st.lists(small, min_size=2, max_size=7).filter(lambda c: c[-1] != 0)

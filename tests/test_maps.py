@@ -7,11 +7,11 @@ import csv
 import numpy as np
 import pytest
 
-import hapticproof.maps as maps
-from hapticproof.borderlines import CONDITIONS, printed_borderline, printed_condition
+import hapticproof.analysis.maps as maps
+from hapticproof.analysis.borderlines import CONDITIONS, printed_borderline, printed_condition
 from hapticproof.cli import main
-from hapticproof.maps import SceneFamily, boundary_curve, find_boundary, stability_map
-from hapticproof.sampled import free_device_boundary
+from hapticproof.analysis.maps import SceneFamily, boundary_curve, find_boundary, stability_map
+from hapticproof.analysis.sampled import free_device_boundary
 
 FREE = SceneFamily("single-user", {"m": 0.015, "b": 0.02, "B": 0})
 

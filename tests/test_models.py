@@ -12,12 +12,12 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from sympy.physics.control import TransferFunction, backward_diff, bilinear, forward_diff
 
-from hapticproof.errors import SceneError
-from hapticproof.lazy import computed_stages, profile
-from hapticproof.models import integrator, inverse_transfer
-from hapticproof.positivereal import hermitian, residues, worst_case
-from hapticproof.scene import SYMBOLS, SingleUserScene, delay_ratio, virtual_wall
-from hapticproof.symbols import c, s, z
+from hapticproof.core.errors import SceneError
+from hapticproof.core.lazy import computed_stages, profile
+from hapticproof.systems.models import integrator, inverse_transfer
+from hapticproof.analysis.positivereal import hermitian, residues, worst_case
+from hapticproof.systems.singleuser import SYMBOLS, SingleUserScene, delay_ratio, virtual_wall
+from hapticproof.core.symbols import c, s, z
 
 K, B, T = sp.symbols("K B T", positive=True)
 

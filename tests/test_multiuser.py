@@ -9,32 +9,14 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from hapticproof.errors import SceneError
-from hapticproof.evidence import Decision
-from hapticproof.multiuser import (
-    UNIFORM_SYMBOLS,
-    MultiUserScene,
-    complete_graph,
-    damping_matrix,
-    hermitian,
-    hve_leading_minor_counterexample,
-    inverse_transfer_matrix,
-    kernel_bounds,
-    positive_real,
-    principal_minors,
-    residues,
-    stiffness_matrix,
-    sufficient_condition,
-    to_sampled,
-    uniform_condition,
-    uniform_modes,
-    worst_case,
-    worst_case_matrix,
-)
-from hapticproof.positivereal import hermitian as single_hermitian
-from hapticproof.psd import hermitian_part_matrix, min_eigenvalue
-from hapticproof.scene import SingleUserScene
-from hapticproof.symbols import c, z
+from hapticproof.core.errors import SceneError
+from hapticproof.core.evidence import Decision
+from hapticproof.systems.multiuser import UNIFORM_SYMBOLS, MultiUserScene, complete_graph, damping_matrix, inverse_transfer_matrix, stiffness_matrix, to_sampled
+from hapticproof.analysis.multiuser import hermitian, hve_leading_minor_counterexample, kernel_bounds, positive_real, principal_minors, residues, sufficient_condition, uniform_condition, uniform_modes, worst_case, worst_case_matrix
+from hapticproof.analysis.positivereal import hermitian as single_hermitian
+from hapticproof.exact.psd import hermitian_part_matrix, min_eigenvalue
+from hapticproof.systems.singleuser import SingleUserScene
+from hapticproof.core.symbols import c, z
 
 u = UNIFORM_SYMBOLS
 THETAS = np.linspace(1e-4, math.pi, 700)
@@ -222,7 +204,7 @@ def test_leading_minor_counterexample_scene():
 
 
 def test_pr_implies_sampled_stability_on_an_instance():
-    from hapticproof.sampled import is_stable
+    from hapticproof.analysis.sampled import is_stable
 
     scene = MultiUserScene.uniform(2, b="0.01822", K0=10, B0=0, K=10, B=0, T="0.001")
     assert worst_case(scene).decision == Decision.PROVED and is_stable(to_sampled(scene, "0.015"))
@@ -327,8 +309,8 @@ EXPECTED_SECTION_32 = {
 
 @pytest.fixture(scope="module")
 def section_32():
-    from hapticproof.audit import audit_paper
-    from hapticproof.registry import get_paper
+    from hapticproof.audit.runner import audit_paper
+    from hapticproof.audit.registry import get_paper
 
     return {r.id: r for r in audit_paper(get_paper("hve"), list(EXPECTED_SECTION_32)).results}
 

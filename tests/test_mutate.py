@@ -14,23 +14,13 @@ import time
 import pytest
 import sympy as sp
 
-from hapticproof.audit import Paper
-from hapticproof.certify import compare_bounds
+from hapticproof.audit.runner import Paper
+from hapticproof.audit.compare import compare_bounds
 from hapticproof.cli import main
-from hapticproof.evidence import Evidence, Finding, Method, Verdict
-from hapticproof.mutate import (
-    ENV_KNOB,
-    Mutant,
-    QuoteError,
-    choose,
-    generate,
-    knob,
-    mutants_of,
-    mutate_paper,
-    run_mutant,
-)
-from hapticproof.parse import SymbolTable
-from hapticproof.registry import get_paper, papers
+from hapticproof.core.evidence import Evidence, Finding, Method, Verdict
+from hapticproof.audit.mutate import ENV_KNOB, Mutant, QuoteError, choose, generate, knob, mutants_of, mutate_paper, run_mutant
+from hapticproof.audit.reader.names import SymbolTable
+from hapticproof.audit.registry import get_paper, papers
 
 K, T, b, B = sp.symbols("K T b B", positive=True)
 TABLE = SymbolTable({"K": K, "T": T, "b": b, "B": B})
@@ -89,7 +79,7 @@ def test_a_check_that_raises_is_a_crash_with_its_traceback():
 
 def test_a_mutant_that_does_not_parse_is_malformed_not_a_traceback():
     paper = own_paper(computing)
-    original = __import__("hapticproof.audit", fromlist=["run_equation"]).run_equation(paper, paper.get("1"))
+    original = __import__("hapticproof.audit.runner", fromlist=["run_equation"]).run_equation(paper, paper.get("1"))
     broken = Mutant("own", "1", "1", "drop", 12, "{2}", "{2", r"b > \frac{KT}{2 + B")
     result = run_mutant(broken, original, {"own": paper})
     assert result.outcome == "killed" and result.verdict == Verdict.MALFORMED.value
@@ -104,7 +94,7 @@ def test_a_hanging_check_is_stopped_and_counted_as_a_crash():
         return computing(ctx)
 
     paper = own_paper(slow)
-    from hapticproof.audit import run_equation
+    from hapticproof.audit.runner import run_equation
 
     original = run_equation(paper, paper.get("1"))
     mutant = generate(paper.get("1"), paper)[0]
@@ -209,7 +199,7 @@ def test_large_sample_mutants(paper_id, eq_id, old, new, expected):
     else:
         chosen = [m for m in candidates if m.printed == _replaced(paper, m, old, new)]
     assert chosen, "the mutant is not generated any more"
-    from hapticproof.mutate import _audit
+    from hapticproof.audit.mutate import _audit
 
     original = _audit(paper, equation)
     for mutant in chosen:

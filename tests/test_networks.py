@@ -30,33 +30,15 @@ import sympy as sp
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from hapticproof.checker import check_certificate, check_report
-from hapticproof.energy import Sinusoid, input_energy, port_admittance, realize
-from hapticproof.evidence import Decision, to_jsonable
-from hapticproof.kernel import locate_roots
-from hapticproof.networks import (
-    absolute_stability,
-    input_impedance,
-    llewellyn,
-    positive_real,
-    residue_matrix,
-    symmetrization_conditions,
-    symmetrize,
-    theorem9_conditions,
-    verify_certificate,
-    zprime_positive_real,
-)
-from hapticproof.rationalmatrix import (
-    RationalFunction,
-    RationalMatrix,
-    constant_psd,
-    decide_psd,
-    hermitian_minors,
-    minimise_halfline,
-    pole_report,
-)
-from hapticproof.symbols import s
-from hapticproof.terminations import exact_determinant, search_terminations
+from hapticproof.exact.checker import check_certificate, check_report
+from hapticproof.analysis.energy import Sinusoid, input_energy, port_admittance, realize
+from hapticproof.core.evidence import Decision, to_jsonable
+from hapticproof.exact.kernel import locate_roots
+from hapticproof.analysis.networks import absolute_stability, llewellyn, symmetrization_conditions, symmetrize, theorem9_conditions, verify_certificate, zprime_positive_real
+from hapticproof.analysis.nport import input_impedance, positive_real, residue_matrix
+from hapticproof.exact.rationalmatrix import RationalFunction, RationalMatrix, constant_psd, decide_psd, hermitian_minors, minimise_halfline, pole_report
+from hapticproof.core.symbols import s
+from hapticproof.analysis.terminations import exact_determinant, search_terminations
 
 small = st.integers(min_value=-5, max_value=5)
 positive = st.integers(min_value=1, max_value=6)

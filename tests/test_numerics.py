@@ -7,9 +7,9 @@ import sympy as sp
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from hapticproof.bench import margin_cases
-from hapticproof.numerics import exact_margin, exact_margin_prepared, float_margin, mp_margin
-from hapticproof.symbols import z
+from hapticproof.bench.accuracy import margin_cases
+from hapticproof.analysis.numerics import exact_margin, exact_margin_prepared, float_margin, mp_margin
+from hapticproof.core.symbols import z
 
 
 def test_exact_margin_brackets_dense_mpmath_sweep():
@@ -49,7 +49,7 @@ def test_prepared_matrix_margin_equals_direct():
 def test_endpoint_shortcut_agrees_with_bisection_and_sweep(values, delay):
     """The endpoint shortcut (worst case at c = +-1) and the bisection give overlapping
     certified intervals, and both bracket a dense numpy eigenvalue sweep."""
-    import hapticproof.numerics as numerics
+    import hapticproof.analysis.numerics as numerics
 
     a, b, c, d, e, f = (sp.Rational(v) for v in values)
     G = sp.Matrix([[2 + a + b / z ** (delay + 1) + sp.Rational(1, 3) / (z - 1), c / z ** delay],

@@ -10,9 +10,9 @@ import subprocess
 import pytest
 import sympy as sp
 
-from hapticproof.audit import audit_paper
+from hapticproof.audit.runner import audit_paper
 from hapticproof.cli import main
-from hapticproof.paperfile import TEMPLATE, PaperFileError, loads, read_paper
+from hapticproof.audit.paperfile import TEMPLATE, PaperFileError, loads, read_paper
 
 
 @pytest.fixture(scope="module")

@@ -24,8 +24,8 @@ from pathlib import Path
 
 import pytest
 
-from hapticproof.audit import audit_paper
-from hapticproof.paperfile import read_paper
+from hapticproof.audit.runner import audit_paper
+from hapticproof.audit.paperfile import read_paper
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -93,7 +93,7 @@ HVE_IDS = ["3", "16d", "16e", "16f", "17", "18", "19", "20", "21", "22", "23", "
 
 
 def test_hve_single_user_file_agrees_with_the_hand_written_module():
-    from hapticproof.registry import get_paper
+    from hapticproof.audit.registry import get_paper
 
     file_paper = read_paper(ROOT / "examples" / "hve-single-user.toml")
     assert [c.id for c in file_paper.claims] == HVE_IDS

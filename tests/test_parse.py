@@ -1,4 +1,4 @@
-r"""Tests of :mod:`hapticproof.parse`, the reader of the papers' printed LaTeX.
+r"""Tests of :mod:`hapticproof.audit.reader.printed`, the reader of the papers' printed LaTeX.
 
 The corpus below holds displays copied **verbatim** from the three papers (OCR damage included),
 each with the SymPy meaning it must have under a test symbol table, or the exact position at
@@ -15,31 +15,11 @@ import sympy as sp
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
-from hapticproof import symbols as hs
-from hapticproof.errors import LatexParseError
-from hapticproof.parse import (
-    Elision,
-    Expression,
-    IndexedCall,
-    IndexedFamily,
-    IndexedMax,
-    IndexedMin,
-    IndexRange,
-    Lines,
-    Norm,
-    PrintedLimit,
-    Qualified,
-    Relation,
-    Span,
-    SymbolTable,
-    expand_indexed,
-    has_elision,
-    index_symbol,
-    normalise_name,
-    parse_expression,
-    parse_printed,
-    symbol_for,
-)
+from hapticproof.core import symbols as hs
+from hapticproof.core.errors import LatexParseError
+from hapticproof.audit.reader.statements import Elision, Expression, IndexedCall, IndexedMax, IndexedMin, IndexRange, Lines, Norm, PrintedLimit, Qualified, Relation, Span, expand_indexed, has_elision
+from hapticproof.audit.reader.names import IndexedFamily, SymbolTable, index_symbol, normalise_name, symbol_for
+from hapticproof.audit.reader.printed import parse_expression, parse_printed
 
 HVE_FILE, TELE3_FILE, PASS_FILE = (
     "000_e6b68def623c8e74.txt",

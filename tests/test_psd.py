@@ -11,25 +11,10 @@ import sympy as sp
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from hapticproof.evidence import Decision
-from hapticproof.psd import (
-    HermitianPart,
-    PolyRing,
-    affine_worst_case,
-    characteristic_coefficients,
-    decide_psd_on_circle,
-    hermitian_part_matrix,
-    is_psd,
-    leading_minor_counterexample,
-    leading_minor_shortcut,
-    leading_minors,
-    min_eigenvalue,
-    nonnegative_certificate,
-    principal_minors,
-    residue_matrices,
-    shortcut_failure,
-)
-from hapticproof.symbols import c, z
+from hapticproof.core.evidence import Decision
+from hapticproof.exact.psd import HermitianPart, PolyRing, affine_worst_case, characteristic_coefficients, decide_psd_on_circle, hermitian_part_matrix, leading_minor_counterexample, leading_minor_shortcut, leading_minors, min_eigenvalue, nonnegative_certificate, principal_minors, residue_matrices, shortcut_failure
+from hapticproof.exact.charpoly import is_psd
+from hapticproof.core.symbols import c, z
 
 small = st.integers(-6, 6)
 

@@ -10,14 +10,7 @@ import sympy as sp
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from hapticproof.realroots import (
-    RealRoot,
-    as_fmpq_poly,
-    minimise_rational,
-    nonnegative_on,
-    real_roots,
-    sign_at,
-)
+from hapticproof.exact.realroots import RealRoot, as_fmpq_poly, minimise_rational, nonnegative_on, real_roots, sign_at
 
 c = sp.Symbol("c")
 
@@ -134,7 +127,7 @@ def test_minimum_rejects_pole_inside():
 def test_endpoint_shortcut_agrees_with_full_isolation(coeffs, power, end):
     """p(c) = (1 + end*c) q(c)^2 (1 + ...) + small: minima at the endpoint c = -end half of the time;
     the shortcut's minimum equals the exhaustive one (shortcut disabled) exactly when both are rational."""
-    import hapticproof.realroots as rr
+    import hapticproof.exact.realroots as rr
 
     q = to_poly(coeffs)
     num = flint.fmpq_poly([1, end]) * q * q * flint.fmpq_poly([2, 0, 1]) ** power + flint.fmpq_poly([coeffs[0], 1])

@@ -18,12 +18,12 @@ from pathlib import Path
 
 import pytest
 
-from hapticproof import latex as tex
+from hapticproof.report import latex as tex
 from hapticproof.cli import main
-from hapticproof.evidence import Plot, Verdict
-from hapticproof.export import export_document
-from hapticproof.html import _plots, report_html
-from hapticproof.registry import papers
+from hapticproof.core.evidence import Plot, Verdict
+from hapticproof.report.export import export_document
+from hapticproof.report.html import _plots, report_html
+from hapticproof.audit.registry import papers
 
 HERE = Path(__file__).resolve().parent
 _spec = importlib.util.spec_from_file_location("hp_chromium", HERE / "chromium.py")
@@ -252,7 +252,7 @@ def test_fragment_needs_latex(capsys):
 
 
 def test_terminal_progress_and_colour(monkeypatch):
-    from hapticproof.cli._terminal import colour_verdict, progress_bar, summary_line, use_colour
+    from hapticproof.cli.terminal import colour_verdict, progress_bar, summary_line, use_colour
 
     class Terminal(io.StringIO):
         def isatty(self):
@@ -271,21 +271,29 @@ def test_terminal_progress_and_colour(monkeypatch):
     assert summary_line({"confirmed": 2, "wrong": 1}, colour=True).endswith(colour_verdict("confirmed") + " 2")
 
 
-def test_notebook_reprs(audit_reports):
-    from hapticproof.evidence import Evidence, Finding
-    from hapticproof.scene import SingleUserScene
-    from hapticproof.summary import summarize_single_user
+def test_notebook_views(audit_reports):
+    from IPython.core.interactiveshell import InteractiveShell
 
+    from hapticproof.core.evidence import Evidence, Finding
+    from hapticproof.report.notebook import register
+    from hapticproof.report.summary import summarize_single_user
+    from hapticproof.systems.singleuser import SingleUserScene
+
+    shell = InteractiveShell.instance()
+    register(shell)
+    show = lambda obj: shell.display_formatter.format(obj)[0]  # noqa: E731  (the MIME bundle a notebook gets)
     (hve,) = [r for r in audit_reports if r.paper == "hve"]
     result = next(r for r in hve.results if r.id == "17")
-    assert "<math" in result._repr_html_() and "hp-time" not in result._repr_html_()   # no timings: nbval compares
-    assert hve._repr_html_().startswith('<div class="hp-report">') and "<!DOCTYPE" not in hve._repr_html_()
+    html = show(result)["text/html"]
+    assert "<math" in html and "hp-time" not in html   # no timings: nbval compares
+    page = show(hve)["text/html"]
+    assert page.startswith('<div class="hp-report">') and "<!DOCTYPE" not in page
     finding = Finding(Verdict.WRONG, "b < KT/2 fails", Evidence("counterexample", witness={"c": "-1"}),
                       corrected=r"b > \frac{KT}{2}")
-    assert "hp-wrong" in finding._repr_html_() and "<math" in finding._repr_html_()
+    assert "hp-wrong" in show(finding)["text/html"] and "<math" in show(finding)["text/html"]
     scene = SingleUserScene.virtual_wall()
-    assert scene._repr_latex_().startswith("$\\text{single-user scene")
-    assert summarize_single_user(scene)._repr_latex_().startswith("$$\\begin{aligned}")
+    assert show(scene)["text/latex"].startswith("$\\text{single-user scene")
+    assert show(summarize_single_user(scene))["text/latex"].startswith("$$\\begin{aligned}")
 
 
 def test_plot_evidence_is_json(audit_reports):

@@ -1,4 +1,4 @@
-"""Exact ZOH discretisation, closed loops, spectral boundaries (hapticproof.sampled)."""
+"""Exact ZOH discretisation, closed loops, spectral boundaries (hapticproof.analysis.sampled)."""
 
 from __future__ import annotations
 
@@ -11,20 +11,11 @@ import scipy.signal
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from hapticproof.errors import InputFormatError, SceneError
-from hapticproof.maps import SceneFamily, find_boundary, refine_boundary_mp
-from hapticproof.sampled import (
-    CLAMPED,
-    DiscreteTF,
-    Impedance,
-    MultiUser,
-    SingleUser,
-    Teleoperator,
-    closed_loop_matrix,
-    discretize,
-    free_device_boundary,
-    spectral_radius,
-)
+from hapticproof.core.errors import InputFormatError, SceneError
+from hapticproof.analysis.maps import SceneFamily, find_boundary, refine_boundary_mp
+from hapticproof.systems.impedance import CLAMPED, DiscreteTF, Impedance
+from hapticproof.systems.loops import MultiUser, SingleUser, Teleoperator
+from hapticproof.analysis.sampled import closed_loop_matrix, discretize, free_device_boundary, spectral_radius
 
 HAND = Impedance.spring_damper(0.05, 1.0)
 SCENES = [
@@ -170,7 +161,7 @@ def test_multi_user_with_one_user_is_the_single_user_scene():
 
 def test_teleoperator_coupling_is_restoring():
     """Released with the master ahead, the slave follows: e = x_m - x_s decays."""
-    from hapticproof.simulate import simulate
+    from hapticproof.analysis.simulate import simulate
 
     traj = simulate(Teleoperator.symmetric(m=0.015, b=0.02, T=0.001, K=5), 3000,
                     initial={"position:0": 0.01})

@@ -10,10 +10,11 @@ import pytest
 import sympy as sp
 
 from hapticproof.cli import main
-from hapticproof.errors import HapticproofError, SceneError
-from hapticproof.expr import ExpressionError, parameter_symbol, read_expression
-from hapticproof.scene import Scene, SingleUserScene
-from hapticproof.symbols import s, z
+from hapticproof.core.errors import HapticproofError, SceneError
+from hapticproof.core.expr import ExpressionError, parameter_symbol, read_expression
+from hapticproof.systems.scene import Scene
+from hapticproof.systems.singleuser import SingleUserScene
+from hapticproof.core.symbols import s, z
 
 R = sp.Rational
 
@@ -171,7 +172,7 @@ def test_python_api_and_cli_build_the_same_model():
                                                          "b_s": "0.02"})
     model = scene.build()
     assert model.m_m is None and model.parameters == set()
-    from hapticproof.teleoperator import passivity
+    from hapticproof.analysis.teleoperator import passivity
 
     assert passivity(model).decision.value == "proved"
 
@@ -183,7 +184,7 @@ def test_python_api_and_cli_build_the_same_model():
 
 @pytest.mark.parametrize("b, K", [("0.02", 2), ("0.013", 3), ("0.0009", 2), ("1/500", 4)])
 def test_delay_margin_of_the_wall_matches_the_dirichlet_bound(b, K):
-    from hapticproof.design import delay_margin
+    from hapticproof.analysis.design import delay_margin
 
     scene = Scene("single-user", params={"b": b, "K": K, "B": 0, "T": "0.001"})
     margin = delay_margin(scene)
@@ -193,8 +194,8 @@ def test_delay_margin_of_the_wall_matches_the_dirichlet_bound(b, K):
 
 
 def test_delay_margin_checked_delay_by_delay():
-    from hapticproof.design import delay_margin
-    from hapticproof.positivereal import positive_real
+    from hapticproof.analysis.design import delay_margin
+    from hapticproof.analysis.positivereal import positive_real
 
     scene = Scene("single-user", environment="K + B*(1-a)*(z-1)/(T*(z-a))",
                   params={"K": 20, "B": "0.001", "a": "1/2", "T": "0.001", "b": "0.05"})
@@ -213,7 +214,7 @@ def test_delay_n_with_numbers_gives_the_margin(capsys):
 
 
 def test_passive_ranges_match_the_closed_forms():
-    from hapticproof.design import passive_range
+    from hapticproof.analysis.design import passive_range
 
     wall = Scene("single-user", params={"b": "0.02", "B": "0.001", "T": "0.001", "K": 2})
     assert passive_range(wall.with_params(K=None), "K").maximum().value == R(38)            # 2(b - B)/T
@@ -229,7 +230,7 @@ def test_passive_ranges_match_the_closed_forms():
 def test_passive_range_against_a_frequency_grid():
     """An algebraic K_max (virtual mass on the wall): sampled inside and outside, checked by direct
     complex evaluation on a dense grid (far enough from the boundary for floating point)."""
-    from hapticproof.design import passive_range
+    from hapticproof.analysis.design import passive_range
 
     scene = Scene("single-user", environment="K + B*(z-1)/(T*z) + M*(z-1)**2/(T**2*z**2)",
                   params={"K": 2, "B": "0.01", "T": "0.001", "b": "0.9"})

@@ -1,4 +1,4 @@
-"""Time-domain simulation, exact energies and the time-domain boundary (hapticproof.simulate)."""
+"""Time-domain simulation, exact energies and the time-domain boundary (hapticproof.analysis.simulate)."""
 
 from __future__ import annotations
 
@@ -9,17 +9,11 @@ import pytest
 import scipy.integrate
 import scipy.linalg
 
-from hapticproof.maps import SceneFamily, find_boundary
-from hapticproof.sampled import Impedance, SingleUser, Teleoperator, closed_loop_matrix
-from hapticproof.simulate import (
-    Excitation,
-    _augment,
-    _discrete,
-    growth_rate,
-    passivity_observer,
-    simulate,
-    tracking_mse,
-)
+from hapticproof.analysis.maps import SceneFamily, find_boundary
+from hapticproof.systems.impedance import Impedance
+from hapticproof.systems.loops import SingleUser, Teleoperator
+from hapticproof.analysis.sampled import closed_loop_matrix
+from hapticproof.analysis.simulate import Excitation, _augment, _discrete, growth_rate, passivity_observer, simulate, tracking_mse
 
 HAND = Impedance.spring_damper(0.05, 1.0)
 

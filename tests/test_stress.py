@@ -10,12 +10,12 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from hapticproof.bench import stress_cases
-from hapticproof.models import inverse_transfer
-from hapticproof.numerics import exact_margin, float_decision, float_margin, naive_evaluator, stable_evaluator
-from hapticproof.positivereal import decide_hermitian, hermitian
-from hapticproof.scene import SingleUserScene
-from hapticproof.symbols import z
+from hapticproof.bench.accuracy import stress_cases
+from hapticproof.systems.models import inverse_transfer
+from hapticproof.analysis.numerics import exact_margin, float_decision, float_margin, naive_evaluator, stable_evaluator
+from hapticproof.analysis.positivereal import decide_hermitian, hermitian
+from hapticproof.systems.singleuser import SingleUserScene
+from hapticproof.core.symbols import z
 
 EXTREMES = [c for c in stress_cases("small") if c["T"] in ("1e-7", "1") and c["K"] in ("1e-3", "1e9")
             and c["B"] in ("0", "1e6") and c["n"] in (0, 200)]
@@ -65,7 +65,8 @@ def test_nearly_singular_hermitian_part():
 
 
 def test_many_users_exact_decision_matches_closed_form():
-    from hapticproof.multiuser import MultiUserScene, positive_real
+    from hapticproof.systems.multiuser import MultiUserScene
+    from hapticproof.analysis.multiuser import positive_real
 
     m = 12
     # uniform complete graph: PR iff b >= K0 T/2 + B0 + m (K T/2 + B)

@@ -1,4 +1,4 @@
-"""Sampled-data teleoperator passivity (hapticproof.teleoperator) and the audit of the
+"""Sampled-data teleoperator passivity (hapticproof.analysis.teleoperator) and the audit of the
 teleoperator paper (derivations/teleoperator.py)."""
 
 from __future__ import annotations
@@ -12,28 +12,30 @@ import sympy as sp
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from hapticproof import classics
-from hapticproof import teleoperator as tele
-from hapticproof.audit import audit_paper, run_equation
-from hapticproof.errors import InputFormatError, SceneError
-from hapticproof.registry import get_paper
-from hapticproof.sampled import CLAMPED, Impedance, spectral_radius
-from hapticproof.symbols import c, z
+from hapticproof.analysis import classics
+from hapticproof.analysis import teleoperator as tele
+from hapticproof.systems import teleoperator as telemodel
+from hapticproof.audit.runner import audit_paper, run_equation
+from hapticproof.core.errors import InputFormatError, SceneError
+from hapticproof.audit.registry import get_paper
+from hapticproof.systems.impedance import CLAMPED, Impedance
+from hapticproof.analysis.sampled import spectral_radius
+from hapticproof.core.symbols import c, z
 
-S = tele.TELE_SYMBOLS
+S = telemodel.TELE_SYMBOLS
 K, B, T, b_m, b_s, alpha = (S[k] for k in ("K", "B", "T", "b_m", "b_s", "alpha"))
 R = sp.Rational
 
 
 def test_pd_bounds_are_34_and_35():
-    scene = tele.TeleoperatorScene.pd()
+    scene = telemodel.TeleoperatorScene.pd()
     assert sp.expand(tele.bounds(scene).master - (K * T - 2 * B * c)) == 0
     wc = tele.worst_case(scene)
     assert wc.sup_master == K * T + 2 * B and wc.maximiser == -1
 
 
 def test_scaled_bounds_and_reduction():
-    scene = tele.TeleoperatorScene.pd(alpha=None)
+    scene = telemodel.TeleoperatorScene.pd(alpha=None)
     bd = tele.bounds(scene)
     leak = K * T / 2 - B * c
     assert sp.expand(bd.master - (alpha + 1) * alpha * leak) == 0
@@ -47,8 +49,8 @@ def test_bounds_against_direct_complex_evaluation(theta, a, al):
     Kv, Bv, Tv = 2.0, 0.01, 0.002
     # exact rationals: plain nsimplify may return radicals (e.g. for a = 0.686844161539459),
     # which the exact c-forms rightly refuse as non-rational coefficients
-    C = tele.filtered_pd_controller(R(2), R(1, 100), R(2, 1000), sp.nsimplify(a, rational=True))
-    scene = tele.TeleoperatorScene(1, 1, 1, 1, R(2, 1000), C, sp.nsimplify(al, rational=True))
+    C = telemodel.filtered_pd_controller(R(2), R(1, 100), R(2, 1000), sp.nsimplify(a, rational=True))
+    scene = telemodel.TeleoperatorScene(1, 1, 1, 1, R(2, 1000), C, sp.nsimplify(al, rational=True))
     got = float(tele.bounds(scene).master.subs(c, math.cos(theta)))
     zz = cmath.exp(1j * theta)
     Cz = Kv + Bv * (1 - a) * (zz - 1) / (Tv * (zz - a))
@@ -58,8 +60,8 @@ def test_bounds_against_direct_complex_evaluation(theta, a, al):
 
 
 def test_numeric_worst_case_and_decisions():
-    C = tele.filtered_pd_controller(2, R(1, 100), R(1, 1000), R(1, 2))
-    scene = tele.TeleoperatorScene(R(15, 1000), R(15, 1000), R(2, 100), R(2, 100), R(1, 1000), C)
+    C = telemodel.filtered_pd_controller(2, R(1, 100), R(1, 1000), R(1, 2))
+    scene = telemodel.TeleoperatorScene(R(15, 1000), R(15, 1000), R(2, 100), R(2, 100), R(1, 1000), C)
     wc = tele.worst_case(scene)
     grid = [tele.bounds(scene).master.subs(c, R(k, 50)) for k in range(-50, 51)]
     assert all(v <= wc.sup_master for v in grid)
@@ -74,29 +76,29 @@ def test_numeric_worst_case_and_decisions():
 def test_passive_scene_is_stable_with_passive_terminations():
     """Passivity (32) implies stability with any passive terminations (independent loop check)."""
     m, bb, Tv = R(15, 1000), R(1822, 100000), R(7, 1000)
-    scene = tele.TeleoperatorScene.symmetric(m, bb, Tv, tele.pd_controller(1, R(1, 1000), Tv))
+    scene = telemodel.TeleoperatorScene.symmetric(m, bb, Tv, telemodel.pd_controller(1, R(1, 1000), Tv))
     assert tele.passivity(scene).decision.value == "proved"
     for master, slave in ((None, None), (None, CLAMPED), (Impedance.spring_damper(R(1, 20), 5), Impedance.spring_damper(0, 40))):
         assert spectral_radius(scene.to_sampled(master, slave), "mp", 30) < 1
 
 
 def test_discretisations_and_controller_parsing():
-    assert sp.simplify(tele.discretize_pd("backward") - tele.pd_controller()) == 0
-    assert sp.simplify(tele.discretize_pd("bilinear") - tele.pd_controller()) != 0
-    assert sp.simplify(tele.parse_controller("K + B*(z - 1)/(T*z)") - tele.pd_controller()) == 0
+    assert sp.simplify(telemodel.discretize_pd("backward") - telemodel.pd_controller()) == 0
+    assert sp.simplify(telemodel.discretize_pd("bilinear") - telemodel.pd_controller()) != 0
+    assert sp.simplify(telemodel.parse_controller("K + B*(z - 1)/(T*z)") - telemodel.pd_controller()) == 0
     for bad in ("foo(z)", "import os", "K + ", "sin(z)"):
         with pytest.raises(InputFormatError):
-            tele.parse_controller(bad)
+            telemodel.parse_controller(bad)
     with pytest.raises(SceneError):
-        tele.TeleoperatorScene(1, 1, 1, 1, 1, z**2)                  # improper
+        telemodel.TeleoperatorScene(1, 1, 1, 1, 1, z**2)                  # improper
     with pytest.raises(SceneError):
-        tele.TeleoperatorScene(1, 1, 1, 1, -1, 1)                    # T <= 0
+        telemodel.TeleoperatorScene(1, 1, 1, 1, -1, 1)                    # T <= 0
     with pytest.raises(SceneError):
-        tele.discretize_pd("zoh")
+        telemodel.discretize_pd("zoh")
 
 
 def test_error_coordinate_damping_is_less_conservative():
-    h = tele.error_coordinate_damping(tele.TeleoperatorScene.pd(alpha=None))
+    h = tele.error_coordinate_damping(telemodel.TeleoperatorScene.pd(alpha=None))
     # (32) implies h >= L: with b_m = alpha(alpha+1)L, b_s = (alpha+1)L the series damping is exactly L
     L = sp.Symbol("L", positive=True)
     assert sp.simplify(h.subs({b_m: alpha * (alpha + 1) * L, b_s: (alpha + 1) * L}) - L) == 0

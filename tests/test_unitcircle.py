@@ -10,16 +10,8 @@ import sympy as sp
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from hapticproof.symbols import c, n, s, x, z
-from hapticproof.unitcircle import (
-    delayed_hermitian_part,
-    hermitian_part,
-    hermitian_part_rational,
-    imaginary_axis_rational,
-    imaginary_part_rational,
-    theta_form,
-    theta_to_cos,
-)
+from hapticproof.core.symbols import c, n, s, x, z
+from hapticproof.exact.unitcircle import delayed_hermitian_part, hermitian_part, hermitian_part_rational, imaginary_axis_rational, imaginary_part_rational, theta_form, theta_to_cos
 
 ints = st.integers(-9, 9)
 polys = st.lists(ints, min_size=1, max_size=4).filter(any)

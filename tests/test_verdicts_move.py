@@ -16,11 +16,11 @@ from pathlib import Path
 import pytest
 import sympy as sp
 
-from hapticproof.audit import AuditContext, Paper, run_equation
-from hapticproof.certify import NotABound, as_bound, compare_bounds
-from hapticproof.errors import LatexParseError
-from hapticproof.evidence import Evidence, Finding, Method, Verdict
-from hapticproof.registry import get_paper
+from hapticproof.audit.runner import AuditContext, Paper, run_equation
+from hapticproof.audit.compare import NotABound, as_bound, compare_bounds
+from hapticproof.core.errors import LatexParseError
+from hapticproof.core.evidence import Evidence, Finding, Method, Verdict
+from hapticproof.audit.registry import get_paper
 
 DERIVATIONS = Path(__file__).resolve().parents[1] / "derivations"
 

@@ -12,16 +12,16 @@ import json
 import pytest
 import sympy as sp
 
-from hapticproof.checker import check_report
+from hapticproof.exact.checker import check_report
 from hapticproof.cli import main
-from hapticproof.evidence import to_jsonable
-from hapticproof.multiuser import MultiUserScene
-from hapticproof.multiuser import conditions as multi_conditions
-from hapticproof.multiuser import positive_real as multi_positive_real
-from hapticproof.positivereal import positive_real
-from hapticproof.scene import SingleUserScene
-from hapticproof.symbols import z
-from hapticproof.teleoperator import TeleoperatorScene, passivity
+from hapticproof.core.evidence import to_jsonable
+from hapticproof.systems.multiuser import MultiUserScene
+from hapticproof.analysis.multiuser import conditions as multi_conditions
+from hapticproof.analysis.multiuser import positive_real as multi_positive_real
+from hapticproof.analysis.positivereal import positive_real
+from hapticproof.systems.singleuser import SingleUserScene
+from hapticproof.systems.teleoperator import TeleoperatorScene
+from hapticproof.analysis.teleoperator import passivity
 
 
 def derive_json(capsys, *args):
@@ -132,9 +132,9 @@ def test_the_audit_runs_the_checker_on_every_certificate():
     checker rejects makes the verdict undecided (issue 10: 'the audit runs it')."""
     import flint
 
-    from hapticproof.audit import rechecked
-    from hapticproof.evidence import Evidence, Finding, Method, Verdict
-    from hapticproof.kernel import decide_sign
+    from hapticproof.audit.runner import rechecked
+    from hapticproof.core.evidence import Evidence, Finding, Method, Verdict
+    from hapticproof.exact.kernel import decide_sign
 
     out = decide_sign(flint.fmpq_poly([1, -2, 1]), -1, 1)          # (c - 1)^2 >= 0: proved
     good = Finding(Verdict.CONFIRMED, "a square", Evidence(Method.ROOT_ISOLATION, facts={"certificate": out.evidence.facts["certificate"]}))

@@ -2,7 +2,7 @@
 
 Each subcommand lives in its own module of this package and exposes ``register(subparsers)``,
 which adds its parser and sets ``handler`` to a function ``handler(args) -> int``.
-User mistakes (:class:`~hapticproof.errors.HapticproofError`) become one line on stderr and exit
+User mistakes (:class:`~hapticproof.core.errors.HapticproofError`) become one line on stderr and exit
 code 2; nothing else is caught.
 """
 
@@ -13,7 +13,7 @@ import importlib
 import sys
 from collections.abc import Sequence
 
-from hapticproof.errors import HapticproofError
+from hapticproof.core.errors import HapticproofError
 
 __all__ = ["main", "build_parser"]
 
@@ -29,9 +29,9 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
         description="Regenerate, certify and audit stability and passivity conditions of "
         "sampled-data haptic and teleoperation systems.",
     )
-    from hapticproof import __version__
+    from hapticproof.core.version import VERSION
 
-    parser.add_argument("--version", action="version", version=f"hapticproof {__version__}")
+    parser.add_argument("--version", action="version", version=f"hapticproof {VERSION}")
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
     for name in (command,) if command in COMMANDS else COMMANDS:
         importlib.import_module(f"hapticproof.cli.{name.replace('-', '_')}").register(sub)

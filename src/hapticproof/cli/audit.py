@@ -8,10 +8,10 @@ import shutil
 import sys
 import time
 
-from hapticproof.auditpool import audit_reports
-from hapticproof.cli._common import write_text
-from hapticproof.cli._terminal import colour_verdict, progress_bar, summary_line, use_colour
-from hapticproof.registry import get_paper, papers
+from hapticproof.audit.pool import audit_reports
+from hapticproof.cli.common import write_text
+from hapticproof.cli.terminal import colour_verdict, progress_bar, summary_line, use_colour
+from hapticproof.audit.registry import get_paper, papers
 
 __all__ = ["register"]
 
@@ -87,20 +87,24 @@ def run(args: argparse.Namespace) -> int:
         else:
             text = json.dumps({"papers": [r.to_json() for r in reports]}, indent=2)
     elif args.format == "tex":
-        from hapticproof import latex as tex
+        from hapticproof.report import latex as tex
 
         text = tex.audit_document(reports)
     elif args.format == "html":
-        from hapticproof.html import report_html
+        from hapticproof.report.html import report_html
 
         text = report_html(reports)
     elif args.format == "table":
+        from hapticproof.report.tables import audit_table
+
         terminal = sys.stdout.isatty() and not args.output
         style = colour_verdict if use_colour(sys.stdout) and not args.output else None
         width = shutil.get_terminal_size((120, 24)).columns if terminal else 120
-        text = "\n\n".join(r.to_table(width=width, wide=args.wide, style=style) for r in reports)
+        text = "\n\n".join(audit_table(r, width=width, wide=args.wide, style=style) for r in reports)
     else:
-        text = "\n\n".join(r.dumps(args.format) for r in reports)
+        from hapticproof.report.tables import audit_markdown
+
+        text = "\n\n".join(audit_markdown(r) for r in reports)
     if args.output:
         path = write_text(args.output, text)
         if path is not None:  # "-" is standard output
@@ -119,7 +123,7 @@ def _paper_files(paths: list[str]) -> list:
     """The registered papers of ``--paper`` files (their mistakes are one-line errors)."""
     if not paths:
         return []
-    from hapticproof.paperfile import read_paper
+    from hapticproof.audit.paperfile import read_paper
 
     return [read_paper(path).paper for path in paths]
 
@@ -131,7 +135,7 @@ def _section_ids(paper, sections: list[str]) -> list[str]:
 
 def _mutate(args: argparse.Namespace, selected: list) -> int:
     """``--mutate``: the mutation score of each selected paper (exit 1 on survivors or crashes)."""
-    from hapticproof.mutate import mutate_paper
+    from hapticproof.audit.mutate import mutate_paper
 
     if args.sample is not None and args.sample < 1:
         raise_usage(f"--sample must be a positive number of mutants, got {args.sample}")
@@ -170,6 +174,6 @@ def _in_sections(paper, sections: list[str]) -> list[str]:
 
 
 def raise_usage(message: str) -> None:
-    from hapticproof.errors import InputFormatError
+    from hapticproof.core.errors import InputFormatError
 
     raise InputFormatError(message)

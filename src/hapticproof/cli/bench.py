@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from hapticproof.errors import InputFormatError
+from hapticproof.core.errors import InputFormatError
 
 __all__ = ["register"]
 
@@ -35,8 +35,8 @@ def run(args: argparse.Namespace) -> int:
         raise InputFormatError(f"unknown task(s) {unknown}; choose from {', '.join(TASKS)}")
     if args.repeat < 1:
         raise InputFormatError("--repeat must be at least 1")
-    from hapticproof.bench import run as run_studies
-    from hapticproof.cli._terminal import progress_bar
+    from hapticproof.bench.accuracy import run as run_studies
+    from hapticproof.cli.terminal import progress_bar
 
     bar = progress_bar(sys.stderr, "bench")  # a terminal only
 

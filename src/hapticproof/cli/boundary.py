@@ -20,13 +20,13 @@ from __future__ import annotations
 import argparse
 import sys
 
-from hapticproof.borderlines import printed_borderline
+from hapticproof.analysis.borderlines import printed_borderline
 import json
 
-from hapticproof.cli._common import add_param_option
-from hapticproof.cli._terminal import ProgressBar, progress_bar  # noqa: F401 - ProgressBar re-exported
-from hapticproof.errors import InputFormatError
-from hapticproof.maps import boundary_curve, grid, plot_curves
+from hapticproof.cli.common import add_param_option
+from hapticproof.cli.terminal import ProgressBar, progress_bar  # noqa: F401 - ProgressBar re-exported
+from hapticproof.core.errors import InputFormatError
+from hapticproof.analysis.maps import boundary_curve, grid, plot_curves
 
 __all__ = ["register", "handler", "ProgressBar"]
 
@@ -35,7 +35,7 @@ SYSTEMS = ("single-user", "multi-user", "teleoperator")
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
-    from hapticproof.discretize import METHODS
+    from hapticproof.systems.discretize import METHODS
 
     parser = subparsers.add_parser(
         "boundary",
@@ -88,9 +88,9 @@ def _search(text: str | None) -> tuple[float, float] | None:
 
 
 def _scene(args: argparse.Namespace):
-    from hapticproof.cli._common import param_items
-    from hapticproof.scene import Scene
-    from hapticproof.scenefile import read_scene
+    from hapticproof.cli.common import param_items
+    from hapticproof.systems.scene import Scene
+    from hapticproof.systems.scene import read_scene
 
     fields: dict = {}
     params: dict = {}
@@ -116,9 +116,9 @@ def _scene(args: argparse.Namespace):
 
 
 def handler(args: argparse.Namespace) -> int:
-    from hapticproof.cli._common import check_output, write_text
-    from hapticproof.maps import find_boundary
-    from hapticproof.stability import SceneLoops
+    from hapticproof.cli.common import check_output, write_text
+    from hapticproof.analysis.maps import find_boundary
+    from hapticproof.analysis.stability import SceneLoops
 
     # every output is checked before the work starts
     check_output(args.plot, "--plot", (".png", ".pdf", ".svg"))

@@ -2,7 +2,7 @@
 
 The report is what ``hapticproof audit --format json`` or ``hapticproof derive ... --format json``
 wrote. Every certificate in it is re-checked by the independent checker
-(:mod:`hapticproof.checker`: Sturm sequences, exact evaluation of the original transfer
+(:mod:`hapticproof.exact.checker`: Sturm sequences, exact evaluation of the original transfer
 function, Routh-Hurwitz); entries without a certificate are listed as not re-verifiable.
 Exit code 0 when every certificate holds, 1 when one fails, 2 for a file that cannot be read.
 """
@@ -14,7 +14,7 @@ import json
 import sys
 from pathlib import Path
 
-from hapticproof.errors import InputFormatError
+from hapticproof.core.errors import InputFormatError
 
 __all__ = ["register"]
 
@@ -33,7 +33,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from hapticproof.checker import check_report
+    from hapticproof.exact.checker import check_report
 
     try:
         text = sys.stdin.read() if args.report == "-" else Path(args.report).read_text(encoding="utf-8")

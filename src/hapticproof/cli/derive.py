@@ -50,7 +50,7 @@ def complete_argv(argv: list[str]) -> list[str]:
             path = arg.split("=", 1)[1]
     if path is None:
         return argv
-    from hapticproof.scenefile import read_scene
+    from hapticproof.systems.scene import read_scene
 
     system = read_scene(path).system
     return [argv[0], system] + argv[1:]

@@ -22,22 +22,13 @@ from typing import Any
 
 import sympy as sp
 
-from hapticproof import latex as tex
-from hapticproof.cli._common import add_output_option, add_scene_options, check_output, scene_from_args, write_output
+from hapticproof.report import latex as tex
+from hapticproof.cli.common import add_output_option, add_scene_options, check_output, scene_from_args, write_output
 from hapticproof.cli.derive_single_user import add_design_options, design_answers
-from hapticproof.errors import InputFormatError
-from hapticproof.evidence import to_jsonable
-from hapticproof.multiuser import (
-    MultiUserScene,
-    conditions,
-    hermitian,
-    inverse_transfer_matrix,
-    positive_real,
-    principal_minors,
-    residues,
-    sufficient_condition,
-    worst_case,
-)
+from hapticproof.core.errors import InputFormatError
+from hapticproof.core.evidence import to_jsonable
+from hapticproof.systems.multiuser import MultiUserScene, inverse_transfer_matrix
+from hapticproof.analysis.multiuser import conditions, hermitian, positive_real, principal_minors, residues, sufficient_condition, worst_case
 
 __all__ = ["register", "build_scene", "derive"]
 
@@ -76,7 +67,7 @@ def build_scene(users: int, delay: str = "0", uniform: bool = False, active: boo
     >>> build_scene(2, uniform=True, params={"b": 1, "K_0": 2, "B_0": 0, "K": 2, "B": 0, "T": "1/100"}).is_numeric
     True
     """
-    from hapticproof.scene import Scene
+    from hapticproof.systems.scene import Scene
 
     return Scene("multi-user", users=users, delay=delay, uniform=uniform, active=active, graph=graph,
                  approximation=approximation, params=params or {}).build()
@@ -115,7 +106,7 @@ def derive(scene: MultiUserScene, minors: str = "auto") -> dict[str, Any]:
 
 
 def _text(data: dict[str, Any], verbose: bool = False) -> str:
-    from hapticproof.readable import brief
+    from hapticproof.report.readable import brief
 
     lines = [
         f"system:            {data['users']}-user HVE ({data['approximation']} difference, delays {data['delays']}, "

@@ -41,35 +41,35 @@ from typing import Any
 
 import sympy as sp
 
-from hapticproof import latex as tex
-from hapticproof.cli._common import add_output_option, add_scene_options, check_output, scene_from_args, write_output
-from hapticproof.errors import InputFormatError
-from hapticproof.evidence import Decision, to_jsonable
-from hapticproof.networks import absolute_stability, llewellyn, port_blocks, symmetrization_conditions
-from hapticproof.rationalmatrix import RationalMatrix, pole_report
-from hapticproof.symbols import s  # noqa: F401 - the variable of the matrix entries
+from hapticproof.report import latex as tex
+from hapticproof.cli.common import add_output_option, add_scene_options, check_output, scene_from_args, write_output
+from hapticproof.core.errors import InputFormatError
+from hapticproof.core.evidence import Decision, to_jsonable
+from hapticproof.analysis.networks import absolute_stability, llewellyn, port_blocks, symmetrization_conditions
+from hapticproof.exact.rationalmatrix import RationalMatrix, pole_report
+from hapticproof.core.symbols import s  # noqa: F401 - the variable of the matrix entries
 
 __all__ = ["register", "run", "read_matrix", "parse_entry"]
 
 def parse_entry(text: str, where: str = "") -> sp.Expr:
     """One matrix entry: a rational expression in ``s`` and named parameters (the one reader,
-    :func:`hapticproof.expr.read_expression`: exact decimals, ``*`` for products, no functions).
+    :func:`hapticproof.core.expr.read_expression`: exact decimals, ``*`` for products, no functions).
 
     >>> parse_entry("9/(s+3)"), parse_entry("2*s^2 + k")
     (9/(s + 3), k + 2*s**2)
     >>> parse_entry("sin(s)", "z.txt:1, entry 1")
     Traceback (most recent call last):
     ...
-    hapticproof.expr.ExpressionError: z.txt:1, entry 1: unknown function 'sin' at position 0 in 'sin(s)' (a rational expression has numbers, names, + - * / ^ and parentheses)
+    hapticproof.core.expr.ExpressionError: z.txt:1, entry 1: unknown function 'sin' at position 0 in 'sin(s)' (a rational expression has numbers, names, + - * / ^ and parentheses)
     """
-    from hapticproof.expr import read_expression
+    from hapticproof.core.expr import read_expression
 
     return read_expression(str(text), "s", where=where)
 
 
 def read_matrix(path: str | Path) -> tuple[sp.Matrix, tuple[int, ...] | None]:
     """Read the documented text or JSON matrix format; returns ``(Z, ports or None)``."""
-    from hapticproof.scenefile import read_matrix as read_entries
+    from hapticproof.systems.scene import read_matrix as read_entries
 
     rows, ports = read_entries(path)
     table = [[parse_entry(e, f"{path}: row {i + 1}, entry {j + 1}") for j, e in enumerate(r)] for i, r in enumerate(rows)]

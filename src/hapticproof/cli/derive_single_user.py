@@ -15,8 +15,8 @@ import json
 
 import sympy as sp
 
-from hapticproof.cli._common import add_output_option, add_scene_options, check_output, scene_from_args, write_output
-from hapticproof.errors import InputFormatError
+from hapticproof.cli.common import add_output_option, add_scene_options, check_output, scene_from_args, write_output
+from hapticproof.core.errors import InputFormatError
 
 __all__ = ["register", "run", "add_design_options", "design_answers"]
 
@@ -56,7 +56,7 @@ def add_design_options(parser: argparse.ArgumentParser, margin: bool = True) -> 
 
 def design_answers(scene, args: argparse.Namespace, margin_wanted: bool) -> tuple[dict, list[str]]:
     """The designer's answers asked for on the command line, as JSON data and text lines."""
-    from hapticproof.design import delay_margin, passive_range
+    from hapticproof.analysis.design import delay_margin, passive_range
 
     data: dict = {}
     lines: list[str] = []
@@ -72,8 +72,8 @@ def design_answers(scene, args: argparse.Namespace, margin_wanted: bool) -> tupl
 
 
 def run(args: argparse.Namespace) -> int:
-    from hapticproof.discretize import is_rational
-    from hapticproof.summary import summarize_single_user
+    from hapticproof.systems.discretize import is_rational
+    from hapticproof.report.summary import summarize_single_user
 
     if args.fragment and args.format != "latex":
         raise InputFormatError("--fragment needs --format latex")

@@ -21,12 +21,12 @@ import json
 
 import sympy as sp
 
-from hapticproof import latex as tex
-from hapticproof.cli._common import add_output_option, add_scene_options, check_output, scene_from_args, write_output
+from hapticproof.report import latex as tex
+from hapticproof.cli.common import add_output_option, add_scene_options, check_output, scene_from_args, write_output
 from hapticproof.cli.derive_single_user import add_design_options, design_answers
-from hapticproof.errors import InputFormatError
-from hapticproof.evidence import to_jsonable
-from hapticproof.teleoperator import bounds, error_coordinate_damping, passivity, passivity_conditions, worst_case
+from hapticproof.core.errors import InputFormatError
+from hapticproof.core.evidence import to_jsonable
+from hapticproof.analysis.teleoperator import bounds, error_coordinate_damping, passivity, passivity_conditions, worst_case
 
 __all__ = ["register", "run"]
 
@@ -52,8 +52,9 @@ def register(systems: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from hapticproof.discretize import is_rational
-    from hapticproof.readable import brief, number, shorten_numbers
+    from hapticproof.systems.discretize import is_rational
+    from hapticproof.core.notation import shorten_numbers
+    from hapticproof.report.readable import brief, number
 
     if args.fragment and args.format != "latex":
         raise InputFormatError("--fragment needs --format latex")

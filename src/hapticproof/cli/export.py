@@ -6,11 +6,11 @@ import argparse
 import sys
 import time
 
-from hapticproof.cli._common import write_text
-from hapticproof.cli._terminal import progress_bar, summary_line, use_colour
-from hapticproof.errors import InputFormatError
-from hapticproof.export import export_document, reports_from_json
-from hapticproof.registry import get_paper, papers
+from hapticproof.cli.common import write_text
+from hapticproof.cli.terminal import progress_bar, summary_line, use_colour
+from hapticproof.core.errors import InputFormatError
+from hapticproof.report.export import export_document, reports_from_json
+from hapticproof.audit.registry import get_paper, papers
 
 __all__ = ["register"]
 
@@ -39,7 +39,7 @@ def run(args: argparse.Namespace) -> int:
     if args.from_audit:
         reports = _saved(args.from_audit, selected)
     else:
-        from hapticproof.auditpool import audit_reports
+        from hapticproof.audit.pool import audit_reports
 
         total = sum(len(p.equations) for p in selected)
         bar = progress_bar(sys.stderr, "export")

@@ -6,7 +6,7 @@ Example (a 100 000-point passivity map of the delayed HVE virtual wall)::
         --param T=0.001 --param B=0.001 --param delay=3 -o map.csv --plot map.png
 
 Every point is an exact verdict (1 passive/stable, 0 not, -1 undecided); a whole line of the grid
-costs one or a few exact computations (see :mod:`hapticproof.designmap`). ``--workers N`` uses
+costs one or a few exact computations (see :mod:`hapticproof.analysis.designmap`). ``--workers N`` uses
 local processes, ``--scheduler dask`` a Dask ``LocalCluster`` (``--scheduler tcp://host:8786``: a
 running cluster); results stream to CSV or Parquet (by the file's suffix) in the same order and
 with the same values in every mode. A progress bar is drawn on stderr when it is a terminal.
@@ -17,14 +17,14 @@ from __future__ import annotations
 import argparse
 import sys
 
-from hapticproof.cli._common import add_param_option, parse_params
-from hapticproof.errors import InputFormatError
+from hapticproof.cli.common import add_param_option, parse_params
+from hapticproof.core.errors import InputFormatError
 
 __all__ = ["register"]
 
 
 def register(sub: argparse._SubParsersAction) -> None:
-    from hapticproof.designmap import PARAMETERS, QUANTITIES
+    from hapticproof.analysis.designmap import PARAMETERS, QUANTITIES
 
     parser = sub.add_parser(
         "map",
@@ -51,15 +51,15 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from hapticproof import designmap
-    from hapticproof.scaleout import ProgressBar
+    from hapticproof.analysis import designmap
+    from hapticproof.analysis.scaleout import ProgressBar
 
     if args.workers < 1:
         raise InputFormatError("--workers must be at least 1")
     if args.chunk_lines is not None and args.chunk_lines < 1:
         raise InputFormatError("--chunk-lines must be at least 1")
     spec = designmap.MapSpec.build(args.quantity, args.x, args.y, parse_params(args.param), args.approximation)
-    sink = designmap._Writer(args.output, spec) if args.output else None
+    sink = designmap.MapWriter(args.output, spec) if args.output else None
     bar = ProgressBar(1, f"{args.quantity} map")
     try:
         result = designmap.compute(spec, workers=args.workers, scheduler=args.scheduler,

@@ -6,8 +6,8 @@ import argparse
 import sys
 from pathlib import Path
 
-from hapticproof.cli._common import check_output, write_text
-from hapticproof.errors import InputFormatError
+from hapticproof.cli.common import check_output, write_text
+from hapticproof.core.errors import InputFormatError
 
 __all__ = ["register"]
 
@@ -25,7 +25,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from hapticproof.paperfile import TEMPLATE
+    from hapticproof.audit.paperfile import TEMPLATE
 
     path = args.file
     if path != "-":

@@ -1,0 +1,451 @@
+r"""Discrete positive-realness of scalar transfer functions (Definition 2 of the HVE paper).
+
+``F(z)`` is positive real when (i) its poles lie in ``|z| <= 1``; (ii) ``Re F(e^{jwT}) >= 0``
+wherever defined; (iii) its poles on ``|z| = 1`` are simple with positive semidefinite
+residues. For a pole ``z0 = e^{j theta0}`` other than ``z0 = 1`` the quantity that must be
+non-negative is ``Res(F, z0)/z0`` (e.g. ``(z - 1)/(z + 1)``, the image of ``s`` under the
+bilinear map, is positive real with residue ``-2`` at ``z = -1``); at ``z0 = 1`` it is the
+residue itself, as the paper states.
+
+The Hermitian part is an exact rational function of ``c = cos(wT)`` (:mod:`unitcircle`); the
+worst case over ``w`` is its exact minimum over ``c`` in ``[-1, 1]``: a certified decision by
+root isolation when every parameter is a number, an endpoint/stationary-point analysis under
+the parameters' sign assumptions otherwise.
+
+>>> from hapticproof.systems.singleuser import SingleUserScene
+>>> scene = SingleUserScene.virtual_wall(K=2, B=0, b="0.0012", T="0.001")
+>>> worst_case(scene).decision.value, worst_case(scene).minimiser
+('proved', -1)
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import flint
+import sympy as sp
+
+from hapticproof.core.evidence import Decision, Evidence, Method, Outcome
+from hapticproof.exact.kernel import decide_rational_sign, locate_roots, transfer_json
+from hapticproof.core.lazy import stage
+from hapticproof.systems.models import environment_path, inverse_transfer
+from hapticproof.exact.realroots import flint_precision, minimise_rational, real_roots
+from hapticproof.systems.singleuser import SingleUserScene
+from hapticproof.core.symbols import c as C_SYM
+from hapticproof.core.symbols import z as Z_SYM
+from hapticproof.exact.unitcircle import CRational, ThetaForm, circle_real_part, hermitian_part_rational, numerator_denominator, theta_form
+from hapticproof.exact.conditions import HERMITIAN, RESIDUES, Condition, POLES_IN_DISK, POLES_SIMPLE, combine, pole_conditions
+
+__all__ = ["conditions", "transfer_polynomials", "numeric_scene", "Pole", "Residue", "WorstCase", "poles_of", "unit_circle_residues", "hermitian_of", "decide_hermitian", "symbolic_minimum", "poles", "residues", "hermitian", "worst_case", "positive_real"]
+
+
+@dataclass(frozen=True, slots=True)
+class Pole:
+    """A pole of a transfer function: exact location (when known), multiplicity and where it
+    lies: ``'inside'``, ``'on'`` (the unit circle) , ``'outside'`` or ``'unknown'``."""
+
+    value: sp.Expr
+    multiplicity: int
+    location: str
+
+
+@dataclass(frozen=True, slots=True)
+class Residue:
+    """Residue at a unit-circle pole ``z0``; ``scaled = residue/z0`` must be real and >= 0."""
+
+    pole: sp.Expr
+    residue: sp.Expr
+    scaled: sp.Expr
+    outcome: Outcome
+
+
+@dataclass(frozen=True, slots=True)
+class WorstCase:
+    """Worst case of ``Re F`` over frequency.
+
+    ``outcome`` decides ``Re F >= 0 for all w``; ``condition`` is the equivalent condition on the
+    parameters (a SymPy relational, ``True``/``False`` when numeric); ``minimiser`` is the ``c``
+    where the minimum is attained (exact or an isolated root) and ``minimum`` its value.
+    """
+
+    outcome: Outcome
+    condition: Any
+    minimiser: Any = None
+    minimum: Any = None
+
+    @property
+    def decision(self) -> Decision:
+        return self.outcome.decision
+
+
+def _location(value: sp.Expr) -> str:
+    modulus = sp.Abs(value)
+    if not value.free_symbols:
+        if value == 0:
+            return "inside"
+        # exact test first: |z0|^2 - 1 simplifies to zero for unit-circle algebraic numbers
+        gap = sp.nsimplify(sp.expand(value * sp.conjugate(value)) - 1)
+        if gap == 0:
+            return "on"
+        numeric = sp.N(gap, 50)
+        if numeric.is_number and abs(numeric) > sp.Float(10) ** -40:
+            return "inside" if numeric < 0 else "outside"
+        return "unknown"
+    lt = (modulus - 1).is_negative
+    if lt:
+        return "inside"
+    if sp.simplify(modulus - 1) == 0:
+        return "on"
+    if (modulus - 1).is_positive:
+        return "outside"
+    return "unknown"
+
+
+def poles_of(F: Any, z: sp.Symbol = Z_SYM) -> list[Pole]:
+    """Poles of ``F`` (after cancellation) with their location relative to the unit circle.
+
+    >>> from hapticproof.core.symbols import z
+    >>> [(p.value, p.multiplicity, p.location) for p in poles_of(3 + 2/(z - 1) + 1/z**2)]
+    [(0, 2, 'inside'), (1, 1, 'on')]
+    """
+    P, Q = numerator_denominator(sp.cancel(sp.sympify(F)), z)
+    roots = sp.roots(Q, z)
+    out: list[Pole] = []
+    if sum(roots.values()) != Q.degree():
+        # not all roots in closed form: numeric coefficients are still decided exactly
+        if Q.free_symbols - {z}:
+            return [Pole(sp.nan, Q.degree(), "unknown")]
+        roots = _all_roots(Q)
+    for value, multiplicity in sorted(roots.items(), key=lambda kv: (sp.default_sort_key(kv[0]))):
+        out.append(Pole(sp.nsimplify(value) if value.is_number else value, int(multiplicity), _location(value)))
+    return out
+
+
+def _all_roots(Q: sp.Poly) -> dict[sp.Expr, int]:
+    out: dict[sp.Expr, int] = {}
+    for factor, multiplicity in sp.factor_list(Q.as_expr())[1]:
+        for root in sp.Poly(factor, Q.gens[0]).all_roots():
+            out[root] = out.get(root, 0) + multiplicity
+    return out
+
+
+def unit_circle_residues(F: Any, poles: list[Pole], z: sp.Symbol = Z_SYM) -> list[Residue]:
+    """Residues at the poles on ``|z| = 1`` and their positivity (simple poles only).
+
+    >>> from hapticproof.core.symbols import z
+    >>> [(r.pole, r.residue, r.outcome.decision.value) for r in unit_circle_residues((z - 1)/(z + 1), poles_of((z - 1)/(z + 1)))]
+    [(-1, -2, 'proved')]
+    """
+    out: list[Residue] = []
+    for pole in poles:
+        if pole.location != "on":
+            continue
+        if pole.multiplicity > 1:
+            outcome = Outcome(
+                Decision.DISPROVED,
+                Evidence(Method.CANONICAL_FORM, facts={"pole": pole.value, "multiplicity": pole.multiplicity}),
+                f"the unit-circle pole z = {pole.value} is not simple",
+            )
+            out.append(Residue(pole.value, sp.nan, sp.nan, outcome))
+            continue
+        residue = sp.cancel(sp.limit((z - pole.value) * sp.cancel(F), z, pole.value))
+        scaled = sp.simplify(residue / pole.value)
+        out.append(Residue(pole.value, residue, scaled, _sign_outcome(scaled, f"Res/z0 at z0 = {pole.value}")))
+    return out
+
+
+def _sign_outcome(value: sp.Expr, what: str) -> Outcome:
+    value = sp.simplify(value)
+    if value.is_real is False or (value.is_number and sp.im(value) != 0):
+        return Outcome(Decision.DISPROVED, Evidence(Method.CANONICAL_FORM, facts={"value": value}), f"{what} = {value} is not real")
+    if value.is_nonnegative:
+        return Outcome(Decision.PROVED, Evidence(Method.CANONICAL_FORM, facts={"value": value}), f"{what} = {value} >= 0")
+    if value.is_negative:
+        return Outcome(Decision.DISPROVED, Evidence(Method.CANONICAL_FORM, witness={"value": value}), f"{what} = {value} < 0")
+    return Outcome(
+        Decision.SYMBOLIC,
+        Evidence(Method.CANONICAL_FORM, facts={"condition": sp.Ge(value, 0)}),
+        f"{what} >= 0 requires {sp.sstr(value)} >= 0",
+    )
+
+
+def hermitian_of(F: Any, z: sp.Symbol = Z_SYM) -> CRational:
+    """``Re F(e^{jwT})`` as an exact rational function of ``c`` (see :mod:`unitcircle`)."""
+    return hermitian_part_rational(F, z)
+
+
+def decide_hermitian(form: CRational, transfer: tuple | None = None) -> WorstCase:
+    """Exact decision of ``Re F >= 0 on [-1, 1]`` for a numeric c-form, with the minimiser.
+
+    The sign of ``num/den`` equals that of ``num*den`` wherever the function is finite, so the
+    decision is one certified sign decision of the kernel (:func:`hapticproof.exact.kernel.decide_rational_sign`);
+    a disproof's witness is a rational point ``z0`` of the circle, never a pole. ``transfer``
+    (the original ``F = P/Q`` as flint polynomials) lets the checker re-evaluate ``F`` itself.
+
+    >>> from hapticproof.core.symbols import z
+    >>> wc = decide_hermitian(hermitian_of(sp.Rational(1, 10) + 1/(z - 1) + sp.Rational(3, 10)/z))
+    >>> wc.decision.value, wc.outcome.witness['c']
+    ('disproved', -1)
+    """
+    form = form.numeric()
+    outcome = decide_rational_sign(form.num, form.den, -1, 1, "c", "Re G^-1",
+                                   transfer=None if transfer is None else transfer_json(*transfer),
+                                   transfer_den=None if transfer is None else transfer[1])
+    minimum = minimiser = None
+    if not real_roots_in(form.den):
+        m = minimise_rational(form.num, form.den, -1, 1)
+        minimiser, minimum = m.argmin, (m.exact if m.exact is not None else m.value)
+    outcome = Outcome(outcome.decision, outcome.evidence, outcome.reason, minimiser=minimiser, minimum=minimum)
+    return WorstCase(outcome, sp.true if outcome.decision == Decision.PROVED else sp.false, minimiser, minimum)
+
+
+def real_roots_in(den: flint.fmpq_poly, lo: int = -1, hi: int = 1) -> bool:
+    return den.degree() > 0 and bool(real_roots(den, lo, hi))
+
+
+def symbolic_minimum(expr: sp.Expr, var: sp.Symbol = C_SYM) -> WorstCase:
+    """Worst case of a symbolic ``Re F(c)`` over ``c`` in ``[-1, 1]`` by endpoint analysis.
+
+    Exact when ``Re F`` is affine or concave-quadratic in ``c`` with a denominator that is a
+    positive constant; the sign of the slope is taken from the symbols' assumptions
+    (``positive=True`` ...), and when it is unknown the exact condition keeps ``|slope|``.
+
+    >>> K, T, b = sp.symbols('K T b', positive=True)
+    >>> B = sp.Symbol('B', nonnegative=True)
+    >>> wc = symbolic_minimum(b - K*T/2 + B*C_SYM)
+    >>> wc.condition, wc.minimiser
+    (b >= B + K*T/2, -1)
+    """
+    num, den = sp.fraction(sp.cancel(sp.together(expr)))
+    den_poly = sp.Poly(den, var)
+    if den_poly.degree() > 0 or not (den.is_positive or den.is_negative):
+        return _undecided_symbolic(expr, "the denominator depends on c or has an unknown sign")
+    if den.is_negative:
+        num, den = -num, -den
+    poly = sp.Poly(sp.expand(num / den), var)
+    degree = poly.degree()
+    coeffs = {k: poly.coeff_monomial(var**k) for k in range(degree + 1)}
+    if degree <= 0:
+        cond = sp.Ge(poly.as_expr(), 0)
+        return _symbolic(cond, None, poly.as_expr(), "constant in c")
+    if degree == 1:
+        alpha, beta = coeffs[0], coeffs[1]
+        if beta.is_nonnegative:
+            return _symbolic(_ge(alpha - beta), sp.Integer(-1), alpha - beta, "slope >= 0: minimum at c = -1")
+        if beta.is_nonpositive:
+            return _symbolic(_ge(alpha + beta), sp.Integer(1), alpha + beta, "slope <= 0: minimum at c = 1")
+        return _symbolic(_ge(alpha - sp.Abs(beta)), None, alpha - sp.Abs(beta), "minimum at c = -sign(slope)")
+    if degree == 2 and coeffs[2].is_nonpositive:
+        low, high = poly.as_expr().subs(var, -1), poly.as_expr().subs(var, 1)
+        cond = sp.And(_ge(low), _ge(high))
+        return _symbolic(cond, None, sp.Min(low, high), "concave in c: minimum at an endpoint")
+    return _undecided_symbolic(expr, f"degree {degree} in c with parameters: no closed-form minimum")
+
+
+def _ge(expr: sp.Expr) -> sp.Basic:
+    """``expr >= 0`` written as ``positive part >= negative part`` (readable bounds)."""
+    expr = sp.expand(expr)
+    pos = sp.Add(*[t for t in sp.Add.make_args(expr) if not t.could_extract_minus_sign()])
+    neg = sp.Add(*[-t for t in sp.Add.make_args(expr) if t.could_extract_minus_sign()])
+    return sp.Ge(pos, neg, evaluate=False)
+
+
+def _symbolic(condition: Any, minimiser: Any, minimum: Any, reason: str) -> WorstCase:
+    condition = sp.simplify(condition) if condition in (sp.true, sp.false) else condition
+    outcome = Outcome(
+        Decision.SYMBOLIC,
+        Evidence(Method.ENDPOINT_ANALYSIS, facts={"condition": condition, "reason": reason}),
+        reason,
+        minimiser=minimiser,
+        minimum=minimum,
+    )
+    return WorstCase(outcome, condition, minimiser, minimum)
+
+
+def _undecided_symbolic(expr: sp.Expr, reason: str) -> WorstCase:
+    outcome = Outcome(Decision.SYMBOLIC, Evidence(Method.ENDPOINT_ANALYSIS, facts={"reason": reason}), reason)
+    return WorstCase(outcome, sp.Ge(sp.Function("min_c")(expr), 0))
+
+
+@stage("transfer_polynomials")
+def transfer_polynomials(scene: SingleUserScene) -> tuple[flint.fmpq_poly, flint.fmpq_poly]:
+    """``G^{-1}(z) = P(z)/Q(z)`` of a numeric scene as coprime flint polynomials (``Q`` monic).
+
+    >>> P, Q = transfer_polynomials(SingleUserScene.virtual_wall(K=2, B=0, b=1, T=1))
+    >>> P, Q                                                  # 1 + 2/(z - 1)
+    (x + 1, x + (-1))
+    """
+    from hapticproof.analysis.fastpath import transfer
+
+    return transfer(numeric_scene(scene))
+
+
+@stage("numeric_scene")
+def numeric_scene(scene: SingleUserScene) -> Any:
+    """The scene as a :class:`hapticproof.analysis.fastpath.NumericScene` (exact fractions, no SymPy
+    after this one reading of ``H``): numeric scenes are decided on the fast path."""
+    from hapticproof.analysis.fastpath import NumericScene
+
+    return NumericScene.from_scene(scene)
+
+
+@stage("poles")
+def poles(scene: SingleUserScene) -> list[Pole]:
+    """Poles of ``G^{-1}(z)``. With a symbolic delay the delay adds only a pole at ``z = 0``."""
+    if scene.delay.is_Symbol:
+        listed = poles_of(environment_path(scene))
+        others = [p for p in listed if p.value != 0]
+        # multiplicity n + (that of the path at 0): unknown as a number, recorded as -1
+        return [Pole(sp.Integer(0), -1, "inside")] + others
+    if scene.is_numeric:
+        return _numeric_poles(transfer_polynomials(scene)[1])
+    return poles_of(inverse_transfer(scene))
+
+
+def _numeric_poles(Q: flint.fmpq_poly) -> list[Pole]:
+    """Poles from the exact factorization: rational ones exact, others as certified
+    approximations located by :func:`hapticproof.exact.kernel.locate_roots`."""
+    out: list[Pole] = []
+    if Q.degree() <= 0:
+        return out
+    for f, mult in Q.numer().factor()[1]:
+        cert = locate_roots(flint.fmpq_poly(f))
+        if f.degree() == 1:
+            a0, a1 = f.coeffs()
+            value = sp.Rational(int(-a0), int(a1))
+            location = "on" if cert.boundary else "outside" if cert.outside else "inside"
+            out.append(Pole(value, mult, location))
+            continue
+        with flint_precision(64):
+            for r, _ in f.complex_roots():
+                gap = r.real * r.real + r.imag * r.imag - 1
+                location = "inside" if gap < 0 else "outside" if gap > 0 else "on"
+                value = sp.Float(float(r.real.mid()), 12) + sp.I * sp.Float(float(r.imag.mid()), 12)
+                out.append(Pole(value, mult, location))
+    return sorted(out, key=lambda p: (sp.default_sort_key(p.value)))
+
+
+@stage("residues")
+def residues(scene: SingleUserScene) -> list[Residue]:
+    """Residues of ``G^{-1}`` at its unit-circle poles (``z^{-n}`` is 1 at ``z = 1``)."""
+    if scene.delay.is_Symbol:
+        # z^-n is analytic and unimodular away from 0: residue of z^-n F at z0 is z0^-n Res(F)
+        path = environment_path(scene)
+        out = []
+        for r in unit_circle_residues(path, poles_of(path)):
+            if r.pole == 1:
+                out.append(r)
+            else:
+                out.append(Residue(r.pole, r.residue * r.pole ** (-scene.delay), sp.nan,
+                                   Outcome(Decision.UNDECIDED, Evidence(Method.CANONICAL_FORM),
+                                           "residue at a unit-circle pole other than 1 with a symbolic delay")))
+        return out
+    return unit_circle_residues(inverse_transfer(scene), poles(scene))
+
+
+@stage("hermitian")
+def hermitian(scene: SingleUserScene) -> CRational | ThetaForm:
+    """``Re G^{-1}(e^{jwT})``: a rational function of ``c`` (integer delay) or a theta-form
+    (symbolic delay ``n``). Numeric scenes take the flint route (no SymPy expressions)."""
+    if scene.delay.is_Symbol:
+        return theta_form(scene.b - scene.z_a, environment_path(scene), scene.delay)
+    if scene.is_numeric:
+        N, D = circle_real_part(*transfer_polynomials(scene))
+        return CRational(N, D, C_SYM)
+    return hermitian_of(inverse_transfer(scene))
+
+
+@stage("worst_case")
+def worst_case(scene: SingleUserScene) -> WorstCase:
+    """Worst case over frequency of ``Re G^{-1}``: exact decision when numeric, endpoint
+    analysis when symbolic (integer delay), instances of the theta-form otherwise. Numeric
+    scenes are decided on the fast path (:mod:`hapticproof.analysis.fastpath`: no c-form expression)."""
+    if scene.is_numeric:
+        from hapticproof.analysis.fastpath import hermitian_outcome
+
+        out = hermitian_outcome(numeric_scene(scene), polynomials=transfer_polynomials(scene))
+        return WorstCase(out, sp.true if out.decision == Decision.PROVED else sp.false, out.minimiser, out.minimum)
+    form = hermitian(scene)
+    if isinstance(form, ThetaForm):
+        outcome = Outcome(
+            Decision.SYMBOLIC,
+            Evidence(Method.STRUCTURAL, facts={"reason": "symbolic delay n: fix n, or ask for the delay margin (hapticproof.analysis.design)"}),
+            "symbolic delay n: the worst case depends on n (fix the delay, or ask for the delay margin)",
+        )
+        return WorstCase(outcome, None)
+    return symbolic_minimum(form.expr())
+
+
+@stage("conditions")
+def conditions(scene: SingleUserScene) -> list[Condition]:
+    """The three conditions of Definition 2 (HVE paper) for ``G^{-1}``, each decided: poles in the
+    closed disk, unit-circle poles simple with ``Res/z0 >= 0``, and ``Re G^{-1} >= 0``.
+
+    >>> sc = SingleUserScene.virtual_wall(K=2, B=0, b="0.0012", T="0.001")
+    >>> [(c.name, c.decision.value) for c in conditions(sc)]     # doctest: +NORMALIZE_WHITESPACE
+    [('poles in |z| <= 1', 'proved'), ('unit-circle poles simple', 'proved'),
+     ('Res/z0 >= 0 at unit-circle poles', 'proved'), ('Re G^-1 >= 0 for all w', 'proved')]
+    """
+    if scene.is_numeric:
+        return _numeric_conditions(scene)
+    return _symbolic_conditions(scene)
+
+
+def _numeric_conditions(scene: SingleUserScene) -> list[Condition]:
+    P, Q = transfer_polynomials(scene)
+    return pole_conditions(P, Q) + [Condition(HERMITIAN, worst_case(scene).outcome)]
+
+
+def _symbolic_conditions(scene: SingleUserScene) -> list[Condition]:
+    pole_list = poles(scene)
+    outside = [p for p in pole_list if p.location == "outside"]
+    unknown = [p for p in pole_list if p.location == "unknown"]
+    if outside:
+        pole_out = Outcome(Decision.DISPROVED, Evidence(Method.CANONICAL_FORM, witness={"pole": outside[0].value}),
+                           f"pole z = {outside[0].value} outside the unit circle")
+    elif unknown:
+        pole_out = Outcome(Decision.UNDECIDED, Evidence(Method.CANONICAL_FORM, facts={"poles": [str(p.value) for p in unknown]}),
+                           "the location of some pole depends on the parameters")
+    else:
+        pole_out = Outcome(Decision.PROVED, Evidence(Method.CANONICAL_FORM, facts={"poles": [str(p.value) for p in pole_list]}),
+                           "every pole lies in |z| <= 1 for all parameter values")
+    multiple = [p for p in pole_list if p.location == "on" and p.multiplicity > 1]
+    if multiple:
+        simple = Outcome(Decision.DISPROVED, Evidence(Method.CANONICAL_FORM, witness={"pole": multiple[0].value}),
+                         f"the unit-circle pole z = {multiple[0].value} has multiplicity {multiple[0].multiplicity}")
+    else:
+        simple = Outcome(Decision.PROVED, Evidence(Method.CANONICAL_FORM), "every unit-circle pole is simple")
+    res = [r for r in residues(scene) if r.residue is not sp.nan]     # simple unit-circle poles
+    order = {Decision.DISPROVED: 0, Decision.UNDECIDED: 1, Decision.SYMBOLIC: 2, Decision.PROVED: 3}
+    worst = min(res, key=lambda r: order[r.outcome.decision], default=None)
+    if worst is None and multiple:
+        residue = Outcome(Decision.UNDECIDED, Evidence(Method.CANONICAL_FORM),
+                          "not examined: the unit-circle poles are not simple (no residue condition applies)")
+    elif worst is None:
+        residue = Outcome(Decision.PROVED, Evidence(Method.CANONICAL_FORM), "no poles on the unit circle")
+    elif worst.outcome.decision == Decision.PROVED:
+        residue = Outcome(Decision.PROVED, Evidence(Method.CANONICAL_FORM, facts={"residues": [r.outcome for r in res]}),
+                          "; ".join(r.outcome.reason for r in res))
+    else:
+        residue = worst.outcome
+    wc = worst_case(scene)
+    herm = wc.outcome
+    if herm.decision == Decision.SYMBOLIC and wc.condition is not None:
+        herm = Outcome(Decision.SYMBOLIC, herm.evidence, f"{sp.sstr(wc.condition)} ({herm.reason})",
+                       minimiser=herm.minimiser, minimum=herm.minimum)
+    return [Condition(POLES_IN_DISK, pole_out), Condition(POLES_SIMPLE, simple), Condition(RESIDUES, residue),
+            Condition(HERMITIAN, herm)]
+
+
+@stage("positive_real")
+def positive_real(scene: SingleUserScene) -> Outcome:
+    """All three conditions of Definition 2 for ``G^{-1}``, combined (:func:`conditions`).
+
+    >>> from hapticproof.core.symbols import z
+    >>> sc = SingleUserScene(b=1, T=1, H=1/(z - 2))             # a pole outside the circle
+    >>> out = positive_real(sc)
+    >>> out.decision.value, out.reason
+    ('disproved', 'G^-1 is not positive real: poles in |z| <= 1: 1 pole(s) outside the unit circle (z ~ 2)')
+    """
+    return combine(conditions(scene))

@@ -1,0 +1,570 @@
+"""What every claim checker shares: the state of a paper-file claim being checked (its scene,
+symbols and printed display), reading the printed members and relations, exact decisions of
+the scene's model at points, and the comparison of a printed condition with the exact one
+(:func:`compare_conditions`: equivalent, sufficient, necessary, or an exact counterexample)."""
+
+from __future__ import annotations
+
+import functools
+from collections.abc import Callable, Iterable, Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+import sympy as sp
+
+from hapticproof.exact.canonical import Sampler
+from hapticproof.audit.compare import as_bound, compare_bounds
+from hapticproof.core.errors import HapticproofError
+from hapticproof.core.evidence import Decision, Evidence, Finding, Method, Outcome, Verdict
+from hapticproof.core.symbols import c as C_SYM
+from hapticproof.core.symbols import n as N_SYM
+from hapticproof.core.symbols import z as Z_SYM
+
+__all__ = ["compare_conditions", "State", "ClaimError"]
+
+
+PROVED_VERDICTS = (Verdict.CONFIRMED, Verdict.CONSERVATIVE)
+
+
+class ClaimError(HapticproofError, ValueError):
+    """A claim that cannot be checked for this scene (e.g. a residue claim about a network)."""
+
+
+@dataclass
+class State:
+    """What a checker works on: the claim, its paper file, and the display text (a mutant's
+    text when a repair is being tried)."""
+
+    spec: Any
+    source: Any
+    printed: str
+    equation: Any = None
+    repairing: bool = False
+    #: set by a checker when its verdict rests on exact symbolic comparisons (a repair search is cheap)
+    repairable: bool = False
+    cache: dict = field(default_factory=dict)
+
+    @functools.cached_property
+    def scene(self) -> Any:
+        return self.source.scenes.get(self.spec.scene) if self.spec.scene else None
+
+    @functools.cached_property
+    def model(self) -> Any:
+        key = ("model", self.spec.scene)
+        if key not in self.cache:          # shared by the repair trials of one check
+            self.cache[key] = self.scene.build()
+        return self.cache[key]
+
+    @functools.cached_property
+    def table(self) -> Any:
+        return self.source.table_for(self.spec.scene)
+
+    @functools.cached_property
+    def statement(self) -> Any:
+        from hapticproof.audit.reader.printed import parse_printed
+
+        return parse_printed(self.printed, self.table)
+
+    @functools.cached_property
+    def names(self) -> dict[str, sp.Symbol]:
+        """The model's symbols by name (plus ``n`` for a symbolic delay)."""
+        key = ("names", self.spec.scene)
+        if key not in self.cache:
+            self.cache[key] = _model_symbols(self.scene, self.model)
+        return self.cache[key]
+
+    @functools.cached_property
+    def values(self) -> dict[str, Any]:
+        """Parameter values of the scene by name."""
+        key = ("values", self.spec.scene)
+        if key not in self.cache:
+            self.cache[key] = {sym.name: value for sym, value in self.scene._substitution().items()}
+        return self.cache[key]
+
+    def prepare(self, expr: Any) -> Any:
+        """A printed expression in the model's symbols: names unified, the scene's values
+        substituted, ``t_d = n T`` with the scene's delay, ``omega`` kept."""
+        return _prepare(expr, self)
+
+
+def _model_symbols(scene: Any, model: Any) -> dict[str, sp.Symbol]:
+    out: dict[str, sp.Symbol] = {}
+    if scene is None:
+        return out
+    params = getattr(model, "parameters", None)
+    if params is None and isinstance(model, sp.MatrixBase):
+        params = set().union(*(e.free_symbols for e in model)) - {sp.Symbol("s")}
+    for sym in params or ():
+        out[sym.name] = sym
+    for name in ("b", "K", "B", "T", "z_a"):
+        out.setdefault(name, scene.symbol(name))
+    out.setdefault("n", N_SYM)
+    return out
+
+
+def _delay_of(state: State) -> Any:
+    model = state.model
+    delay = getattr(model, "delay", None)
+    if delay is None:
+        delays = getattr(model, "delays", None)
+        if delays and len(set(delays)) == 1:
+            return sp.Integer(delays[0])
+        return None
+    return sp.sympify(delay)
+
+
+def _prepare(expr: Any, state: State) -> Any:
+    expr = sp.sympify(expr)
+    free = expr.free_symbols if isinstance(expr, sp.Basic) else set()
+    rename = {}
+    values = state.values
+    for sym in free:
+        if not isinstance(sym, sp.Symbol) or sym in (Z_SYM, sp.Symbol("s"), C_SYM):
+            continue
+        if sym.name in values:
+            rename[sym] = values[sym.name]
+        elif sym.name in state.names and state.names[sym.name] != sym:
+            rename[sym] = state.names[sym.name]
+    if rename:
+        expr = expr.xreplace(rename)
+    t_d = next((s for s in expr.free_symbols if getattr(s, "name", None) == "t_d"), None) if isinstance(expr, sp.Basic) else None
+    if t_d is not None and state.scene is not None and "t_d" not in values:
+        delay = _delay_of(state)
+        if delay is not None:
+            T = values.get("T", state.names.get("T"))
+            expr = expr.xreplace({t_d: delay * T})
+    return expr
+
+
+def frequency_symbol(state: State) -> sp.Symbol | None:
+    """The printed frequency symbol (``\\omega``), if the file declares it."""
+    return state.table.lookup(r"\omega")
+
+
+def period_of(state: State) -> Any:
+    return state.values.get("T", state.names.get("T"))
+
+
+def display_members(statement: Any) -> list[Any]:
+    """Every member of every relation chain of the display, or its expression(s)."""
+    relations = statement.relations()
+    if relations:
+        return [t for r in relations for t in r.terms]
+    return list(statement.expressions())
+
+
+def claimed_members(state: State, members: Iterable[Any]) -> list[Any]:
+    """Members that state the claimed object: expressions free of unknown functions, or such an
+    expression times one signal (``bV_h(z) + ...`` reads ``b + ...``); a bare signal, a bare
+    name that is not a parameter of the scene (a label such as ``r``) and a ratio of signals
+    (``F_h/V_h``) are not."""
+    signals = state.source.signals()
+    out = []
+    for member in members:
+        if isinstance(member, sp.MatrixBase):
+            out.append(member)
+            continue
+        member = sp.sympify(member)
+        if member.atoms(sp.core.function.AppliedUndef):
+            continue
+        present = {s for s in member.free_symbols if s in signals}
+        if not present:
+            if isinstance(member, sp.Symbol) and member.name not in state.names and member.name not in state.values:
+                continue
+            out.append(member)
+            continue
+        if len(present) != 1:
+            continue
+        (signal,) = present
+        coeff = sp.cancel(sp.together(member / signal))
+        if coeff.has(signal) or coeff == 1:
+            continue
+        out.append(coeff)
+    return out
+
+
+def _single_relation(state: State) -> Any:
+    relations = state.statement.relations()
+    if len(relations) != 1:
+        return None
+    return relations[0].as_sympy()
+
+
+def decide_model(model: Any, system: str) -> Outcome:
+    if system == "single-user":
+        from hapticproof.analysis.positivereal import positive_real
+
+        return positive_real(model)
+    if system == "multi-user":
+        from hapticproof.analysis.multiuser import positive_real
+
+        return positive_real(model)
+    if system == "teleoperator":
+        from hapticproof.analysis.teleoperator import passivity
+
+        return passivity(model)
+    raise ClaimError("passivity decisions apply to single-user, multi-user and teleoperator scenes")
+
+
+def numeric_scene_at(state: State, point: Mapping[Any, Any]) -> Any:
+    """The scene with the point's values (missing parameters 1, a symbolic delay 1)."""
+    scene = state.scene
+    values: dict[str, Any] = {}
+    delay = None
+    for key, value in point.items():
+        name = key if isinstance(key, str) else key.name
+        if name == "c":
+            continue
+        if name == "n":
+            delay = int(value)
+            continue
+        values[name] = value
+    model_free = {s.name for s in getattr(state.model, "parameters", set())} - {"n"}
+    for name in model_free - set(values):
+        values[name] = sp.Integer(1)
+    params = {k: v for k, v in values.items() if k in model_free or k in dict(scene.params)}
+    numeric = scene.with_params(params)
+    if scene.delay == "n":
+        numeric = numeric.replace(delay=delay if delay is not None else 1)
+    return numeric
+
+
+def decide_at_point(state: State, point: Mapping[Any, Any]) -> Outcome:
+    numeric = numeric_scene_at(state, point)
+    return decide_model(numeric.build(), numeric.system)
+
+
+def holds_at(condition: Any, point: Mapping[Any, Any]) -> bool | None:
+    """Exact truth of a condition (relational or And) at a point; None when undecidable."""
+    try:
+        value = sp.sympify(condition).xreplace(dict(point))
+    except (TypeError, ZeroDivisionError):
+        return None
+    return _truth(value)
+
+
+def _truth(value: Any) -> bool | None:
+    if value in (sp.true, sp.false) or isinstance(value, bool):
+        return bool(value)
+    if isinstance(value, sp.And):
+        parts = [_truth(a) for a in value.args]
+        return None if None in parts else all(parts)
+    if isinstance(value, sp.Or):
+        parts = [_truth(a) for a in value.args]
+        return None if None in parts else any(parts)
+    if isinstance(value, sp.core.relational.Relational):
+        diff = value.lhs - value.rhs
+        if isinstance(diff, sp.Basic) and diff.free_symbols:
+            return None
+        if diff.has(sp.zoo, sp.nan, sp.oo, -sp.oo):
+            return None
+        diff = sp.nsimplify(diff) if diff.is_Float else diff
+        if not diff.is_Rational:
+            approx = sp.N(diff, 50)
+            if not approx.is_real or abs(approx) < sp.Float("1e-40"):
+                return None
+            diff = sp.Rational(approx)
+        return bool(value.func(diff, 0))
+    return None
+
+
+def conjuncts(condition: Any) -> list[Any]:
+    if isinstance(condition, sp.And):
+        return [r for a in condition.args for r in conjuncts(a)]
+    return [condition]
+
+
+@functools.lru_cache(maxsize=512)
+def _bound(condition: Any, var: sp.Symbol) -> Any:
+    """:func:`~hapticproof.audit.compare.as_bound`, remembered (the exact side repeats across repairs);
+    ``None`` when the condition is not a bound on ``var``."""
+    try:
+        return as_bound(condition, var)
+    except (TypeError, ValueError, sp.PolynomialError):
+        return None
+
+
+@functools.lru_cache(maxsize=256)
+def _drop_trivial(condition: Any) -> Any:
+    """An And without the parts that hold for every admissible value (e.g. ``K T >= 0``)."""
+    parts = []
+    for rel in conjuncts(condition):
+        if isinstance(rel, sp.core.relational.Relational) and rel.rel_op in (">=", ">", "<=", "<"):
+            diff = (rel.lhs - rel.rhs) if rel.rel_op in (">=", ">") else (rel.rhs - rel.lhs)
+            diff = sp.factor(sp.cancel(diff))
+            if (rel.rel_op in (">=", "<=") and diff.is_nonnegative) or diff.is_positive:
+                continue
+        if rel is sp.true:
+            continue
+        parts.append(rel)
+    if not parts:
+        return sp.true
+    return parts[0] if len(parts) == 1 else sp.And(*parts)
+
+
+def preferred_variables(state: State) -> list[str]:
+    order = []
+    if state.spec.solve_for:
+        order.append(state.spec.solve_for)
+    system = state.scene.system if state.scene is not None else ""
+    order += {"single-user": ["b"], "multi-user": ["b", "b_1"], "teleoperator": ["b", "b_m", "b_s"]}.get(system, ["b"])
+    return order
+
+
+def _variable(printed: Any, exact: Any, state: State) -> sp.Symbol | None:
+    """A parameter that both conditions bound from below (affine, positive coefficient)."""
+    if isinstance(printed, sp.And) or isinstance(exact, sp.And):
+        return None
+    if not isinstance(printed, sp.core.relational.Relational) or not isinstance(exact, sp.core.relational.Relational):
+        return None
+    free = sorted((printed.free_symbols | exact.free_symbols) - {C_SYM}, key=str)
+    by_name = {s.name: s for s in free}
+    candidates = [by_name[n] for n in preferred_variables(state) if n in by_name] + [s for s in free if s.name not in preferred_variables(state)]
+    for var in candidates:
+        e = _bound(exact, var)
+        if e is None or not getattr(e, "lower", True):
+            continue
+        p = _bound(printed, var)
+        if p is not None and getattr(p, "lower", True):
+            return var
+    return None
+
+
+def separating_points(printed: Any, exact: Any, tries: int = 300) -> tuple[dict | None, dict | None, int]:
+    """Exact points where the printed condition holds and the exact one fails, and conversely."""
+    free = sorted((sp.sympify(printed).free_symbols | sp.sympify(exact).free_symbols), key=str)
+    weaker = stronger = None
+    count = 0
+    for point in Sampler(free, seed=3).draw(tries):
+        hp, he = holds_at(printed, point), holds_at(exact, point)
+        if hp is None or he is None:
+            continue
+        count += 1
+        if hp and not he and weaker is None:
+            weaker = point
+        if he and not hp and stronger is None:
+            stronger = point
+        if weaker is not None and stronger is not None:
+            break
+    return weaker, stronger, count
+
+
+def ratio_equivalent(printed: Any, exact: Any) -> bool:
+    """``P op 0`` and ``E op 0`` with ``P = r E``, ``r`` provably positive (same relation up to strictness)."""
+    if not (isinstance(printed, sp.core.relational.Relational) and isinstance(exact, sp.core.relational.Relational)):
+        return False
+    ops = {">": 1, ">=": 1, "<": -1, "<=": -1}
+    if printed.rel_op not in ops or exact.rel_op not in ops:
+        return False
+    fp = (printed.lhs - printed.rhs) * ops[printed.rel_op]
+    fe = (exact.lhs - exact.rhs) * ops[exact.rel_op]
+    if fe == 0:
+        return False
+    ratio = sp.factor(sp.cancel(sp.together(fp / fe)))
+    return bool(ratio.is_positive)
+
+
+def witness_json(point: Mapping[Any, Any]) -> dict[str, Any]:
+    return {(k if isinstance(k, str) else k.name): v for k, v in point.items()}
+
+
+def compare_conditions(printed: Any, exact: Any, state: State, *, claim: str, what: str,
+                       verify: Callable[[dict], Outcome] | None = None, derived: Any = None) -> Finding:
+    """Compare a printed condition with the exact necessary-and-sufficient one, as the claim
+    says (``passivity`` / ``sufficient`` / ``necessary``): bounds when both bound one parameter
+    (:func:`~hapticproof.audit.compare.compare_bounds`), else a proof of equivalence up to a
+    positive factor or exact sampling (witnesses re-checked by ``verify``).
+
+    >>> from hapticproof.audit.paperfile import loads, TEMPLATE
+    >>> paper = loads(TEMPLATE)
+    >>> spec = paper.claim("3")
+    >>> state = State(spec, paper, spec.printed)
+    >>> b, K, T, B = (state.names[name] for name in ("b", "K", "T", "B"))
+    >>> exact = sp.Ge(b, K*T/2 + B)
+    >>> [compare_conditions(printed, exact, state, claim=claim, what="b > KT").verdict.value
+    ...  for printed, claim in ((sp.Gt(b, K*T + B), "passivity"), (sp.Gt(b, K*T + B), "necessary"))]
+    ['conservative', 'wrong']
+    """
+    derived = exact if derived is None else derived
+    exact = _drop_trivial(exact)
+    if exact in (sp.true, sp.false):
+        return _constant_exact(printed, exact, state, claim, what, derived)
+    var = _variable(printed, exact, state)
+    if state.repairing:
+        quick = _quick_reject(printed, exact, var, claim)
+        if quick is not None:
+            return quick
+    if var is not None:
+        state.repairable = True
+        try:
+            if claim == "necessary":
+                f = compare_bounds(exact, printed, var, what=what)
+                return _necessary_from_bounds(f, state, verify, what, derived)
+            return compare_bounds(printed, exact, var, verify=verify, what=what)
+        except AssertionError as err:          # a witness the exact decision did not confirm
+            return Finding(Verdict.UNDECIDED, f"{what}: {err}", Evidence(Method.COUNTEREXAMPLE), derived=derived)
+        except (TypeError, ValueError):
+            pass
+    if ratio_equivalent(printed, exact):
+        state.repairable = True
+        return Finding(Verdict.CONFIRMED, f"{what} is the exact condition {sp.sstr(exact)} multiplied by a positive factor",
+                       Evidence(Method.CANONICAL_FORM, facts={"exact": exact}), derived=derived)
+    weaker, stronger, count = separating_points(printed, exact, tries=60 if state.repairing else 300)
+    state.repairable = True
+    if weaker is not None and claim != "necessary":
+        return _witness_finding(weaker, state, verify, what, derived, Decision.DISPROVED,
+                                "it holds at the witness where the exact condition fails")
+    if stronger is not None and claim == "necessary":
+        return _witness_finding(stronger, state, None, what, derived, Decision.PROVED,
+                                "it fails at the witness where the exact condition holds (not necessary)")
+    note = ""
+    if stronger is not None:
+        note = "; it is not necessary (it fails at a point where the exact condition holds)"
+    return Finding(Verdict.UNDECIDED,
+                   f"{what} is not a positive multiple or a bound comparable with the exact condition {sp.sstr(exact)}, "
+                   f"and no counterexample was found in {count} exact samples{note}",
+                   Evidence(Method.INSTANCES, instances=count,
+                            witness=witness_json(stronger) if stronger is not None else None, facts={"exact": exact}),
+                   derived=derived)
+
+
+def numerically_different(a: Any, b: Any, tries: int = 2) -> bool:
+    """``a != b`` seen at exact random points (never used to prove equality, only to skip)."""
+    free = sorted((sp.sympify(a).free_symbols | sp.sympify(b).free_symbols), key=str)
+    ranges = {s: (sp.Rational(1, 3), sp.Integer(3)) for s in free if not s.is_integer}
+    ranges.update({s: (2, 3) for s in free if s.is_integer})
+    if C_SYM in ranges:
+        ranges[C_SYM] = (sp.Rational(-9, 10), sp.Rational(9, 10))
+    for point in Sampler(free, seed=13, ranges=ranges).draw(tries + 1)[1:]:
+        try:
+            value = sp.N((sp.sympify(a) - sp.sympify(b)).xreplace(point), 30)
+        except (TypeError, ValueError, ZeroDivisionError):
+            continue
+        if value.is_number and value.is_finite and abs(value) > sp.Float("1e-15"):
+            return True
+    return False
+
+
+def positive_ratio_at_points(printed: Any, exact: Any) -> bool:
+    """Whether ``P/E`` (as ``... > 0`` forms) is positive at two exact points (a cheap look
+    before the symbolic ratio test)."""
+    ops = {">": 1, ">=": 1, "<": -1, "<=": -1}
+    rels = (printed, exact)
+    if not all(isinstance(r, sp.core.relational.Relational) and r.rel_op in ops for r in rels):
+        return False
+    fp, fe = ((r.lhs - r.rhs) * ops[r.rel_op] for r in rels)
+    free = sorted(fp.free_symbols | fe.free_symbols, key=str)
+    for point in Sampler(free, seed=17).draw(3)[1:]:
+        try:
+            ratio = sp.N((fp / fe).xreplace(point), 20)
+        except (TypeError, ZeroDivisionError):
+            return False
+        if not ratio.is_number or not ratio.is_finite or not ratio > 0:
+            return False
+    return True
+
+
+def _quick_reject(printed: Any, exact: Any, var: sp.Symbol | None, claim: str) -> Finding | None:
+    """While searching repairs, a mutant is kept only when it may be confirmed (or, for a
+    sufficient condition, conservative): skip the others without a full comparison."""
+    reject = Finding(Verdict.WRONG, "not equivalent to the exact condition", Evidence(Method.INSTANCES))
+    if var is None:
+        if not positive_ratio_at_points(printed, exact):
+            return reject
+        return None if ratio_equivalent(printed, exact) else reject
+    p, e = _bound(printed, var), _bound(exact, var)
+    if p is None or e is None or getattr(p, "lower", True) != getattr(e, "lower", True):
+        return reject
+    if claim == "sufficient":
+        return None
+    if numerically_different(p.bound, e.bound):
+        return reject
+    return None
+
+
+def _constant_exact(printed: Any, exact: Any, state: State, claim: str, what: str, derived: Any) -> Finding:
+    """The exact condition holds for every admissible value (``True``) or for none (``False``)."""
+    state.repairable = True
+    always = _drop_trivial(printed) is sp.true
+    free = sorted(sp.sympify(printed).free_symbols, key=str)
+    points = Sampler(free, seed=3).draw(200 if not state.repairing else 40)
+    fails = next((p for p in points if holds_at(printed, p) is False), None)
+    holds = next((p for p in points if holds_at(printed, p) is True), None)
+    if exact is sp.true:
+        if always:
+            return Finding(Verdict.CONFIRMED, f"{what} and the exact condition both hold for every admissible value of the "
+                           "parameters", Evidence(Method.CANONICAL_FORM, facts={"exact": derived}), derived=derived)
+        if claim == "necessary":
+            if fails is None:
+                return Finding(Verdict.UNDECIDED, f"{what}: the exact condition always holds; no point where the display "
+                               "fails was found", Evidence(Method.INSTANCES, instances=len(points)), derived=derived)
+            return _witness_finding(fails, state, None, what, derived, Decision.PROVED,
+                                    "it fails at the witness, while the exact condition holds for every value (not necessary)")
+        return Finding(Verdict.CONSERVATIVE, f"{what} implies the exact condition, which holds for every admissible value; "
+                       "it is not necessary" + (" (it fails at the witness)" if fails is not None else ""),
+                       Evidence(Method.CANONICAL_FORM, witness=witness_json(fails) if fails is not None else None,
+                                facts={"exact": derived}), derived=derived)
+    if claim == "necessary":
+        return Finding(Verdict.CONFIRMED, f"{what}: the exact condition holds for no admissible value, so any condition is "
+                       "necessary", Evidence(Method.CANONICAL_FORM, facts={"exact": derived}), derived=derived)
+    if holds is not None:
+        return _witness_finding(holds, state, None, what, derived, Decision.DISPROVED,
+                                "it holds at the witness, while the scene is never positive real")
+    return Finding(Verdict.UNDECIDED, f"{what}: the scene is never positive real and the display held at none of "
+                   f"{len(points)} exact samples", Evidence(Method.INSTANCES, instances=len(points)), derived=derived)
+
+
+def _witness_finding(point: dict, state: State, verify: Callable | None, what: str, derived: Any,
+                     expected: Decision, how: str) -> Finding:
+    facts: dict[str, Any] = {}
+    check = verify(point) if verify is not None else None
+    if check is not None:
+        facts["recheck"] = check.to_json()
+        if check.decision != expected:
+            return Finding(Verdict.UNDECIDED, f"{what}: the witness {witness_json(point)} was not confirmed by the exact "
+                           f"decision ({check.reason})", Evidence(Method.COUNTEREXAMPLE, witness=witness_json(point),
+                                                                  facts=facts), derived=derived)
+    return Finding(Verdict.WRONG, f"{what}: {how}", Evidence(Method.COUNTEREXAMPLE, witness=witness_json(point), facts=facts),
+                   derived=derived)
+
+
+def _necessary_from_bounds(f: Finding, state: State, verify: Callable | None, what: str, derived: Any) -> Finding:
+    """``compare_bounds(exact, printed)``: exact weaker somewhere = printed not necessary."""
+    if f.verdict == Verdict.CONFIRMED:
+        return Finding(Verdict.CONFIRMED, f"{what} is necessary, and also sufficient: {f.detail}", f.evidence, derived=derived)
+    if f.verdict == Verdict.CONSERVATIVE:
+        return Finding(Verdict.CONFIRMED, f"{what} is necessary (the exact condition implies it) but not sufficient",
+                       f.evidence, derived=derived)
+    if f.verdict == Verdict.WRONG and f.evidence.witness:
+        point = {sp.Symbol(k): v for k, v in f.evidence.witness.items()}
+        check = None
+        try:
+            check = decide_at_point(state, f.evidence.witness)
+        except HapticproofError:
+            pass
+        facts = dict(f.evidence.facts)
+        if check is not None:
+            facts["recheck"] = check.to_json()
+            if check.decision != Decision.PROVED:
+                return Finding(Verdict.UNDECIDED, f"{what}: the witness was not confirmed by the exact decision ({check.reason})",
+                               Evidence(Method.COUNTEREXAMPLE, witness=f.evidence.witness, facts=facts), derived=derived)
+        del point
+        return Finding(Verdict.WRONG, f"{what} is not necessary: the scene is positive real at the witness where it fails",
+                       Evidence(Method.COUNTEREXAMPLE, witness=f.evidence.witness, facts=facts), derived=derived)
+    return Finding(f.verdict, f.detail, f.evidence, derived=derived)
+
+
+def malformed_finding(what: str, corrected: str | None = None, derived: Any = None) -> Finding:
+    return Finding(Verdict.MALFORMED, what, Evidence(Method.PARSE), derived=derived, corrected=corrected)
+
+
+def scene_system(state: State, allowed: tuple[str, ...], claim: str) -> str:
+    system = state.scene.system
+    if system not in allowed:
+        raise ClaimError(f"a {claim} claim applies to {' and '.join(allowed)} scenes, not {system}")
+    return system
+
+
+# ---------------------------------------------------------------------------------------------
+# expressions: G^-1, residues, Hermitian parts
+# ---------------------------------------------------------------------------------------------

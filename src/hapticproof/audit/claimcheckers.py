@@ -1,0 +1,431 @@
+r"""The checkers of expression claims in paper files: ``inverse-transfer``, ``residue`` and
+``hermitian-part`` (see :mod:`hapticproof.audit.claims` for what each decides; the condition claims
+are in :mod:`hapticproof.audit.claimconditions`).
+
+Each function takes the :class:`~hapticproof.audit.claims.State` of one check and returns a
+:class:`~hapticproof.core.evidence.Finding`; :func:`hapticproof.audit.claims.check` adds the stated
+assumption and the repair search around it.
+
+>>> from hapticproof.audit.paperfile import loads, TEMPLATE
+>>> from hapticproof.audit.claimbase import State
+>>> paper = loads(TEMPLATE)
+>>> spec = paper.claim("2")                       # b > KT/2 - B cos(omega T)
+>>> hermitian_part(State(spec, paper, spec.printed)).verdict.value
+'confirmed'
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+import sympy as sp
+
+from hapticproof.audit.compare import as_bound, compare_expressions
+from hapticproof.exact.canonical import is_identically_zero
+from hapticproof.audit.claimbase import State, claimed_members, frequency_symbol, display_members, period_of, preferred_variables, conjuncts, compare_conditions
+from hapticproof.core.evidence import Decision, Evidence, Finding, Method, Outcome, Verdict
+from hapticproof.core.symbols import c as C_SYM
+from hapticproof.core.symbols import n as N_SYM
+from hapticproof.audit.claimbase import malformed_finding, scene_system
+
+__all__ = ["inverse_transfer", "hermitian_part", "residue"]
+
+
+def _compare_one(printed: Any, derived: Any, what: str, quick: bool = False) -> Finding:
+    """Expression or matrix against the derived one (``wrong`` with a witness when they differ);
+    ``quick`` (a repair trial): no witness search, a numeric look first."""
+    if quick:
+        from hapticproof.audit.claimbase import numerically_different
+
+        pairs = (list(zip(printed, derived)) if isinstance(printed, sp.MatrixBase) and isinstance(derived, sp.MatrixBase)
+                 and printed.shape == derived.shape else [(printed, derived)])
+        if any(isinstance(a, sp.MatrixBase) or isinstance(b, sp.MatrixBase) for a, b in pairs):
+            return Finding(Verdict.WRONG, f"{what} differs", Evidence(Method.CANONICAL_FORM))
+        if any(numerically_different(a, b) for a, b in pairs) or not all(is_identically_zero(a - b) for a, b in pairs):
+            return Finding(Verdict.WRONG, f"{what} differs", Evidence(Method.CANONICAL_FORM))
+    if isinstance(derived, sp.MatrixBase) or isinstance(printed, sp.MatrixBase):
+        if not (isinstance(derived, sp.MatrixBase) and isinstance(printed, sp.MatrixBase)) or printed.shape != derived.shape:
+            shape = getattr(printed, "shape", "a scalar")
+            return Finding(Verdict.WRONG, f"{what} has the shape {shape}, the derived one {getattr(derived, 'shape', 'a scalar')}",
+                           Evidence(Method.CANONICAL_FORM), derived=derived)
+        for i in range(derived.rows):
+            for j in range(derived.cols):
+                f = compare_expressions(printed[i, j], derived[i, j], on_mismatch=Verdict.WRONG,
+                                        what=f"entry ({i + 1}, {j + 1}) of {what}")
+                if f.verdict != Verdict.CONFIRMED:
+                    return Finding(f.verdict, f.detail, f.evidence, derived=derived)
+        return Finding(Verdict.CONFIRMED, f"{what} equals the derived matrix entry by entry (differences cancel to 0)",
+                       Evidence(Method.CANONICAL_FORM), derived=derived)
+    return compare_expressions(printed, derived, on_mismatch=Verdict.WRONG, what=what)
+
+
+def _compare_members(state: State, members: list[Any], derived: Any, what: str) -> Finding:
+    state.repairable = True
+    findings = [_compare_one(state.prepare(m), derived, f"the printed {what}", quick=state.repairing) for m in members]
+    bad = [f for f in findings if f.verdict != Verdict.CONFIRMED]
+    if bad:
+        return bad[0]
+    first = findings[0]
+    count = f" ({len(findings)} members of the display)" if len(findings) > 1 else ""
+    return Finding(Verdict.CONFIRMED, first.detail + count, first.evidence, derived=derived)
+
+
+def inverse_transfer(state: State) -> Finding:
+    """The display is ``G^{-1}(z)`` of the scene (or ``F_h/V_h``)."""
+    system = scene_system(state, ("single-user", "multi-user"), "inverse-transfer")
+    if system == "single-user":
+        from hapticproof.systems.models import inverse_transfer as derive
+
+        derived = derive(state.model)
+    else:
+        from hapticproof.systems.multiuser import inverse_transfer_matrix
+
+        derived = inverse_transfer_matrix(state.model)
+    members = claimed_members(state, display_members(state.statement))
+    if not members:
+        return malformed_finding("no member of the display states G^-1(z): every member is a signal, a name or an unknown function",
+                          derived=derived)
+    return _compare_members(state, members, derived, "G^-1(z)")
+
+
+def residue(state: State) -> Finding:
+    """The display is the residue (matrix) of ``G^{-1}`` at ``z = 1``."""
+    system = scene_system(state, ("single-user", "multi-user"), "residue")
+    if system == "single-user":
+        from hapticproof.analysis.positivereal import residues
+
+        found = [r.residue for r in residues(state.model) if r.pole == 1]
+    else:
+        from hapticproof.analysis.multiuser import residues
+
+        found = [r.matrix for r in residues(state.model) if r.pole == 1]
+    derived = found[0] if found else sp.Integer(0)
+    members = claimed_members(state, display_members(state.statement))
+    if not members:
+        return malformed_finding("no member of the display states the residue", derived=derived)
+    return _compare_members(state, members, derived, "residue at z = 1")
+
+
+def _to_c(expr: Any, state: State) -> sp.Expr:
+    """A printed expression in ``cos(k omega T)``, ``e^{j omega T}``, ``\\Re``... as a function of ``c``."""
+    from hapticproof.exact.unitcircle import omega_to_c
+
+    expr = _real_form(expr)
+    omega = frequency_symbol(state)
+    if omega is None or omega not in expr.free_symbols:
+        return expr
+    try:
+        return sp.cancel(omega_to_c(expr, omega, period_of(state)))
+    except ValueError:      # not a function of cos(omega T) alone (e.g. cos(omega t_d - T)): keep omega
+        return expr
+
+
+def _with_omega(exact: Any, printed: Any, state: State) -> Any:
+    """The exact condition in ``omega`` when the printed one could not be written in ``c``."""
+    omega = frequency_symbol(state)
+    if omega is not None and omega in sp.sympify(printed).free_symbols:
+        return exact.xreplace({C_SYM: sp.cos(omega * period_of(state))})
+    return exact
+
+
+def _real_form(expr: Any) -> sp.Expr:
+    expr = sp.sympify(expr)
+    if expr.has(sp.exp, sp.re, sp.im, sp.I):
+        expr = sp.expand_complex(expr.rewrite(sp.cos))
+    return expr
+
+
+def _theta(expr: Any, state: State) -> sp.Expr:
+    """A printed expression with a symbolic delay in the canonical theta-form (every integer n)."""
+    from hapticproof.exact.unitcircle import canonical_theta
+
+    omega = frequency_symbol(state)
+    dummy = sp.Dummy("t_d")
+    return canonical_theta(_real_form(expr), omega if omega is not None else sp.Dummy("omega"), period_of(state), dummy, N_SYM)
+
+
+def _at_delay(state: State, n: int) -> Any:
+    from dataclasses import replace
+
+    return replace(state.model, delay=sp.Integer(n))
+
+
+def _at_delay_n(f: Finding, n: int, note: str) -> Finding:
+    """A finding at the delay instance ``n``: the same verdict, ``n`` added to its witness."""
+    witness = dict(f.evidence.witness or {})
+    witness["n"] = n
+    return Finding(f.verdict, f.detail + note, Evidence(f.evidence.method, witness=witness, facts=dict(f.evidence.facts)),
+                   derived=f.derived)
+
+
+def hermitian_part(state: State) -> Finding:
+    """The display is ``Re G^{-1}(e^{j omega T})`` (or the condition ``Re G^{-1} >= 0`` at each frequency)."""
+    system = scene_system(state, ("single-user", "multi-user", "teleoperator"), "hermitian-part")
+    statement = state.statement
+    relations = statement.relations()
+    is_condition = bool(relations) and any(op != "=" for r in relations for op in r.ops)
+    if system == "multi-user":
+        return _hermitian_matrix(state)
+    if system == "teleoperator":
+        return _teleoperator_bounds(state, is_condition)
+    from hapticproof.analysis.positivereal import hermitian
+
+    form = hermitian(state.model)
+    symbolic_delay = state.model.delay.is_Symbol
+    if state.spec.form == "condition" and not is_condition:
+        members = claimed_members(state, display_members(statement))
+        same = False
+        if len(members) == 1 and not symbolic_delay:
+            same = is_identically_zero(_to_c(state.prepare(members[0]), state) - form.expr())
+        what = "equals Re G^-1 exactly" if same else "is not Re G^-1"
+        return malformed_finding(f"the display is an expression, not a condition: '> 0' is missing (the expression {what})",
+                          corrected=(state.printed.rstrip() + " > 0") if same else None,
+                          derived=sp.Ge(form.expr(), 0) if not symbolic_delay else None)
+    if state.spec.form == "expression" and is_condition:
+        return malformed_finding("the display is a condition, but the claim says it is the expression Re G^-1")
+    if is_condition:
+        return _hermitian_condition(state, form, symbolic_delay)
+    members = claimed_members(state, display_members(statement))
+    if not members:
+        return malformed_finding("no member of the display states Re G^-1")
+    state.repairable = True
+    if not symbolic_delay:
+        derived = form.expr()
+        findings = [_compare_one(_to_c(state.prepare(m), state), derived, "the printed Re G^-1 (in c = cos(omega T))",
+                                 quick=state.repairing) for m in members]
+        bad = [f for f in findings if f.verdict != Verdict.CONFIRMED]
+        return bad[0] if bad else findings[0]
+    derived = form.canonical()
+    for m in members:
+        printed = _theta(state.prepare(m), state)
+        if not is_identically_zero(printed - derived):
+            if state.repairing:
+                return Finding(Verdict.WRONG, "the canonical theta-forms differ", Evidence(Method.CANONICAL_FORM))
+            return _delay_instances_expression(state, m)
+    return Finding(Verdict.CONFIRMED, "the printed Re G^-1 equals the derived one for every integer delay n (canonical "
+                   "theta-form: cos(n theta), sin(n theta) independent of c)", Evidence(Method.CANONICAL_FORM),
+                   derived=form.expr(sp.Symbol("theta")))
+
+
+def _delay_instances_expression(state: State, member: Any) -> Finding:
+    from hapticproof.analysis.positivereal import hermitian
+
+    for n in (1, 2, 3):
+        printed = _to_c(state.prepare(member).xreplace({N_SYM: n}), state)
+        derived = hermitian(_at_delay(state, n)).expr()
+        f = compare_expressions(printed, derived, on_mismatch=Verdict.WRONG, what=f"the printed Re G^-1 at n = {n}")
+        if f.verdict != Verdict.CONFIRMED:
+            return _at_delay_n(f, n, " (its canonical theta-form differs from the derived one)")
+    return Finding(Verdict.UNDECIDED, "the canonical theta-forms differ but the expressions agree at n = 1, 2, 3",
+                   Evidence(Method.INSTANCES, instances=3))
+
+
+def _in_c(relation: Any, state: State) -> Any:
+    return relation.func(_to_c(relation.lhs, state), _to_c(relation.rhs, state), evaluate=False)
+
+
+def _verify_pointwise(state: State):
+    """Re-check a (parameters, c) witness: the numeric scene's Re G^-1 at that c, exactly."""
+    from hapticproof.analysis.positivereal import hermitian
+
+    def verify(point: dict) -> Outcome:
+        by_name = {getattr(k, "name", k): v for k, v in point.items()}
+        if "c" in by_name:
+            c_value = by_name["c"]
+        else:
+            T = by_name.get("T", period_of(state))
+            c_value = sp.cos(by_name["omega"] * T)
+        numeric = _numeric_model(state, point)
+        form = hermitian(numeric)
+        value = form(c_value) if sp.sympify(c_value).is_Rational else sp.N(form.expr().subs(C_SYM, c_value), 50)
+        decision = Decision.DISPROVED if bool(sp.N(value, 50) < 0) else Decision.PROVED
+        return Outcome(decision, Evidence(Method.CANONICAL_FORM, witness={"c": c_value}, facts={"Re G^-1": value}),
+                       f"Re G^-1 = {value} at c = {c_value}")
+
+    return verify
+
+
+def _numeric_model(state: State, point: Mapping[Any, Any]) -> Any:
+    from hapticproof.audit.claimbase import numeric_scene_at
+
+    return numeric_scene_at(state, point).build()
+
+
+def _hermitian_condition(state: State, form: Any, symbolic_delay: bool) -> Finding:
+    relation = _single(state)
+    if relation is None:
+        return malformed_finding("a Hermitian-part condition is one inequality; the display has none or several")
+    printed = state.prepare(relation)
+    what = "the printed frequency-wise condition"
+    if not symbolic_delay:
+        exact = sp.Ge(form.expr(), 0, evaluate=False)
+        in_c = _in_c(printed, state)
+        return compare_conditions(in_c, _with_omega(exact, in_c, state), state, claim="passivity", what=what,
+                                  verify=_verify_pointwise(state), derived=exact)
+    if state.repairing and _differs_at_instances(printed, form, state):
+        return Finding(Verdict.WRONG, f"{what} differs from Re G^-1 >= 0", Evidence(Method.INSTANCES))
+    canonical = printed.func(_theta(printed.lhs, state), _theta(printed.rhs, state), evaluate=False)
+    exact = sp.Ge(form.canonical(), 0, evaluate=False)
+    var = next((v for v in (state.names.get(n) for n in preferred_variables(state)) if v is not None and v in canonical.free_symbols), None)
+    if var is not None:
+        try:
+            p, e = as_bound(canonical, var), as_bound(exact, var)
+            if getattr(p, "lower", True) and is_identically_zero(sp.expand(p.bound - e.bound)):
+                state.repairable = True
+                return Finding(Verdict.CONFIRMED, f"{what} is equivalent to Re G^-1 >= 0 at every frequency, for every "
+                               f"integer delay n (bounds on {var} equal in the canonical theta-form)",
+                               Evidence(Method.CANONICAL_FORM, facts={"printed_bound": p.bound, "exact_bound": e.bound}),
+                               derived=sp.Ge(form.expr(sp.Symbol("theta")), 0))
+        except (TypeError, ValueError, sp.PolynomialError):
+            pass
+    from hapticproof.analysis.positivereal import hermitian
+
+    if state.repairing:     # a repair must be exact for every n: the canonical forms decide
+        return Finding(Verdict.WRONG, f"{what} differs from Re G^-1 >= 0 in the canonical theta-form",
+                       Evidence(Method.CANONICAL_FORM))
+    last = None
+    for n in (1, 2, 3):
+        at_n = printed.xreplace({N_SYM: n})
+        exact_n = sp.Ge(hermitian(_at_delay(state, n)).expr(), 0, evaluate=False)
+        in_c = _in_c(at_n, state)
+        f = compare_conditions(in_c, _with_omega(exact_n, in_c, state), state, claim="passivity",
+                               what=f"{what} at n = {n}", verify=_verify_at_delay(state, n), derived=exact_n)
+        last = f
+        if f.verdict != Verdict.CONFIRMED:
+            return _at_delay_n(f, n, " (the display is not Re G^-1 >= 0 for every n)")
+    return Finding(Verdict.UNDECIDED, "the canonical theta-forms differ, but the conditions agree at n = 1, 2, 3",
+                   Evidence(Method.INSTANCES, instances=3), derived=last.derived if last else None)
+
+
+def _differs_at_instances(printed: Any, form: Any, state: State) -> bool:
+    """A quick numeric look (used only to skip repairs, never to confirm): the printed and the
+    exact bounds on the damping differ at random points (n = 2, 3)."""
+    var = state.names.get(preferred_variables(state)[0])
+    omega = frequency_symbol(state)
+    if var is None or omega is None or not isinstance(printed, sp.core.relational.Relational):
+        return False
+    sign = 1 if printed.rel_op in (">", ">=") else -1
+    f = sp.sympify(printed.lhs - printed.rhs) * sign
+    g = sp.sympify(form.expr(omega * period_of(state)))
+    free = sorted((f.free_symbols | g.free_symbols) - {var}, key=str)
+    for k, value in enumerate((sp.Rational(7, 10), sp.Rational(13, 10))):
+        point = {s: (sp.Integer(2 + k) if s.is_integer else value + sp.Rational(j, 7)) for j, s in enumerate(free)}
+        roots = []
+        for h in (f, g):
+            try:
+                h0 = sp.N(h.xreplace({**point, var: 0}), 30)
+                h1 = sp.N(h.xreplace({**point, var: 1}), 30) - h0
+            except (TypeError, ValueError, ZeroDivisionError):
+                return False
+            if not (h0.is_number and h1.is_number) or abs(h1) < sp.Float("1e-20"):
+                return h is f and h0.is_number
+            if h1 < 0:
+                return True       # an upper bound on the damping: not Re G^-1 >= 0
+            roots.append(-h0 / h1)
+        if abs(roots[0] - roots[1]) > sp.Float("1e-12") * (1 + abs(roots[1])):
+            return True
+    return False
+
+
+def _verify_at_delay(state: State, n: int):
+    base = _verify_pointwise(state)
+
+    def verify(point: dict) -> Outcome:
+        return base({**point, "n": n})
+
+    return verify
+
+
+def _hermitian_matrix(state: State) -> Finding:
+    """m users: the printed matrix against ``M = G + G^H`` (or ``M/2``), or a scalar against their principal minors."""
+    from itertools import combinations
+
+    from hapticproof.analysis.multiuser import hermitian
+
+    M = hermitian(state.model).matrix()
+    relation = _single(state)
+    if relation is not None and relation.rel_op not in ("==", "!="):
+        return _minor_condition(state, relation, M)
+    members = claimed_members(state, display_members(state.statement))
+    if not members:
+        return malformed_finding("no member of the display states the Hermitian part")
+    state.repairable = True
+    printed = state.prepare(members[-1])
+    if isinstance(printed, sp.MatrixBase):
+        printed = printed.applyfunc(lambda e: _to_c(e, state))
+        for scale, name in ((1, "G + G^H"), (sp.Rational(1, 2), "(G + G^H)/2")):
+            f = _compare_one(printed, (M * scale).applyfunc(sp.expand), f"the printed matrix ({name})")
+            if f.verdict == Verdict.CONFIRMED:
+                return f
+        return _compare_one(printed, (M / 2).applyfunc(sp.expand), "the printed Hermitian part (G + G^H)/2")
+    value = _to_c(printed, state)
+    m = M.rows
+    for size in range(1, m + 1):
+        for rows in combinations(range(m), size):
+            minor = M.extract(list(rows), list(rows)).det()
+            for scale in (1, sp.Rational(1, 2) ** size):
+                if is_identically_zero(value - minor * scale):
+                    label = "(" + ", ".join(str(r + 1) for r in rows) + ")"
+                    return Finding(Verdict.CONFIRMED, f"the printed expression is the principal minor {label} of "
+                                   f"{'G + G^H' if scale == 1 else '(G + G^H)/2'}", Evidence(Method.CANONICAL_FORM),
+                                   derived=minor * scale)
+    first = M[:1, :1].det() / 2
+    return compare_expressions(value, first, on_mismatch=Verdict.WRONG,
+                               what="the printed expression (no principal minor of the Hermitian part matches; vs the first)")
+
+
+def _teleoperator_bounds(state: State, is_condition: bool) -> Finding:
+    """Teleoperator: the frequency-wise passivity condition, each robot's damping at least its
+    bound at every frequency (the teleoperator paper's eq. 32, exact in ``c``)."""
+    from hapticproof.analysis.teleoperator import bounds
+
+    relation = _single(state)
+    if not is_condition or relation is None:
+        return malformed_finding("for a teleoperator the frequency-wise claim is a condition on the dampings "
+                          "(b_m >= bound(c), b_s >= bound(c)); the display is none")
+    model = state.model
+    bd = bounds(model)
+    exact = sp.And(sp.Ge(model.b_m, bd.master, evaluate=False), sp.Ge(model.b_s, bd.slave, evaluate=False))
+    printed = _in_c(state.prepare(relation), state)
+    return compare_conditions(printed, exact, state, claim="passivity", what="the printed frequency-wise condition")
+
+
+def _principal_minors(M: sp.Matrix) -> list[tuple[str, sp.Expr]]:
+    from itertools import combinations
+
+    out = []
+    for size in range(1, M.rows + 1):
+        for rows in combinations(range(M.rows), size):
+            out.append(("(" + ", ".join(str(r + 1) for r in rows) + ")", sp.expand(M.extract(list(rows), list(rows)).det())))
+    return out
+
+
+def _minor_condition(state: State, relation: Any, M: sp.Matrix) -> Finding:
+    """m users, a condition display: a principal minor of ``G + G^H`` (times a positive
+    factor) is non-negative at each frequency."""
+    from hapticproof.audit.claimbase import positive_ratio_at_points, ratio_equivalent
+
+    printed = _in_c(state.prepare(relation), state)
+    what = "the printed frequency-wise condition"
+    state.repairable = True
+    minors = _principal_minors(M)
+    for label, minor in minors:
+        exact = sp.Ge(minor, 0, evaluate=False)
+        if positive_ratio_at_points(printed, exact) and ratio_equivalent(printed, exact):
+            return Finding(Verdict.CONFIRMED, f"{what} is 'the principal minor {label} of G + G^H is >= 0' multiplied by a "
+                           "positive factor", Evidence(Method.CANONICAL_FORM, facts={"minor": label}), derived=exact)
+    if state.repairing:
+        return Finding(Verdict.WRONG, f"{what} is no principal minor condition", Evidence(Method.CANONICAL_FORM))
+    label, minor = minors[0]
+    f = compare_conditions(printed, sp.Ge(minor, 0, evaluate=False), state, claim="passivity",
+                           what=f"{what} (no principal minor of G + G^H matches; compared with the minor {label})")
+    return f
+
+
+def _single(state: State) -> Any:
+    relations = state.statement.relations()
+    links = [link for r in relations for link in conjuncts(r.as_sympy())]
+    if len(links) != 1:
+        return None
+    return links[0]

@@ -1,0 +1,283 @@
+r"""Generic claim checkers: the verdict of a printed display from what a paper file says it claims.
+
+Each checker reads the printed display (verbatim, with the file's symbols and the scene's
+``H``/``C``), derives its counterpart from the scene with the toolkit and returns a
+:class:`~hapticproof.core.evidence.Finding` -- the same objects the hand-written derivation modules
+return, so every report format shows both. The conventions are those of the bundled audit
+(:mod:`hapticproof.audit.compare`): a proof for ``confirmed`` and ``conservative``, an exact
+counterexample re-checked by an exact decision for ``wrong``, ``undecided`` with the instances
+when only sampling agrees.
+
+``inverse-transfer``
+    Every member of the display that is an expression of ``z`` (or such an expression times one
+    signal, ``bV_h(z) + ...``) is compared with ``G^{-1}(z)`` of the scene: ``confirmed`` when
+    the difference cancels, else ``wrong`` with an exact point where they differ.
+``hermitian-part``
+    An expression is compared with ``Re G^{-1}(e^{j\omega T})`` as a rational function of
+    ``c = cos(omega T)`` (or, with a symbolic delay, in the canonical theta-form, for every
+    integer ``n``); a condition (``b > KT/2 - B\cos(\omega T)``) with ``Re G^{-1} >= 0`` at each
+    frequency, as a bound on the device damping. m users: the matrix ``G + G^H`` (or its half)
+    or one of its principal minors (a condition: that minor ``>= 0``). Teleoperator: the
+    condition that each robot's damping exceeds its bound at every frequency (eq. 32 of the
+    teleoperator paper).
+``residue``
+    The residue (matrix) of ``G^{-1}`` at ``z = 1``.
+``passivity-condition``, ``sufficient-condition``, ``necessary-condition``
+    The exact condition for ``G^{-1}`` positive real: the worst case over frequency when it has
+    a closed form; for a virtual-wall-like path ``R/(z-1) + F_0`` and any delay ``n`` (also
+    symbolic) the Dirichlet-kernel bounds ``a >= R(n + 1/2) - F_0(1)`` (necessary) and ``a >=
+    R(n + 1/2) + max|F_0|`` (sufficient), exact when ``F_0 = 0``; otherwise exact decisions on
+    numeric instances (exact passive ranges, :func:`hapticproof.analysis.design.passive_range`).
+    Compared as bounds on one parameter (:func:`hapticproof.audit.compare.compare_bounds`: equal is
+    ``confirmed``, a provably larger bound ``conservative``, a smaller one ``wrong`` with a
+    witness re-checked by the exact decision). ``assumption = "B = 0"``: a condition that fails
+    in general but holds under the assumption is ``needs-assumption``.
+``stability-condition``
+    ``order = "leading"``: the leading order of the exact ZOH boundary of the wall,
+    ``b (+ b_h) + B > K(T/2 + t_d)`` (:func:`hapticproof.analysis.classics.leading_order_boundary`).
+    ``order = "exact"``: certified spectral radii of the exact sampled-data loop (the scene
+    names the device mass ``m``) near the printed boundary: an unstable loop where the display
+    holds is ``wrong``; agreement on instances is ``undecided`` (never a proof).
+``same-as``
+    The display and the equation ``other`` (this file's or a bundled paper's ``paper:id``),
+    with ``under`` substituted in both: the same expression or condition is ``confirmed``,
+    otherwise ``inconsistent`` (both ids) with a point where they differ.
+
+A display that is not confirmed gets a search for a nearby correct reading: the edits of
+:mod:`hapticproof.audit.mutate` (a sign, a factor 2, a dropped term, swapped indices, a reversed
+relation, another symbol); when one edit makes it exactly right the verdict is ``typo`` and the
+corrected LaTeX is that edited display.
+
+>>> from hapticproof.audit.paperfile import loads, TEMPLATE
+>>> from hapticproof.audit.runner import audit_paper
+>>> report = audit_paper(loads(TEMPLATE).paper)
+>>> [(r.id, r.verdict.value) for r in report.results]
+[('1', 'confirmed'), ('2', 'confirmed'), ('3', 'confirmed')]
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import functools
+from collections.abc import Callable, Mapping
+from typing import Any
+
+import sympy as sp
+
+from hapticproof.core.errors import HapticproofError, LatexParseError
+from hapticproof.core.evidence import Evidence, Finding, Method, Verdict
+from hapticproof.audit.claimbase import ClaimError, PROVED_VERDICTS, State
+
+__all__ = ["check", "describe", "checkers"]
+
+
+Checker = Callable[[State], Finding]
+
+
+@functools.lru_cache(maxsize=1)
+def checkers() -> dict[str, Checker]:
+    """The checker of each claim kind (:mod:`hapticproof.audit.claimcheckers`, :mod:`hapticproof.audit.claimconditions`)."""
+    from hapticproof.audit import claimcheckers as ce
+    from hapticproof.audit import claimconditions as cc
+
+    return {
+        "inverse-transfer": ce.inverse_transfer,
+        "hermitian-part": ce.hermitian_part,
+        "residue": ce.residue,
+        "passivity-condition": functools.partial(cc.condition, claim="passivity"),
+        "sufficient-condition": functools.partial(cc.condition, claim="sufficient"),
+        "necessary-condition": functools.partial(cc.condition, claim="necessary"),
+        "stability-condition": cc.stability,
+        "same-as": cc.same_as,
+    }
+
+
+def check(ctx: Any, *, spec: Any, source: Any) -> Finding:
+    """The audit check of one paper-file claim (registered by :mod:`hapticproof.audit.paperfile`)."""
+    state = State(spec, source, ctx.equation.printed, equation=ctx.equation)
+    try:
+        finding = _with_assumption(state)
+    except ClaimError as err:
+        return Finding(Verdict.UNDECIDED, f"the claim cannot be checked: {err}", Evidence(Method.STRUCTURAL))
+    except LatexParseError:
+        raise                                   # the audit reports the printed display as malformed
+    except (HapticproofError, ArithmeticError, TypeError, ValueError, NotImplementedError, sp.PolynomialError) as err:
+        # a display the generic checker cannot handle is undecided with the reason, never a traceback
+        return Finding(Verdict.UNDECIDED, f"the check could not decide this display: {type(err).__name__}: {err}",
+                       Evidence(Method.STRUCTURAL, facts={"error": f"{type(err).__name__}: {err}"}))
+    if _should_repair(state, finding):
+        finding = _repair(state, finding)
+    return finding
+
+
+def _run(state: State) -> Finding:
+    return checkers()[state.spec.claim](state)
+
+
+def _with_assumption(state: State) -> Finding:
+    """Check the claim; with a stated ``assumption`` also under it (``needs-assumption`` when
+    it holds only there)."""
+    text = ", ".join(f"{sp.sstr(k)} = {sp.sstr(v)}" for k, v in state.spec.assumption)
+    if state.spec.assumption and state.repairing:
+        # a repair of a claim made under an assumption is right under that assumption
+        inner = _run(_assumed(state))
+        return Finding(inner.verdict, f"under the stated assumption {text}: {inner.detail}", inner.evidence,
+                       derived=inner.derived)
+    inner = None
+    finding = _run(state)
+    if not state.spec.assumption or finding.verdict in PROVED_VERDICTS:
+        if state.spec.assumption and finding.verdict in PROVED_VERDICTS:
+            return Finding(finding.verdict, finding.detail + " (it holds without the stated assumption)",
+                           finding.evidence, derived=finding.derived, corrected=finding.corrected)
+        return finding
+    if inner is None:
+        inner = _run(_assumed(state))
+    if inner.verdict in PROVED_VERDICTS and finding.verdict == Verdict.WRONG:
+        return Finding(
+            Verdict.NEEDS_ASSUMPTION,
+            f"holds under the stated assumption {text} ({inner.verdict.value}: {inner.detail}); without it: {finding.detail}",
+            Evidence(finding.evidence.method, witness=finding.evidence.witness,
+                     facts={**dict(finding.evidence.facts), "under_assumption": inner.verdict.value,
+                            "under_assumption_evidence": inner.evidence.to_json()}),
+            derived=inner.derived,
+            corrected=_with_text(state.printed, r"\quad (" + ", ".join(
+                f"{sp.latex(k)} = {sp.latex(v)}" for k, v in state.spec.assumption) + ")"),
+        )
+    if inner.verdict == Verdict.WRONG:
+        state.repairable = state.repairable
+        return Finding(inner.verdict, f"{inner.detail} (even under the stated assumption {text})", inner.evidence,
+                       derived=inner.derived, corrected=inner.corrected)
+    return finding
+
+
+def _assumed(state: State) -> State:
+    """The state with the assumption substituted into the scene (parameters) and the display."""
+    spec = state.spec
+    scene = state.scene
+    params = {k.name: v for k, v in spec.assumption}
+    new_scene = scene.with_params(params)
+    name = f"{spec.scene}#assumed"
+    scenes = dict(state.source.scenes)
+    scenes[name] = new_scene
+    source = _SourceView(state.source, scenes)
+    new_spec = dataclasses.replace(spec, scene=name, assumption=())
+    return State(new_spec, source, state.printed, equation=state.equation, repairing=state.repairing, cache=state.cache)
+
+
+class _SourceView:
+    """A paper file seen with other scenes (an assumption substituted into one)."""
+
+    def __init__(self, source: Any, scenes: Mapping[str, Any]):
+        self._source = source
+        self.scenes = scenes
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self._source, name)
+
+    def table_for(self, scene: str | None) -> Any:
+        return self._source.bound_table(self.scenes.get(scene) if scene else None, ("view", scene))
+
+
+def _with_text(printed: str, suffix: str) -> str:
+    return printed.rstrip() + suffix
+
+
+def _should_repair(state: State, finding: Finding) -> bool:
+    if state.repairing or not state.repairable or state.spec.claim == "same-as":
+        return False
+    if finding.verdict == Verdict.WRONG:
+        return True
+    return finding.verdict == Verdict.CONSERVATIVE and state.spec.claim in ("passivity-condition", "stability-condition",
+                                                                            "hermitian-part")
+
+
+def _repaired(state: State, finding: Finding) -> bool:
+    """A trial edit repairs the display when it is right: confirmed, a correct sufficient
+    condition, or right under the claim's stated assumption."""
+    if finding.verdict == Verdict.CONFIRMED:
+        return True
+    if finding.verdict == Verdict.NEEDS_ASSUMPTION:
+        return bool(state.spec.assumption)
+    return finding.verdict == Verdict.CONSERVATIVE and state.spec.claim == "sufficient-condition"
+
+
+#: At most this many edits are tried (in printed order).
+MAX_EDITS = 80
+
+
+def _repair(state: State, finding: Finding) -> Finding:
+    """Search the edits of :mod:`hapticproof.audit.mutate` for one that makes the display right."""
+    try:
+        from hapticproof.audit.mutate import generate
+    except ImportError:  # pragma: no cover - the mutation operators are not available
+        return finding
+    mutants = generate(state.equation, state.source.paper, text=state.printed)[:MAX_EDITS]
+    found = []
+    for mutant in mutants:
+        trial = State(state.spec, state.source, mutant.printed, equation=state.equation, repairing=True,
+                      cache=state.cache)
+        try:
+            result = _with_assumption(trial)
+        except (LatexParseError, HapticproofError, TypeError, ValueError, ZeroDivisionError, NotImplementedError):
+            continue
+        if _repaired(state, result):
+            found.append((mutant, result))
+    facts = dict(finding.evidence.facts)
+    facts["edits_tried"] = len(mutants)
+    if not found:
+        return Finding(finding.verdict, finding.detail + f"; no single edit of the display repairs it ({len(mutants)} tried)",
+                       Evidence(finding.evidence.method, witness=finding.evidence.witness,
+                                instances=finding.evidence.instances, facts=facts),
+                       derived=finding.derived, corrected=finding.corrected)
+    mutant, result = found[0]
+    facts["repair"] = {"operator": mutant.operator, "position": mutant.position, "original": mutant.original,
+                       "replacement": mutant.replacement, "repairs_found": len(found)}
+    others = f" ({len(found) - 1} other edit{'s' if len(found) > 2 else ''} also repair it)" if len(found) > 1 else ""
+    return Finding(
+        Verdict.TYPO,
+        f"one edit repairs it: {_describe_edit(mutant)} gives a display that is {result.verdict.value} ({result.detail}){others}; "
+        f"as printed: {finding.detail}",
+        Evidence(finding.evidence.method, witness=finding.evidence.witness, instances=finding.evidence.instances, facts=facts),
+        derived=result.derived if result.derived is not None else finding.derived,
+        corrected=mutant.printed,
+    )
+
+
+_EDITS = {"sign": "flipping the sign", "scale": "a factor 2", "drop": "dropping a term", "swap": "swapping the indices",
+          "relation": "reversing the relation", "symbol": "another symbol"}
+
+
+def _describe_edit(mutant: Any) -> str:
+    old = mutant.original.strip() or "nothing"
+    new = mutant.replacement.strip() or "nothing"
+    return f"{_EDITS.get(mutant.operator, mutant.operator)} ({old!r} -> {new!r} at position {mutant.position})"
+
+
+def describe(spec: Any, paper: Any) -> str:
+    """One line: what the claim is compared with (the report's ``derivation``).
+
+    >>> from hapticproof.audit.paperfile import loads, TEMPLATE
+    >>> paper = loads(TEMPLATE)
+    >>> describe(paper.claim("3"), paper)
+    "exact condition for G^-1 positive real of scene 'wall' (single-user, forward) (necessary and sufficient)"
+    """
+    scene = paper.scenes.get(spec.scene) if spec.scene else None
+    where = ""
+    if scene is not None:
+        where = f" of scene '{spec.scene}' ({scene.system}, {scene.approximation}"
+        where += f", delay {scene.delay})" if scene.delay not in (0, None) else ")"
+    texts = {
+        "inverse-transfer": f"G^-1(z){where}, exact (canonical form)",
+        "hermitian-part": f"Re G^-1(e^(j omega T)){where}, exact in c = cos(omega T)",
+        "residue": f"residue of G^-1 at z = 1{where}",
+        "passivity-condition": f"exact condition for G^-1 positive real{where} (necessary and sufficient)",
+        "sufficient-condition": f"exact condition for G^-1 positive real{where}: the display must imply it",
+        "necessary-condition": f"exact condition for G^-1 positive real{where}: it must imply the display",
+        "stability-condition": (f"exact ZOH sampled-data stability{where}" if spec.order == "exact"
+                                else f"leading order of the exact ZOH stability boundary{where}"),
+        "same-as": f"equation {spec.other}" + (" with " + ", ".join(f"{k} = {v}" for k, v in spec.under) if spec.under else ""),
+    }
+    text = texts[spec.claim]
+    if spec.assumption:
+        text += "; stated assumption " + ", ".join(f"{k} = {v}" for k, v in spec.assumption)
+    return text

@@ -1,0 +1,773 @@
+r"""Paper files: audit your own paper from a TOML file, without writing Python.
+
+A paper file lists the printed displays of a paper -- verbatim, OCR damage and all -- with what
+each one claims about a scene. Each claim is checked by a generic claim checker
+(:mod:`hapticproof.audit.claims`) that produces the same :class:`~hapticproof.core.evidence.Finding`
+objects as the hand-written derivation modules, so every report format works for both
+(``hapticproof audit --paper FILE.toml``).
+
+.. code-block:: toml
+
+    [paper]
+    id = "wall-1997"                       # used in output and by same-as
+    title = "Passivity of a virtual wall"
+    authors = "..."                        # optional
+    source = "journal, year"               # optional
+
+    [symbols]                              # every name the printed LaTeX uses
+    b = "positive"                         # positive | nonnegative | real | integer | ...
+    K = "positive"
+    B = "nonnegative"
+    T = "positive"
+    omega = "real"                         # Greek letters by name: \omega
+    "G^{-1}" = "function"                  # a name applied as G^{-1}(z), compared with nothing
+    F_h = "signal"                         # a signal F_h(z): F_h(z) = G^{-1}(z) V_h(z) reads G^{-1}
+    V_h = "signal"
+    S = '\frac{\sin(\omega T)}{2}'         # a definition: LaTeX in the names above
+    "K_{ij}" = "positive, symmetric"       # an indexed family (index letters i, j)
+
+    [scenes.wall]                          # exactly the fields of a scene file
+    system = "single-user"
+    approximation = "forward"
+
+    [[equations]]
+    id = "3"
+    printed = 'b > \frac{KT}{2} + B'       # the display verbatim
+    claim = "passivity-condition"
+    scene = "wall"
+    section = "2"                          # optional: for --section
+
+Names
+-----
+``j`` is the imaginary unit and ``e^{...}`` the exponential unless ``[symbols]`` declares them;
+``z`` and ``s`` are the transform variables. In a display, ``H(...)`` is the scene's
+environment ``H(z)`` (single-user) and ``C(...)`` its controller ``C(z)`` (teleoperator). A
+symbol whose name is a scene parameter is that parameter (with the file's assumption); a
+display's ``t_d`` is ``n T`` with the scene's delay ``n``.
+
+Claims (:data:`CLAIMS`; :mod:`hapticproof.audit.claims` says how each is decided)
+    ``inverse-transfer``, ``hermitian-part``, ``residue``, ``passivity-condition``,
+    ``sufficient-condition``, ``necessary-condition``, ``stability-condition``, ``same-as``.
+Equation fields (:data:`EQUATION_FIELDS`)
+    ``id``, ``printed``, ``claim``, ``scene`` (all but same-as), ``section``, ``notes``;
+    ``other`` and ``under`` (same-as: ``other = "3"`` or ``"hve:3"``, ``under = "z_a = 0, t_d =
+    0"``); ``order`` (stability: ``"exact"`` or ``"leading"``); ``form`` (hermitian-part:
+    ``"expression"`` or ``"condition"``, default: as printed); ``assumption`` (conditions: the
+    paper's vague assumption made precise, such as ``"B = 0"`` for "B small": a condition that
+    holds only under it is ``needs-assumption``); ``solve_for`` (conditions: the parameter the
+    comparison solves for, default the device damping).
+
+Every mistake in a file is one line naming the file, the line and the field
+(:class:`PaperFileError`), and the CLI exits with code 2.
+
+>>> paper = loads(TEMPLATE, "new.toml")
+>>> paper.id, [c.claim for c in paper.claims]
+('my-paper', ['inverse-transfer', 'hermitian-part', 'passivity-condition'])
+>>> loads(TEMPLATE.replace('claim = "passivity-condition"', 'claim = "passivity"'), "new.toml")
+Traceback (most recent call last):
+...
+hapticproof.audit.paperfile.PaperFileError: new.toml:47: equation 3: field 'claim': unknown claim 'passivity' (did you mean 'passivity-condition'?)
+"""
+
+from __future__ import annotations
+
+import difflib
+import functools
+import re
+import tomllib
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from decimal import Decimal
+from pathlib import Path
+from typing import Any
+
+import sympy as sp
+
+from hapticproof.audit.runner import Equation, Paper
+from hapticproof.core.errors import HapticproofError, InputFormatError, LatexParseError
+
+__all__ = [
+    "CLAIMS",
+    "EQUATION_FIELDS",
+    "WORDS",
+    "TEMPLATE",
+    "PaperFileError",
+    "ClaimSpec",
+    "PaperFile",
+    "FilePaper",
+    "loads",
+    "read_paper",
+]
+
+#: The claim kinds of a paper file.
+CLAIMS = ("inverse-transfer", "hermitian-part", "residue", "passivity-condition", "sufficient-condition",
+          "necessary-condition", "stability-condition", "same-as")
+#: Claims about a condition (``assumption`` and ``solve_for`` apply).
+CONDITION_CLAIMS = ("passivity-condition", "sufficient-condition", "necessary-condition", "stability-condition")
+#: Fields of an ``[[equations]]`` entry.
+EQUATION_FIELDS = ("id", "printed", "claim", "scene", "section", "other", "under", "order", "form", "assumption",
+                   "solve_for", "notes")
+#: Fields of ``[paper]``.
+PAPER_FIELDS = ("id", "title", "authors", "source")
+#: Words of ``[symbols]``: sign assumptions, ``function`` and ``signal`` (a declared name whose
+#: value is no word is a definition in LaTeX); ``symmetric`` qualifies an indexed family.
+WORDS = ("positive", "nonnegative", "real", "integer", "negative", "nonpositive", "function", "signal")
+_INDEX_LETTERS = ("i", "j")
+
+
+class PaperFileError(InputFormatError):
+    """A paper file that cannot be read: one line naming the file, the line and the field."""
+
+
+@dataclass(frozen=True, slots=True)
+class ClaimSpec:
+    """One ``[[equations]]`` entry: a printed display and what it claims.
+
+    ``under`` holds the substitutions of a same-as claim and ``assumption`` those of a
+    condition's stated assumption, each as ``((name, LaTeX value), ...)`` read with the file's
+    symbols; ``line`` is the entry's first line in the file.
+    """
+
+    id: str
+    printed: str
+    claim: str
+    scene: str | None = None
+    section: str = ""
+    other: str | None = None
+    under: tuple[tuple[sp.Symbol, sp.Expr], ...] = ()
+    order: str = "exact"
+    form: str = "auto"
+    assumption: tuple[tuple[sp.Symbol, sp.Expr], ...] = ()
+    solve_for: str | None = None
+    notes: str = ""
+    line: int | None = None
+
+    def __post_init__(self) -> None:
+        if self.claim not in CLAIMS:
+            raise ValueError(f"unknown claim {self.claim!r}")
+        if self.order not in ("exact", "leading"):
+            raise ValueError(f"order must be exact or leading, got {self.order!r}")
+        if self.form not in ("auto", "expression", "condition"):
+            raise ValueError(f"form must be expression or condition, got {self.form!r}")
+
+
+@dataclass(frozen=True)
+class PaperFile:
+    """A read paper file: its metadata, names, scenes and claims, and the registered
+    :class:`~hapticproof.audit.runner.Paper` (``paper``) that the audit runs.
+
+    ``words`` maps each declared SymPy name to its word (``positive``, ``function``,
+    ``signal``...; definitions map to ``definition``); ``scenes`` holds the
+    :class:`~hapticproof.systems.scene.Scene` of each ``[scenes.X]``.
+    """
+
+    path: str
+    id: str
+    title: str
+    authors: str
+    source: str
+    symbols: Any                         # hapticproof.audit.reader.names.SymbolTable
+    words: Mapping[str, str]
+    scenes: Mapping[str, Any]
+    claims: tuple[ClaimSpec, ...]
+    text: str = field(repr=False, default="")
+    paper: Any = field(repr=False, default=None)
+    _tables: dict = field(repr=False, compare=False, default_factory=dict)
+
+    def claim(self, id: str) -> ClaimSpec:
+        for spec in self.claims:
+            if spec.id == id:
+                return spec
+        raise KeyError(id)
+
+    def signals(self) -> set[sp.Symbol]:
+        """The declared signals (``F_h``, ``V_h``...) as symbols."""
+        return {sp.Symbol(name) for name, word in self.words.items() if word == "signal"}
+
+    def table_for(self, scene: str | None) -> Any:
+        """The symbol table with ``H``/``C`` bound to the scene's environment or controller."""
+        return _scene_table(self, scene)
+
+    def bound_table(self, scene: Any, key: Any) -> Any:
+        """The symbol table bound to a scene object (remembered under ``key``), see :func:`bound_table`."""
+        return bound_table(self, scene, key)
+
+
+class FilePaper(Paper):
+    """A :class:`~hapticproof.audit.runner.Paper` read from a file: equations stay in file order."""
+
+    def ordered(self) -> list[Equation]:
+        return list(self.equations.values())
+
+
+# ---------------------------------------------------------------------------------------------
+# where things are in the file
+# ---------------------------------------------------------------------------------------------
+
+
+def _key_pattern(key: str) -> re.Pattern:
+    return re.compile(r"\s*(?:\"" + re.escape(key) + r"\"|'" + re.escape(key) + r"'|" + re.escape(key) + r")\s*=")
+
+
+def _blocks(text: str, name: str) -> list[tuple[int, int]]:
+    """First and last line (1-based) of each ``[[name]]`` entry."""
+    lines = text.splitlines()
+    starts = [k + 1 for k, line in enumerate(lines) if re.match(r"\s*\[\[\s*" + re.escape(name) + r"\s*\]\]", line)]
+    headers = [k + 1 for k, line in enumerate(lines) if re.match(r"\s*\[", line)]
+    out = []
+    for start in starts:
+        later = [h for h in headers if h > start]
+        out.append((start, (later[0] - 1) if later else len(lines)))
+    return out
+
+
+def _line_in(text: str, key: str, block: tuple[int, int] | None) -> int | None:
+    if block is None:
+        return None
+    pattern = _key_pattern(key)
+    for number, line in enumerate(text.splitlines()[block[0] - 1:block[1]], block[0]):
+        if pattern.match(line):
+            return number
+    return block[0]
+
+
+def _table_line(text: str, key: str, table: str) -> int | None:
+    from hapticproof.systems.scene import line_of
+
+    return line_of(text, key, table)
+
+
+def _at(path: str, line: int | None) -> str:
+    return f"{path}:{line}" if line else path
+
+
+# ---------------------------------------------------------------------------------------------
+# [symbols]
+# ---------------------------------------------------------------------------------------------
+
+
+def _printed_key(key: str) -> str:
+    r"""The printed name of a ``[symbols]`` key: ``omega`` is ``\omega``, ``mathcal{M}`` is
+    ``\mathcal{M}``; other keys are printed names already."""
+    from hapticproof.audit.reader.lexer import DECORATIONS, GREEK
+
+    if key.startswith("\\"):
+        return key
+    base = re.match(r"[A-Za-z]+", key)
+    if base and ("\\" + base.group(0) in GREEK or "\\" + base.group(0) in DECORATIONS):
+        return "\\" + key
+    return key
+
+
+def _is_family(printed: str) -> bool:
+    from hapticproof.audit.reader.names import name_parts
+
+    try:
+        parts = name_parts(printed)
+    except LatexParseError:
+        return False
+    if parts.sub is None:
+        return False
+    sub = "".join(t.value for t in parts.sub)
+    return any(letter in sub for letter in _INDEX_LETTERS) and not re.fullmatch(r"[a-hk-z]+", sub)
+
+
+def _assumption_kwargs(word: str) -> dict[str, bool]:
+    from hapticproof.core.expr import ASSUMPTIONS
+
+    return dict(ASSUMPTIONS[word])
+
+
+def _read_symbols(raw: Mapping[str, Any], path: str, text: str) -> tuple[Any, dict[str, str]]:
+    """The symbol table of ``[symbols]`` and the word of each declared name."""
+    from hapticproof.audit.reader.names import IndexedFamily, SymbolTable, sympy_name, normalise_name
+    from hapticproof.core.symbols import s as S_SYM
+    from hapticproof.core.symbols import z as Z_SYM
+
+    symbols: dict[str, Any] = {"z": Z_SYM, "s": S_SYM}
+    functions: dict[str, Any] = {"H": sp.Function("H"), "C": sp.Function("C")}
+    families: list[Any] = []
+    words: dict[str, str] = {}
+    definitions: list[tuple[str, str, str, int | None]] = []
+    for key, value in raw.items():
+        line = _table_line(text, key, "symbols")
+        where = f"{_at(path, line)}: symbols: {key}"
+        if not isinstance(value, str) or not value.strip():
+            raise PaperFileError(f"{where}: expected a word ({', '.join(WORDS)}) or a definition in LaTeX, got {value!r}")
+        printed = _printed_key(key.strip())
+        try:
+            canonical = normalise_name(printed)
+        except LatexParseError as err:
+            raise PaperFileError(f"{where}: not a printed name ({err.reason})") from None
+        name = sympy_name(canonical)
+        if name in ("z", "s"):
+            raise PaperFileError(f"{where}: z and s are the transform variables; they need no declaration")
+        parts = [w for w in re.split(r"[\s,]+", value.strip().lower()) if w]
+        if re.fullmatch(r"[a-z]+(?:[\s,]+[a-z]+)*", value.strip()):
+            unknown = [w for w in parts if w not in WORDS and w != "symmetric"]
+            if unknown:
+                close = difflib.get_close_matches(unknown[0], list(WORDS), n=1, cutoff=0.7)
+                hint = f"; did you mean {close[0]!r}?" if close else f" (words: {', '.join(WORDS)}, or a LaTeX definition)"
+                raise PaperFileError(f"{where}: unknown word {unknown[0]!r}{hint}")
+            kinds = [w for w in parts if w != "symmetric"]
+            if len(kinds) != 1:
+                raise PaperFileError(f"{where}: give one word of {', '.join(WORDS)} (and 'symmetric' for a family)")
+            word = kinds[0]
+            if _is_family(printed):
+                if word in ("function", "signal"):
+                    raise PaperFileError(f"{where}: an indexed family takes a sign assumption, not {word!r}")
+                families.append(IndexedFamily(printed, symmetric="symmetric" in parts, assumptions=_assumption_kwargs(word)))
+                words[name] = word
+                continue
+            if "symmetric" in parts:
+                raise PaperFileError(f"{where}: 'symmetric' applies to an indexed family (a name with index i or j)")
+            words[name] = word
+            if word == "function":
+                functions[printed] = sp.Function(name)
+            elif word == "signal":
+                symbol = sp.Symbol(name)
+                symbols[printed] = symbol
+                functions[printed] = (lambda sym: (lambda *args: sym))(symbol)
+            else:
+                symbols[printed] = sp.Symbol(name, **_assumption_kwargs(word))
+            continue
+        definitions.append((printed, name, value, line))
+    table = SymbolTable(symbols=symbols, functions=functions, families=families)
+    for printed, name, value, line in definitions:
+        try:
+            expr = _parse_value(value, table)
+        except LatexParseError as err:
+            raise PaperFileError(f"{_at(path, line)}: symbols: {printed}: the definition does not read: {err}") from None
+        table = table.with_symbols({printed: expr})
+        words[name] = "definition"
+    return table, words
+
+
+def _parse_value(text: str, table: Any) -> sp.Expr:
+    from hapticproof.audit.reader.printed import parse_printed
+
+    statement = parse_printed(text, table)
+    if statement.relations():
+        raise LatexParseError("a definition is an expression, not a relation", text, 0)
+    (expr,) = statement.expressions()
+    return expr
+
+
+# ---------------------------------------------------------------------------------------------
+# scenes
+# ---------------------------------------------------------------------------------------------
+
+
+def _read_scenes(raw: Any, path: str, text: str, words: Mapping[str, str]) -> dict[str, Any]:
+    from hapticproof.systems.scene import SceneFileError, scene_from_table
+
+    if not isinstance(raw, Mapping):
+        raise PaperFileError(f"{path}: [scenes] must hold tables [scenes.NAME]")
+    base = Path(path).parent if path not in ("", "-") else None
+    scenes: dict[str, Any] = {}
+    for name, table in raw.items():
+        prefix = f"scenes.{name}"
+        header = _header_line(text, prefix)
+        where = f"{_at(path, header)}: scene {name!r}"
+        if not isinstance(table, Mapping):
+            raise PaperFileError(f"{where}: a scene is a table of fields ([scenes.{name}])")
+        try:
+            first = scene_from_table(table, where=path, base=base, text=text, prefix=prefix)
+            used = first.names() | set(first.assumptions)
+            if first.active:
+                used.add("z_a")
+            assumptions = {k: w for k, w in words.items()
+                           if k in used and w in ("positive", "nonnegative", "real", "integer", "negative", "nonpositive")}
+            scene = scene_from_table(table, where=path, base=base, assumptions=assumptions, text=text, prefix=prefix)
+            scene.build()
+        except SceneFileError as err:
+            raise PaperFileError(f"{err} (scene {name!r})") from None
+        except HapticproofError as err:
+            named = re.search(r"unknown parameter '([^']+)'", str(err))
+            line = _table_line(text, named.group(1), f"{prefix}.params") if named else None
+            raise PaperFileError(f"{_at(path, line or header)}: scene {name!r}: {err}") from None
+        scenes[name] = scene
+    return scenes
+
+
+def _header_line(text: str, table: str) -> int | None:
+    for number, line in enumerate(text.splitlines(), 1):
+        if re.match(r"\s*\[\s*" + re.escape(table) + r"\s*\]", line):
+            return number
+    return None
+
+
+def _scene_table(paper: PaperFile, scene_name: str | None) -> Any:
+    return bound_table(paper, paper.scenes.get(scene_name) if scene_name else None, scene_name)
+
+
+def bound_table(paper: PaperFile, scene: Any, key: Any) -> Any:
+    """The paper's symbol table with ``H`` (single-user) or ``C`` (teleoperator) bound to the
+    scene's environment or controller (remembered under ``key``), unless the file declares the
+    name as something other than a function.
+
+    >>> paper = loads(TEMPLATE)
+    >>> table = bound_table(paper, paper.scenes["wall"], "wall")
+    >>> table.functions["H"](1)                     # H(1) = K for the wall
+    K
+    """
+    if key in paper._tables:
+        return paper._tables[key]
+    table = paper.symbols
+    if scene is not None:
+        from hapticproof.core.symbols import z as Z_SYM
+
+        design = scene.environment_z() if scene.system in ("single-user", "teleoperator") else None
+        if design is not None:
+            mapping = _substitution(scene)
+            design = sp.sympify(design).xreplace(mapping) if mapping else sp.sympify(design)
+            bound = (lambda expr: (lambda arg: expr.xreplace({Z_SYM: arg})))(design)
+            name = "H" if scene.system == "single-user" else "C"
+            if paper.words.get(name) in (None, "function"):
+                table = table.with_functions({name: bound})
+    paper._tables[key] = table
+    return table
+
+
+def _substitution(scene: Any) -> dict[sp.Symbol, Any]:
+    """Symbol -> value of the scene's parameters with values (expressions resolved)."""
+    return scene._substitution()
+
+
+# ---------------------------------------------------------------------------------------------
+# equations
+# ---------------------------------------------------------------------------------------------
+
+
+def _text_field(value: Any, where: str, key: str, *, allow_numbers: bool = False) -> str:
+    if isinstance(value, str):
+        return value
+    if allow_numbers and isinstance(value, (int, Decimal)) and not isinstance(value, bool):
+        return str(value)
+    raise PaperFileError(f"{where}: field {key!r} must be text, got {value!r}")
+
+
+def _substitutions(text: str, table: Any, where: str) -> tuple[tuple[sp.Symbol, sp.Expr], ...]:
+    """``"z_a = 0, t_d = 0"`` as ((z_a, 0), (t_d, 0)), read with the file's symbols."""
+    from hapticproof.audit.reader.printed import parse_printed
+
+    out = []
+    for part in [p for p in re.split(r",(?![^{(]*[})])", text) if p.strip()]:
+        try:
+            statement = parse_printed(part.strip(), table)
+        except LatexParseError as err:
+            raise PaperFileError(f"{where}: {err}") from None
+        relations = statement.relations()
+        if len(relations) != 1 or relations[0].ops != ("=",) or not isinstance(relations[0].lhs, sp.Symbol):
+            raise PaperFileError(f"{where}: expected substitutions such as 'z_a = 0, t_d = 0', got {part.strip()!r}")
+        out.append((relations[0].lhs, sp.sympify(relations[0].rhs)))
+    if not out:
+        raise PaperFileError(f"{where}: expected substitutions such as 'z_a = 0, t_d = 0'")
+    return tuple(out)
+
+
+def _check_other(other: str, ids: set[str], where: str) -> None:
+    if ":" not in other:
+        if other not in ids:
+            raise PaperFileError(f"{where}: equation {other!r} does not exist in this file "
+                                 f"(equations: {', '.join(sorted(ids)) or 'none'}; a bundled paper's as PAPER:ID)")
+        return
+    from hapticproof.core.errors import UnknownEquationError, UnknownPaperError
+    from hapticproof.audit.registry import get_paper
+
+    paper_id, eq_id = other.split(":", 1)
+    try:
+        paper = get_paper(paper_id)
+    except UnknownPaperError as err:
+        raise PaperFileError(f"{where}: {err}") from None
+    try:
+        paper.get(eq_id)
+    except UnknownEquationError:
+        ids = list(paper.equations)
+        shown = ", ".join(ids[:8]) + (", ..." if len(ids) > 8 else "")
+        raise PaperFileError(f"{where}: paper {paper.id!r} has no equation {eq_id!r} (it has {len(ids)}: {shown})") from None
+
+
+def _read_equations(raw: Any, path: str, text: str, table: Any, scenes: Mapping[str, Any]) -> tuple[ClaimSpec, ...]:
+    from hapticproof.audit.reader.printed import parse_printed
+
+    if not isinstance(raw, list):
+        raise PaperFileError(f"{path}: equations must be an array of tables ([[equations]])")
+    blocks = _blocks(text, "equations")
+    specs: list[ClaimSpec] = []
+    pending_other: list[tuple[str, str]] = []
+    ids: set[str] = set()
+    for k, entry in enumerate(raw):
+        block = blocks[k] if k < len(blocks) else None
+        start = block[0] if block else None
+        line = functools.partial(_line_in, text, block=block)
+        if not isinstance(entry, Mapping):
+            raise PaperFileError(f"{_at(path, start)}: equations[{k + 1}] must be a table")
+        label = f"equation {entry.get('id', k + 1)}"
+        for key in entry:
+            if key not in EQUATION_FIELDS:
+                close = difflib.get_close_matches(key, EQUATION_FIELDS, n=1)
+                hint = f"; did you mean {close[0]!r}?" if close else f" (fields: {', '.join(EQUATION_FIELDS)})"
+                raise PaperFileError(f"{_at(path, line(key))}: {label}: unknown field {key!r}{hint}")
+        for key in ("id", "printed", "claim"):
+            if key not in entry:
+                raise PaperFileError(f"{_at(path, start)}: {label}: missing field {key!r}")
+
+        def where(key: str) -> str:
+            return f"{_at(path, line(key))}: {label}: field {key!r}"
+
+        eq_id = _text_field(entry["id"], where("id"), "id", allow_numbers=True).strip()
+        label = f"equation {eq_id}"
+        if not eq_id:
+            raise PaperFileError(f"{where('id')}: an id is needed")
+        if eq_id in ids:
+            raise PaperFileError(f"{where('id')}: equation {eq_id!r} is listed twice")
+        ids.add(eq_id)
+        printed = _text_field(entry["printed"], where("printed"), "printed")
+        if not printed.strip():
+            raise PaperFileError(f"{where('printed')}: the printed display is empty")
+        claim = _text_field(entry["claim"], where("claim"), "claim").strip()
+        if claim not in CLAIMS:
+            close = difflib.get_close_matches(claim, CLAIMS, n=1, cutoff=0.5)
+            hint = f" (did you mean {close[0]!r}?)" if close else f" (claims: {', '.join(CLAIMS)})"
+            raise PaperFileError(f"{where('claim')}: unknown claim {claim!r}{hint}")
+        fields: dict[str, Any] = {"id": eq_id, "printed": printed, "claim": claim, "line": start}
+        scene_name = entry.get("scene")
+        if scene_name is None and claim != "same-as":
+            raise PaperFileError(f"{_at(path, start)}: {label}: missing field 'scene' (a {claim} claim is about a scene)")
+        if scene_name is not None:
+            scene_name = _text_field(scene_name, where("scene"), "scene").strip()
+            if scene_name not in scenes:
+                raise PaperFileError(f"{where('scene')}: scene {scene_name!r} does not exist "
+                                     f"(scenes: {', '.join(scenes) or 'none'})")
+            fields["scene"] = scene_name
+        for key in ("section", "notes", "solve_for", "order", "form"):
+            if key in entry:
+                fields[key] = _text_field(entry[key], where(key), key, allow_numbers=key == "section").strip()
+        if "order" in fields:
+            if claim != "stability-condition":
+                raise PaperFileError(f"{where('order')}: order applies to stability-condition claims")
+            if fields["order"] not in ("exact", "leading"):
+                raise PaperFileError(f"{where('order')}: order is 'exact' or 'leading', got {fields['order']!r}")
+        if "form" in fields:
+            if claim != "hermitian-part":
+                raise PaperFileError(f"{where('form')}: form applies to hermitian-part claims")
+            if fields["form"] not in ("expression", "condition"):
+                raise PaperFileError(f"{where('form')}: form is 'expression' or 'condition', got {fields['form']!r}")
+        if "solve_for" in fields and claim not in CONDITION_CLAIMS:
+            raise PaperFileError(f"{where('solve_for')}: solve_for applies to condition claims")
+        if claim == "same-as":
+            if "other" not in entry:
+                raise PaperFileError(f"{_at(path, start)}: {label}: a same-as claim needs the field 'other'")
+            other = _text_field(entry["other"], where("other"), "other", allow_numbers=True).strip()
+            fields["other"] = other
+            pending_other.append((other, where("other")))
+            if "under" in entry:
+                fields["under"] = _substitutions(_text_field(entry["under"], where("under"), "under"), table, where("under"))
+        else:
+            for key in ("other", "under"):
+                if key in entry:
+                    raise PaperFileError(f"{where(key)}: {key} applies to same-as claims")
+        if "assumption" in entry:
+            if claim not in CONDITION_CLAIMS:
+                raise PaperFileError(f"{where('assumption')}: assumption applies to condition claims")
+            fields["assumption"] = _substitutions(_text_field(entry["assumption"], where("assumption"), "assumption"),
+                                                  table, where("assumption"))
+        # names: an unknown name is the file's mistake (declare it); other parse errors are the
+        # paper's (the audit calls them malformed)
+        check_table = table
+        try:
+            parse_printed(printed, check_table)
+        except LatexParseError as err:
+            if err.reason.startswith("unknown name"):
+                raise PaperFileError(f"{where('printed')}: {err.reason} at position {err.position} "
+                                     f"(declare it in [symbols])") from None
+        specs.append(ClaimSpec(**fields))
+    for other, where_text in pending_other:
+        _check_other(other, ids, where_text)
+    return tuple(specs)
+
+
+# ---------------------------------------------------------------------------------------------
+# reading
+# ---------------------------------------------------------------------------------------------
+
+
+def loads(text: str, path: str = "paper.toml") -> PaperFile:
+    """A paper file from its text (``path`` names it in errors and resolves matrix files)."""
+    try:
+        data = tomllib.loads(text, parse_float=Decimal)
+    except tomllib.TOMLDecodeError as err:
+        message = str(err)
+        match = re.search(r"\(at line (\d+), column \d+\)", message)
+        line = int(match.group(1)) if match else None
+        reason = re.sub(r"\s*\(at line \d+, column \d+\)", "", message)
+        raise PaperFileError(f"{_at(path, line)}: TOML syntax: {reason}") from None
+    for key in data:
+        if key not in ("paper", "symbols", "scenes", "equations"):
+            close = difflib.get_close_matches(key, ["paper", "symbols", "scenes", "equations"], n=1)
+            hint = f"; did you mean {close[0]!r}?" if close else ""
+            raise PaperFileError(f"{_at(path, _header_line(text, key) or _table_line(text, key, ''))}: unknown table "
+                                 f"{key!r} (tables: paper, symbols, scenes, equations){hint}")
+    meta = data.get("paper")
+    if not isinstance(meta, Mapping):
+        raise PaperFileError(f"{path}: missing table [paper] (id, title)")
+    for key in meta:
+        if key not in PAPER_FIELDS:
+            raise PaperFileError(f"{_at(path, _table_line(text, key, 'paper'))}: paper: unknown field {key!r} "
+                                 f"(fields: {', '.join(PAPER_FIELDS)})")
+    for key in ("id", "title"):
+        if key not in meta:
+            raise PaperFileError(f"{_at(path, _header_line(text, 'paper'))}: paper: missing field {key!r}")
+    values = {}
+    for key in PAPER_FIELDS:
+        if key in meta:
+            values[key] = _text_field(meta[key], f"{_at(path, _table_line(text, key, 'paper'))}: paper", key,
+                                      allow_numbers=key == "id").strip()
+    if not re.fullmatch(r"[A-Za-z0-9][A-Za-z0-9_.-]*", values["id"]):
+        raise PaperFileError(f"{_at(path, _table_line(text, 'id', 'paper'))}: paper: field 'id': letters, digits, '-', '_' "
+                             f"and '.' only, got {values['id']!r}")
+    raw_symbols = data.get("symbols", {})
+    if not isinstance(raw_symbols, Mapping):
+        raise PaperFileError(f"{path}: [symbols] must be a table of names")
+    table, words = _read_symbols(raw_symbols, path, text)
+    scenes = _read_scenes(data.get("scenes", {}), path, text, words)
+    claims = _read_equations(data.get("equations", []), path, text, table, scenes)
+    if not claims:
+        raise PaperFileError(f"{path}: no [[equations]] to audit")
+    result = PaperFile(path=path, id=values["id"], title=values["title"], authors=values.get("authors", ""),
+                       source=values.get("source", "") or path, symbols=table, words=words, scenes=scenes,
+                       claims=claims, text=text)
+    object.__setattr__(result, "paper", _register(result))
+    return result
+
+
+def read_paper(path: str | Path) -> PaperFile:
+    """Read a paper file (``-``: standard input).
+
+    >>> read_paper("no/such/paper.toml")
+    Traceback (most recent call last):
+    ...
+    hapticproof.audit.paperfile.PaperFileError: cannot read no/such/paper.toml: No such file or directory
+    """
+    import sys
+
+    if str(path) == "-":
+        return loads(sys.stdin.read(), "<stdin>")
+    try:
+        text = Path(path).read_text(encoding="utf-8")
+    except OSError as err:
+        raise PaperFileError(f"cannot read {path}: {err.strerror}") from None
+    return loads(text, str(path))
+
+
+# ---------------------------------------------------------------------------------------------
+# the registered paper
+# ---------------------------------------------------------------------------------------------
+
+_ASSUMPTION_TEXT = {"positive": "> 0", "nonnegative": ">= 0", "negative": "< 0", "nonpositive": "<= 0",
+                    "real": "real", "integer": "integer"}
+
+
+def _assumptions_text(words: Mapping[str, str]) -> str:
+    groups: dict[str, list[str]] = {}
+    for name, word in words.items():
+        if word in _ASSUMPTION_TEXT:
+            groups.setdefault(word, []).append(name)
+    return "; ".join(f"{', '.join(names)} {_ASSUMPTION_TEXT[word]}" for word, names in groups.items())
+
+
+def _kind(spec: ClaimSpec, table: Any) -> str:
+    if spec.claim in CONDITION_CLAIMS:
+        return "condition"
+    if spec.claim in ("inverse-transfer", "residue"):
+        return "expression"
+    if spec.claim == "hermitian-part" and spec.form != "auto":
+        return spec.form
+    from hapticproof.audit.reader.printed import parse_printed
+
+    try:
+        statement = parse_printed(spec.printed, table)
+    except LatexParseError:
+        return "expression"
+    rel = statement.relations()
+    return "condition" if rel and any(op != "=" for r in rel for op in r.ops) else "expression"
+
+
+def _derivation(spec: ClaimSpec, paper: PaperFile) -> str:
+    from hapticproof.audit.claims import describe
+
+    return describe(spec, paper)
+
+
+def _register(paper: PaperFile) -> FilePaper:
+    from hapticproof.audit.claims import check
+
+    registered = FilePaper(paper.id, title=paper.title, source=paper.source, authors=paper.authors,
+                           symbols=paper.symbols)
+    assumptions = _assumptions_text(paper.words)
+    for spec in paper.claims:
+        registered.equation(spec.id, kind=_kind(spec, paper.symbols), printed=spec.printed, section=spec.section,
+                            assumptions=assumptions, derivation=_derivation(spec, paper), parse=True)(
+            functools.partial(check, spec=spec, source=paper))
+    return registered
+
+
+# ---------------------------------------------------------------------------------------------
+# the template of ``hapticproof new-paper``
+# ---------------------------------------------------------------------------------------------
+
+TEMPLATE = r"""# A paper file: the printed displays of a paper and what each claims.
+# Audit it with:   hapticproof audit --paper THIS_FILE.toml
+# Each display gets a verdict with evidence: confirmed, conservative, typo, wrong,
+# needs-assumption, inconsistent, malformed or undecided.
+
+[paper]
+id = "my-paper"                     # short id: used in reports and by same-as (my-paper:3)
+title = "A virtual wall, audited"
+authors = "A. Author and B. Author"
+source = "where it was published"
+
+[symbols]                           # every name the printed LaTeX uses, with its assumption
+b = "positive"                      # positive | nonnegative | real | integer
+K = "positive"
+B = "nonnegative"
+T = "positive"
+omega = "real"                      # Greek letters by name: \omega
+F_h = "signal"                      # F_h(z) = G^{-1}(z) V_h(z): signals around G^{-1}
+V_h = "signal"
+"G^{-1}" = "function"               # a name applied to (z), compared with nothing
+# j is the imaginary unit, e^{...} the exponential, z and s the transform variables;
+# H(...) in a display is the scene's environment H(z).
+
+[scenes.wall]                       # the same fields as a scene file (hapticproof derive --scene)
+system = "single-user"              # single-user | multi-user | teleoperator | network
+approximation = "forward"           # X_h = T/(z-1) V_h (forward difference)
+environment = "K + B*(z - 1)/(T*z)" # H(z), the virtual wall
+delay = 0                           # n = t_d/T; "n" keeps it symbolic
+
+[[equations]]
+id = "1"
+printed = 'F_h(z) = bV_h(z) + \left(K + \frac{B(z-1)}{Tz}\right)\frac{T}{z-1}V_h(z) = G^{-1}(z)V_h(z)'
+claim = "inverse-transfer"          # the display is G^-1(z) of the scene
+scene = "wall"
+section = "2"
+
+[[equations]]
+id = "2"
+printed = 'b > \frac{KT}{2} - B\cos(\omega T)'
+claim = "hermitian-part"            # Re G^-1(e^{j omega T}) >= 0, at each frequency
+scene = "wall"
+section = "2"
+
+[[equations]]
+id = "3"
+printed = 'b > \frac{KT}{2} + B'
+claim = "passivity-condition"       # necessary and sufficient for G^-1 positive real
+scene = "wall"
+section = "2"
+
+# More claims: residue, sufficient-condition, necessary-condition,
+# stability-condition (order = "exact" or "leading"; the scene names the device mass m),
+# same-as (other = "3" or "hve:20", under = "z_a = 0, t_d = 0").
+"""

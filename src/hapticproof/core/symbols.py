@@ -1,0 +1,38 @@
+"""Canonical SymPy symbols shared by every module.
+
+The unit circle is parametrised by ``c = cos(wT)`` (see DESIGN.md): every Hermitian part of a
+real-rational discrete transfer function is a rational function of ``c`` on ``[-1, 1]``.
+The imaginary axis is parametrised by ``x = w**2`` on ``[0, oo)``.
+
+>>> from hapticproof.core.symbols import c, z
+>>> c.is_real, z.is_real
+(True, None)
+"""
+
+from __future__ import annotations
+
+import sympy as sp
+
+__all__ = ["z", "s", "c", "x", "omega", "theta", "n", "j", "sin_theta", "cos_n", "sin_n"]
+
+#: Complex frequency variable of discrete-time transfer functions.
+z = sp.Symbol("z")
+#: Laplace variable of continuous-time transfer functions.
+s = sp.Symbol("s")
+#: ``cos(omega*T)``, ranging over [-1, 1] on the unit circle.
+c = sp.Symbol("c", real=True)
+#: ``omega**2``, ranging over [0, oo) on the imaginary axis.
+x = sp.Symbol("x", nonnegative=True)
+#: Angular frequency in rad/s.
+omega = sp.Symbol("omega", real=True)
+#: Normalised frequency ``omega*T`` in radians.
+theta = sp.Symbol("theta", real=True)
+#: Symbolic integer delay ratio ``t_d / T``.
+n = sp.Symbol("n", integer=True, nonnegative=True)
+#: Imaginary unit as printed in the papers.
+j = sp.I
+#: ``sin(theta)``; appears in imaginary parts and unequal-delay Hermitian parts.
+sin_theta = sp.Symbol("s_theta", real=True)
+#: ``cos(n*theta)`` and ``sin(n*theta)`` for a symbolic delay ``n`` (theta-forms).
+cos_n = sp.Symbol("C_n", real=True)
+sin_n = sp.Symbol("S_n", real=True)

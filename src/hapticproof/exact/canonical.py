@@ -1,0 +1,225 @@
+"""Canonical forms and zero tests of exact expressions: is a difference identically zero,
+the canonical rational function, deterministic sample points for probing."""
+
+from __future__ import annotations
+
+import itertools
+import random
+from collections.abc import Iterable, Iterator, Mapping
+from typing import Any
+
+import sympy as sp
+from sympy.core.evalf import PrecisionExhausted
+from sympy.polys.fields import sfield
+
+from hapticproof.core.symbols import c as C_SYM
+
+__all__ = ["Sampler", "is_identically_zero", "canonical_rational", "canonical_fraction"]
+
+
+_NICE = [sp.Integer(1), sp.Integer(2), sp.Rational(1, 2), sp.Integer(3), sp.Rational(1, 3), sp.Integer(5),
+         sp.Rational(2, 3), sp.Integer(10), sp.Rational(1, 10), sp.Rational(7, 4), sp.Rational(3, 7)]
+
+
+class Sampler:
+    """Exact rational values for symbols, respecting their SymPy assumptions.
+
+    ``positive`` symbols get values in (0, oo), ``nonnegative`` in [0, oo), ``integer`` ones
+    integers, and the symbol ``c`` (``cos wT``) values in [-1, 1]. Explicit ``ranges`` override.
+    Deterministic for a given seed: a few "nice" values first, then random rationals.
+
+    >>> K = sp.Symbol('K', positive=True)
+    >>> n = sp.Symbol('n', integer=True, nonnegative=True)
+    >>> values = Sampler([K, n, C_SYM], seed=1).draw(3)
+    >>> all(v[K] > 0 and v[n].is_integer and -1 <= v[C_SYM] <= 1 for v in values)
+    True
+    """
+
+    def __init__(
+        self,
+        symbols: Iterable[sp.Symbol],
+        seed: int = 0,
+        ranges: Mapping[sp.Symbol, tuple[Any, Any]] | None = None,
+    ):
+        self.symbols = sorted(set(symbols), key=str)
+        self.ranges = dict(ranges or {})
+        self._rng = random.Random(seed)
+
+    def _value(self, symbol: sp.Symbol, position: int, index: int) -> sp.Rational:
+        rng = self._rng
+        if symbol in self.ranges:
+            lo, hi = (sp.Rational(v) for v in self.ranges[symbol])
+            if symbol.is_integer:
+                return sp.Integer(rng.randint(int(lo), int(hi)))
+            if index == 0:
+                return (lo + hi) / 2
+            return lo + (hi - lo) * sp.Rational(rng.randint(0, 1000), 1000)
+        if symbol == C_SYM:
+            if index < len(_NICE):
+                return [sp.Rational(1, 2), sp.Integer(-1), sp.Integer(1), sp.Integer(0)][index % 4]
+            return sp.Rational(rng.randint(-60, 60), 60)
+        if symbol.is_integer:
+            low = 0 if symbol.is_nonnegative else (1 if symbol.is_positive else -6)
+            return sp.Integer(1 + index % 3 if index < len(_NICE) else rng.randint(low, 12))
+        if index == 0:
+            value = sp.Integer(1)
+        elif index < 4 * len(_NICE):
+            value = _NICE[(index + 3 * position) % len(_NICE)]
+        else:
+            value = sp.Rational(rng.randint(1, 400), rng.randint(1, 60))
+        if symbol.is_positive:
+            return value
+        if symbol.is_nonnegative:
+            return sp.Integer(0) if index % 7 == 3 else value
+        return value if (index + position) % 2 == 0 else -value
+
+    def __iter__(self) -> Iterator[dict[sp.Symbol, sp.Rational]]:
+        for index in itertools.count():
+            yield {s: self._value(s, k, index) for k, s in enumerate(self.symbols)}
+
+    def draw(self, count: int) -> list[dict[sp.Symbol, sp.Rational]]:
+        return list(itertools.islice(iter(self), count))
+
+
+def is_identically_zero(expr: sp.Expr) -> bool:
+    """Exact zero test of a rational (or trigonometric-polynomial) expression.
+
+    Canonical forms are tried from cheapest to dearest: rational functions over Q (``cancel``),
+    over Q with algebraic numbers such as sqrt(2) (``cancel`` with ``extension``), polynomials
+    in ``sin``/``cos`` of one angle (reduced modulo ``sin^2 + cos^2 - 1``), and only then
+    ``simplify``, which a numeric probe at a rational point spares non-zero expressions (the
+    probe comes last: on the audit's mostly-zero differences it costs more than it saves).
+
+    >>> x = sp.Symbol('x')
+    >>> is_identically_zero((x**2 - 1)/(x - 1) - x - 1), is_identically_zero(sp.sin(x)**2 + sp.cos(x)**2 - 1)
+    (True, True)
+    >>> is_identically_zero(sp.sqrt(2)*x/(sp.sqrt(2) + 1) - x*(2 - sp.sqrt(2)))
+    True
+    """
+    expr = sp.sympify(expr)
+    if expr == 0:
+        return True
+    if expr.is_rational_function():
+        return canonical_rational(expr) == 0  # a canonical form for rational functions over Q
+    if sp.cancel(sp.together(expr)) == 0:
+        return True
+    if not expr.has(sp.Function, sp.exp):
+        return sp.cancel(sp.together(expr), extension=True) == 0
+    reduced = _single_angle_form(expr)
+    if reduced is not None:
+        return reduced == 0
+    if _probe_nonzero(expr):
+        return False
+    if expr.has(sp.sin, sp.cos, sp.exp):
+        return sp.simplify(sp.expand_trig(expr)) == 0
+    return sp.simplify(expr) == 0
+
+
+def canonical_rational(expr: sp.Expr) -> sp.Expr:
+    """Canonical (cancelled) form of a rational function over Q, as an expression.
+
+    An element of the rational function field over its own symbols: cheaper than ``cancel``,
+    whose term-factoring preprocessing dominates on large sums.
+
+    >>> x, y = sp.symbols('x y')
+    >>> canonical_rational((x**2 - y**2)/(x - y) - y)
+    x
+    >>> canonical_rational(sp.Float(0.75)), canonical_rational(sp.Float(0.686844161539459)).is_Rational
+    (3/4, True)
+    """
+    expr = sp.sympify(expr)
+    if not expr.free_symbols:
+        # a float is read exactly, by its binary value (nsimplify could return radicals)
+        return sp.Rational(expr) if expr.is_Float else sp.cancel(expr)
+    _, element = sfield(expr)
+    return element.as_expr()
+
+
+def canonical_fraction(expr: sp.Expr) -> tuple[sp.Expr, sp.Expr]:
+    """Cancelled numerator and denominator of a rational function over Q (see
+    :func:`canonical_rational`); falls back to ``cancel`` for other expressions.
+
+    >>> x = sp.Symbol('x')
+    >>> canonical_fraction(1/(x - 1) + 1)
+    (x, x - 1)
+    """
+    expr = sp.sympify(expr)
+    if expr.free_symbols and expr.is_rational_function():
+        _, element = sfield(expr)
+        return element.numer.as_expr(), element.denom.as_expr()
+    return sp.fraction(sp.cancel(sp.together(expr)))
+
+
+def _probe_nonzero(expr: sp.Expr) -> bool:
+    """True when the expression is certainly non-zero at a rational point: evaluated with
+    ``strict=True``, so every digit is correct or evalf raises (an exact zero always raises, as
+    zero has no relative accuracy) and the probe then proves nothing."""
+    symbols = sorted(expr.free_symbols, key=str)
+    point = {s: sp.Rational(7 + 3 * k, 11 + 2 * k) for k, s in enumerate(symbols)}
+    try:
+        value = sp.N(expr.xreplace(point), 30, strict=True)
+    except (TypeError, ValueError, ZeroDivisionError, PrecisionExhausted):
+        return False
+    if not value.is_number or value.has(sp.zoo, sp.nan, sp.oo, -sp.oo):
+        return False
+    return abs(value) > sp.Float("1e-20")
+
+
+def _single_angle_form(expr: sp.Expr) -> sp.Expr | None:
+    """Rewrite a polynomial in sin/cos of integer multiples of one angle in the canonical ring
+    Q(params, c)[s]/(s^2 + c^2 - 1); ``None`` when the expression has other functions."""
+    trig = [f for f in expr.atoms(sp.Function) if isinstance(f, (sp.sin, sp.cos))]
+    if not trig or expr.atoms(sp.Function) - set(trig) or expr.has(sp.exp):
+        return None
+    args = {f.args[0] for f in trig}
+    base = None
+    for a in args:
+        coeff, rest = a.as_coeff_Mul()
+        if not coeff.is_Integer:
+            return None
+        if base is None:
+            base = rest
+        elif rest != base:
+            return None
+    cs, sn = sp.Dummy("c"), sp.Dummy("s")
+    expanded = sp.expand_trig(expr).subs({sp.cos(base): cs, sp.sin(base): sn})
+    if expanded.has(sp.sin, sp.cos):
+        return None
+    num, den = sp.fraction(sp.together(expanded))
+
+    def reduce(p: sp.Expr) -> sp.Expr:
+        poly = sp.Poly(sp.expand(p), sn)
+        out = sp.Integer(0)
+        for (power,), coeff in poly.terms():
+            out += coeff * (1 - cs**2) ** (power // 2) * sn ** (power % 2)
+        return sp.expand(out)
+
+    reduced_den = reduce(den)
+    if reduced_den == 0:
+        return None
+    return sp.cancel(reduce(num) / reduced_den)
+
+
+def evaluate_at(expr: sp.Expr, values: Mapping[sp.Symbol, Any]) -> sp.Expr | None:
+    """Exact value at a point (rational when the expression is rational; exact transcendental
+    numbers such as ``cos(1)`` otherwise, which compare correctly through evalf)."""
+    try:
+        value = sp.sympify(expr).xreplace(dict(values))
+        if value.has(sp.zoo, sp.nan, sp.oo, -sp.oo):
+            return None
+        if not value.is_Rational and not value.free_symbols:
+            value = sp.cancel(value)
+        return None if value.has(sp.zoo, sp.nan) else value
+    except (ZeroDivisionError, TypeError):
+        return None
+
+
+def certified_nonzero(value: sp.Expr) -> bool:
+    """Certified ``value != 0`` for an exact number (evalf with increasing precision)."""
+    if value.is_Rational:
+        return value != 0
+    for digits in (30, 100):
+        approx = sp.N(value, digits)
+        if approx.is_number and abs(approx) > sp.Float(10) ** (-digits // 2):
+            return True
+    return sp.simplify(value) != 0

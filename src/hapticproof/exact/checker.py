@@ -1,0 +1,778 @@
+r"""The independent checker: re-verify saved certificates with different algorithms.
+
+The decision kernel (:mod:`hapticproof.exact.kernel`) isolates roots by Descartes' rule of signs
+and places poles by complex root isolation. This module re-checks what a certificate claims
+from its JSON alone, importing nothing of the kernel, with other methods:
+
+* **sign** certificates -- distinct real roots between consecutive sample points are counted
+  with **Sturm sequences** over exact rationals; the polynomial is evaluated exactly at every
+  point; a disproof's witness is evaluated exactly;
+* the link to the **original transfer function**: a disproof on the unit circle is re-checked
+  by evaluating ``F(z0)`` at the Gaussian-rational witness ``z0`` (``Re F(z0) < 0``), on the axis
+  at ``s0 = j w``; a proof's c-form is compared with ``Re F`` at rational points of the circle;
+* **psd** certificates -- every coefficient's sign certificate; at a witness the exact matrix
+  ``G(z0) + G(z0)^H`` from the transfer matrix and **all its principal minors**;
+* **chebyshev-sign** certificates (long delays) -- converted to the monomial basis by the
+  three-term recurrence and checked as sign certificates, up to the degree limit;
+* **roots** certificates -- the bilinear map ``z = (1 + s)/(1 - s)`` and a **Routh-Hurwitz**
+  array (after removing the imaginary-axis roots found as real roots of
+  ``gcd(Re R(jw), Im R(jw))``), instead of complex root isolation;
+* **determinant** certificates (destabilizing terminations of an n-port) -- ``det(Z + T)``
+  against its claimed numerator/denominator by exact evaluation at more points than the degree
+  of the identity, then the numerator's roots certificate (a zero in ``Re s > 0``).
+
+``check_report`` walks a saved JSON report (audit or derive) and re-verifies every certificate
+it contains, saying which entries carry none (not re-verifiable).
+
+>>> cert = {"certificate": "sign", "variable": "c", "interval": ["-1", "1"], "polynomial": ["1", "-2", "1"],
+...         "holds": True, "points": ["-1", "0", "1"], "roots": [["1", "1"]]}
+>>> check_certificate(cert).ok
+True
+>>> check_certificate(dict(cert, polynomial=["-1", "0", "2"])).ok      # 2c^2 - 1 is negative at 0
+False
+"""
+
+from __future__ import annotations
+
+import itertools
+import json
+import math
+from collections.abc import Iterator
+from dataclasses import dataclass, field
+from fractions import Fraction
+from typing import Any
+
+import flint
+
+__all__ = ["CheckResult", "certificates", "check_certificate", "check_certificates", "check_report", "ReportCheck",
+           "MAX_DEGREE"]
+
+#: Sturm sequences above this degree are not computed (the certificate is reported as not
+#: re-verified rather than taking minutes); ``HAPTICPROOF_CHECK_MAX_DEGREE`` overrides it.
+MAX_DEGREE = 600
+
+
+@dataclass
+class CheckResult:
+    """Outcome of re-verifying one certificate: ``ok`` (verified), ``verified`` False with
+    ``ok`` True means it could not be re-verified (``reason`` says why, e.g. degree limit)."""
+
+    ok: bool
+    reason: str
+    verified: bool = True
+    notes: list[str] = field(default_factory=list)
+
+
+class _Fail(Exception):
+    pass
+
+
+class _Skip(Exception):
+    pass
+
+
+def _max_degree() -> int:
+    import os
+
+    return int(os.environ.get("HAPTICPROOF_CHECK_MAX_DEGREE", MAX_DEGREE))
+
+
+# ---------------------------------------------------------------------------------------------
+# exact numbers
+# ---------------------------------------------------------------------------------------------
+
+
+def _q(text: Any) -> Fraction:
+    if isinstance(text, (int, Fraction)):
+        return Fraction(text)
+    return Fraction(str(text))
+
+
+def _poly(coeffs: list) -> flint.fmpq_poly:
+    return flint.fmpq_poly([flint.fmpq(v.numerator, v.denominator) for v in map(_q, coeffs)])
+
+
+def _fq(v: Fraction) -> flint.fmpq:
+    return flint.fmpq(v.numerator, v.denominator)
+
+
+def _val(p: flint.fmpq_poly, x: Fraction) -> Fraction:
+    r = p(_fq(x))
+    return Fraction(int(r.p), int(r.q))
+
+
+class _G:
+    """Gaussian rationals ``a + j b`` (exact)."""
+
+    __slots__ = ("re", "im")
+
+    def __init__(self, re: Fraction, im: Fraction = Fraction(0)):
+        self.re, self.im = Fraction(re), Fraction(im)
+
+    def __add__(self, o: _G) -> _G:
+        return _G(self.re + o.re, self.im + o.im)
+
+    def __sub__(self, o: _G) -> _G:
+        return _G(self.re - o.re, self.im - o.im)
+
+    def __mul__(self, o: _G) -> _G:
+        return _G(self.re * o.re - self.im * o.im, self.re * o.im + self.im * o.re)
+
+    def __truediv__(self, o: _G) -> _G:
+        d = o.re * o.re + o.im * o.im
+        if d == 0:
+            raise ZeroDivisionError
+        return _G((self.re * o.re + self.im * o.im) / d, (self.im * o.re - self.re * o.im) / d)
+
+    def conj(self) -> _G:
+        return _G(self.re, -self.im)
+
+    def is_zero(self) -> bool:
+        return self.re == 0 and self.im == 0
+
+
+def _horner(coeffs: list[Fraction], z: _G) -> _G:
+    acc = _G(Fraction(0))
+    for a in reversed(coeffs):
+        acc = acc * z + _G(a)
+    return acc
+
+
+def _eval_transfer(entry: dict, z: _G) -> _G:
+    num = [_q(v) for v in entry["num"]]
+    den = [_q(v) for v in entry["den"]]
+    d = _horner(den, z)
+    if d.is_zero():
+        raise _Fail("the witness is a pole of the transfer function")
+    value = _horner(num, z) / d
+    if "factor" in entry:                    # a Gaussian-rational constant factor (e.g. j)
+        value = value * _G(_q(entry["factor"][0]), _q(entry["factor"][1]))
+    return value
+
+
+# ---------------------------------------------------------------------------------------------
+# Sturm sequences
+# ---------------------------------------------------------------------------------------------
+
+
+def _normalise(p: flint.fmpq_poly) -> flint.fmpq_poly:
+    """Divide by a positive constant (|leading coefficient|): signs are unchanged."""
+    lead = p.coeffs()[-1]
+    return p / abs(lead)
+
+
+class _Sturm:
+    """Sturm sequence of a squarefree polynomial: distinct real roots in open intervals."""
+
+    def __init__(self, p: flint.fmpq_poly):
+        if p.degree() > _max_degree():
+            raise _Skip(f"degree {p.degree()} above the checker's limit {_max_degree()} (HAPTICPROOF_CHECK_MAX_DEGREE)")
+        g = p.gcd(p.derivative()) if p.degree() > 0 else flint.fmpq_poly([1])
+        q = p / g if g.degree() > 0 else p            # squarefree, same distinct roots
+        self.q = _normalise(q) if q.degree() >= 0 and not q.is_zero() else q
+        seq = [self.q]
+        if self.q.degree() > 0:
+            seq.append(_normalise(self.q.derivative()))
+            while seq[-1].degree() > 0:
+                r = seq[-2] % seq[-1]
+                if r.is_zero():
+                    break
+                seq.append(_normalise(-r))
+        self.seq = seq
+
+    def _variations(self, x: Fraction | None) -> int:
+        signs = []
+        for p in self.seq:
+            if x is None:  # +oo: signs of the leading coefficients
+                value = p.coeffs()[-1] if not p.is_zero() else 0
+            else:
+                value = p(_fq(x))
+            if value != 0:
+                signs.append(value > 0)
+        return sum(1 for a, b in zip(signs, signs[1:]) if a != b)
+
+    def count_open(self, a: Fraction, b: Fraction | None) -> int:
+        """Distinct real roots in the open ``(a, b)`` (``b=None``: ``(a, oo)``)."""
+        q = self.q
+        if q.degree() <= 0:
+            return 0
+        # make both ends non-roots by deflating exact rational roots there
+        shift = 0
+        for end in (a, b):
+            if end is not None and q(_fq(end)) == 0:
+                shift += 1
+        if shift:
+            reduced = q
+            for end in (a, b):
+                if end is not None and reduced(_fq(end)) == 0:
+                    reduced = reduced / flint.fmpq_poly([-_fq(end), 1])
+            return _Sturm(reduced).count_open(a, b)
+        return self._variations(a) - self._variations(b)
+
+
+# ---------------------------------------------------------------------------------------------
+# sign certificates
+# ---------------------------------------------------------------------------------------------
+
+
+def _check_sign(cert: dict) -> list[str]:
+    notes: list[str] = []
+    p = _poly(cert["polynomial"])
+    lo = _q(cert["interval"][0])
+    hi = None if cert["interval"][1] is None else _q(cert["interval"][1])
+    if "numerator" in cert:
+        num, den = _poly(cert["numerator"]), _poly(cert["denominator"])
+        if num * den != p:
+            raise _Fail("the polynomial is not numerator * denominator")
+    if not cert["holds"]:
+        w = _q(cert["witness"])
+        if w < lo or (hi is not None and w > hi):
+            raise _Fail(f"witness {w} outside the interval")
+        if not _val(p, w) < 0:
+            raise _Fail(f"the polynomial is not negative at the witness {w}")
+        if "numerator" in cert and _val(_poly(cert["denominator"]), w) == 0:
+            raise _Fail("the witness is a pole")
+        notes.append(f"negative at {cert['variable']} = {w}")
+        return notes
+    if p.is_zero():
+        notes.append("identically zero")
+        return notes
+    points = [_q(v) for v in cert["points"]]
+    if points != sorted(set(points)) or not points:
+        raise _Fail("sample points not strictly increasing")
+    if points[0] != lo or (hi is not None and points[-1] != hi) or any(pt < lo or (hi is not None and pt > hi) for pt in points):
+        raise _Fail("sample points do not span the interval")
+    values = [_val(p, pt) for pt in points]
+    if any(v < 0 for v in values):
+        raise _Fail("negative at a sample point")
+    sturm = _Sturm(p)
+    for (a, va), (b, vb) in zip(zip(points, values), zip(points[1:], values[1:])):
+        inside = sturm.count_open(a, b)
+        if inside > 1:
+            raise _Fail(f"{inside} roots between consecutive sample points {a} and {b}")
+        if inside == 1 and not (va > 0 and vb > 0):
+            raise _Fail(f"a root between {a} and {b} without positive values on both sides")
+        if inside == 0 and not (va > 0 or vb > 0):
+            raise _Fail(f"no positive sample around ({a}, {b})")
+    if hi is None:
+        if sturm.count_open(points[-1], None) != 0:
+            raise _Fail("roots beyond the last sample point")
+        if not (values[-1] > 0 or p.coeffs()[-1] > 0):
+            raise _Fail("negative towards infinity")
+    notes.append(f"{len(points)} sample points, Sturm counts checked")
+    return notes
+
+
+def _circle_points(count: int) -> Iterator[tuple[Fraction, _G]]:
+    """Rational points ``z = (1 + jt)/(1 - jt)`` of the unit circle (distinct ``c``)."""
+    for k in range(1, count + 1):
+        t = Fraction(k, count + 1) * 3
+        c = (1 - t * t) / (1 + t * t)
+        yield c, _G(c, 2 * t / (1 + t * t))
+
+
+def _check_transfer_sign(cert: dict, transfer: dict) -> list[str]:
+    """The c-form (or x-form) ``num/den`` against ``Re F`` of the original transfer function."""
+    notes = []
+    variable = transfer.get("variable", "z")
+    if not cert["holds"]:
+        w = cert.get("witness_point")
+        if w is None:
+            return ["no exact point for the transfer-function re-check"]
+        if variable == "z":
+            point = _G(_q(w[0]), _q(w[1]))
+            if point.re * point.re + point.im * point.im != 1:
+                raise _Fail("the witness z0 is not on the unit circle")
+        else:
+            point = _G(Fraction(0), _q(w))
+        value = _eval_transfer(transfer, point)
+        if not value.re < 0:
+            raise _Fail(f"Re F = {value.re} is not negative at the witness")
+        notes.append(f"Re F(witness) = {float(value.re):.6g} < 0 evaluated exactly from the transfer function")
+        return notes
+    if "numerator" not in cert:
+        return notes
+    num, den = _poly(cert["numerator"]), _poly(cert["denominator"])
+    # both sides are rational in t (z = (1 + jt)/(1 - jt)) or in w; their cross-multiplied
+    # difference has degree <= 2 deg(form) + 2 deg(F): that many + 1 points prove the identity
+    needed = 2 * max(num.degree(), den.degree(), 0) + 2 * (max(len(transfer["num"]), len(transfer["den"])) - 1) + 1
+    limit = 400
+    checked = 0
+    points = _circle_points(limit) if variable == "z" else _axis_points(limit)
+    for c, z in points:
+        if checked >= needed:
+            break
+        d = _val(den, c)
+        try:
+            value = _eval_transfer(transfer, z)
+        except _Fail:
+            continue
+        if d == 0:
+            continue
+        if _val(num, c) / d != value.re:
+            raise _Fail(f"the form in {cert['variable']} differs from Re F at {cert['variable']} = {c}")
+        checked += 1
+    notes.append(f"form = Re F at {checked} exact points" + (" (identity proved by degree)" if checked >= needed else " (sampled)"))
+    return notes
+
+
+def _axis_points(count: int) -> Iterator[tuple[Fraction, _G]]:
+    for k in range(1, count + 1):
+        w = Fraction(k, 3)
+        yield w * w, _G(Fraction(0), w)
+
+
+# ---------------------------------------------------------------------------------------------
+# matrices
+# ---------------------------------------------------------------------------------------------
+
+
+def _det(M: list[list[_G]]) -> _G:
+    """Exact determinant by Gaussian elimination over the Gaussian rationals."""
+    A = [row[:] for row in M]
+    n = len(A)
+    det = _G(Fraction(1))
+    for k in range(n):
+        pivot = next((i for i in range(k, n) if not A[i][k].is_zero()), None)
+        if pivot is None:
+            return _G(Fraction(0))
+        if pivot != k:
+            A[k], A[pivot] = A[pivot], A[k]
+            det = _G(Fraction(0)) - det
+        det = det * A[k][k]
+        for i in range(k + 1, n):
+            factor = A[i][k] / A[k][k]
+            for j in range(k, n):
+                A[i][j] = A[i][j] - factor * A[k][j]
+    return det
+
+
+def _hermitian_at(transfer: dict, point: _G) -> list[list[_G]]:
+    entries = transfer["entries"]
+    m = len(entries)
+    G = [[_eval_transfer(entries[i][j], point) for j in range(m)] for i in range(m)]
+    return [[G[i][j] + G[j][i].conj() for j in range(m)] for i in range(m)]
+
+
+def _check_psd(cert: dict) -> list[str]:
+    notes = []
+    for sub in cert["coefficients"]:
+        _check_sign(sub)
+    if "scale" in cert:
+        if not cert["scale"]["holds"]:
+            raise _Fail("the scale is not certified non-negative")
+        _check_sign(cert["scale"])
+    if cert["holds"]:
+        if not all(sub["holds"] for sub in cert["coefficients"]):
+            raise _Fail("a coefficient certificate does not hold")
+        if len(cert["coefficients"]) != cert["size"]:
+            raise _Fail("not every characteristic coefficient is certified")
+        notes.append(f"{cert['size']} characteristic coefficients certified >= 0")
+        return notes
+    transfer = cert.get("transfer")
+    witness = cert.get("witness", {})
+    if transfer is not None and ("z" in witness or "omega" in witness):
+        point = _G(_q(witness["z"][0]), _q(witness["z"][1])) if "z" in witness else _G(Fraction(0), _q(witness["omega"]))
+        M = _hermitian_at(transfer, point)
+        source = "the transfer matrix"
+    elif "matrix_at_witness" in cert:
+        M = [[_G(_q(a), _q(b)) for a, b in row] for row in cert["matrix_at_witness"]]
+        source = "the recorded matrix"
+    else:
+        notes.append("no matrix at the witness to re-check")
+        return notes
+    m = len(M)
+    if any(M[i][j].re != M[j][i].re or M[i][j].im != -M[j][i].im for i in range(m) for j in range(m)):
+        raise _Fail("the matrix at the witness is not Hermitian")
+    smallest = None
+    checked = 0
+    for size in range(1, m + 1):
+        if math.comb(m, size) > 4000:
+            break
+        for subset in itertools.combinations(range(m), size):
+            value = _det([[M[i][j] for j in subset] for i in subset]).re
+            checked += 1
+            if value < 0 and smallest is None:
+                smallest = (subset, value)
+    if smallest is None:
+        raise _Fail(f"no negative principal minor at the witness ({checked} checked)")
+    notes.append(f"principal minor {[i + 1 for i in smallest[0]]} = {smallest[1]} < 0 at the witness, from {source}")
+    return notes
+
+
+# ---------------------------------------------------------------------------------------------
+# roots: bilinear map, imaginary-axis part, Routh-Hurwitz
+# ---------------------------------------------------------------------------------------------
+
+
+def _bilinear(p: flint.fmpq_poly) -> flint.fmpq_poly:
+    """``(1 - s)^d p((1 + s)/(1 - s))``: the unit disk to the left half plane."""
+    d = p.degree()
+    one_plus, one_minus = flint.fmpq_poly([1, 1]), flint.fmpq_poly([1, -1])
+    out = flint.fmpq_poly([])
+    for k, a in enumerate(p.coeffs()):
+        if a != 0:
+            out += a * one_plus**k * one_minus ** (d - k)
+    return out
+
+
+def _axis_gcd(p: flint.fmpq_poly) -> flint.fmpq_poly:
+    """``gcd(Re p(jw), Im p(jw))`` as a real polynomial in ``w``."""
+    re, im = [], []
+    for k, a in enumerate(p.coeffs()):
+        unit = k % 4            # j^k = 1, j, -1, -j
+        re.append(a if unit == 0 else -a if unit == 2 else flint.fmpq(0))
+        im.append(a if unit == 1 else -a if unit == 3 else flint.fmpq(0))
+    pr, pi = flint.fmpq_poly(re), flint.fmpq_poly(im)
+    if pi.is_zero():
+        return pr
+    if pr.is_zero():
+        return pi
+    return pr.gcd(pi)
+
+
+def _count_with_multiplicity(g: flint.fmpq_poly) -> tuple[int, bool]:
+    """Real roots of ``g`` counted with multiplicity, and whether all of them are simple."""
+    total = 0
+    simple = True
+    level = 0
+    while g.degree() > 0:
+        distinct = _Sturm(g).count_open(-_cauchy(g), _cauchy(g))
+        if level > 0 and distinct > 0:
+            simple = False
+        total += distinct
+        g = g.gcd(g.derivative())
+        level += 1
+    return total, simple
+
+
+def _cauchy(p: flint.fmpq_poly) -> Fraction:
+    coeffs = [Fraction(int(a.p), int(a.q)) for a in p.coeffs()]
+    lead = abs(coeffs[-1])
+    return 1 + max((abs(a) for a in coeffs[:-1]), default=Fraction(0)) / lead
+
+
+def _routh_hurwitz(p: flint.fmpq_poly) -> bool:
+    """All roots in the open left half plane: the exact Routh array has ``degree + 1`` rows and
+    a positive first column (a zero pivot means no)."""
+    coeffs = [Fraction(int(a.p), int(a.q)) for a in p.coeffs()][::-1]   # highest first
+    if coeffs[0] < 0:
+        coeffs = [-a for a in coeffs]
+    degree = len(coeffs) - 1
+    if degree == 0:
+        return True
+    if any(a <= 0 for a in coeffs):         # necessary: every coefficient positive
+        return False
+    width = degree // 2 + 1
+    top = coeffs[0::2] + [Fraction(0)] * (width - len(coeffs[0::2]))
+    below = coeffs[1::2] + [Fraction(0)] * (width - len(coeffs[1::2]))
+    rows = [top, below]
+    for _ in range(degree - 1):
+        a, b = rows[-2], rows[-1]
+        if b[0] <= 0:
+            return False
+        rows.append([(b[0] * a[k + 1] - a[0] * b[k + 1]) / b[0] for k in range(width - 1)] + [Fraction(0)])
+    return all(row[0] > 0 for row in rows)
+
+
+def _check_roots(cert: dict) -> list[str]:
+    p = _poly(cert["polynomial"])
+    notes = []
+    if p.degree() <= 0:
+        if cert["outside"] != 0 or cert["boundary_count"] != 0:
+            raise _Fail("a constant has no roots")
+        return ["constant"]
+    coeffs = p.coeffs()
+    zeros = next(k for k, a in enumerate(coeffs) if a != 0)   # roots at z = 0 / s = 0
+    if cert["domain"] == "disk":
+        core = flint.fmpq_poly(coeffs[zeros:])
+        boundary_infinity = 0
+        R = _bilinear(core)
+        boundary_infinity = core.degree() - R.degree()       # roots at z = -1
+        axis_zero = 0
+    else:
+        R = flint.fmpq_poly(coeffs[zeros:])
+        boundary_infinity = 0
+        axis_zero = zeros
+    if R.degree() > _max_degree():
+        raise _Skip(f"degree {R.degree()} above the checker's limit")
+    g = _axis_gcd(R) if R.degree() > 0 else flint.fmpq_poly([1])
+    axis_count, axis_simple = _count_with_multiplicity(g) if g.degree() > 0 else (0, True)
+    boundary = axis_count + boundary_infinity + axis_zero
+    simple = axis_simple and boundary_infinity <= 1 and axis_zero <= 1
+    if boundary != cert["boundary_count"]:
+        raise _Fail(f"{boundary} boundary roots, the certificate claims {cert['boundary_count']}")
+    claims_simple = all(r["multiplicity"] == 1 for r in cert["boundary"])
+    if claims_simple != simple:
+        raise _Fail("the boundary roots' simplicity differs from the certificate")
+    # g's roots are the w0 with both s0 = j w0 and -s0 roots of R: the axis roots (real w0) and
+    # mirror pairs off the axis (half of them in the right half plane). A(s) = g(-j s) collects
+    # them all (real up to the unit -j when g is odd); the rest, R/A, has neither.
+    mirrored = 0
+    if g.degree() > 0:
+        coeffs = g.coeffs()
+        parity = next(k for k, a in enumerate(coeffs) if a != 0) % 2
+        if any(a != 0 and k % 2 != parity for k, a in enumerate(coeffs)):
+            raise _Fail("the axis factor is neither even nor odd")
+        A = flint.fmpq_poly([a * (-1) ** ((k - parity) // 2) if k % 2 == parity else 0 for k, a in enumerate(coeffs)])
+        core, remainder = divmod(R, A)
+        if not remainder.is_zero():
+            raise _Fail("the axis factor does not divide the polynomial")
+        mirrored = g.degree() - axis_count
+        if mirrored % 2:
+            raise _Fail("mirror pairs of roots do not pair up")
+    else:
+        core = R
+    if core.degree() > 0 and _axis_gcd(core).degree() > 0:
+        raise _Fail("mirrored or axis roots remain after removing them")
+    stable = (_routh_hurwitz(core) if core.degree() > 0 else True) and mirrored == 0
+    if stable != (cert["outside"] == 0):
+        raise _Fail("Routh-Hurwitz disagrees with the certificate on roots outside")
+    notes.append(f"{boundary} boundary roots ({'simple' if simple else 'not simple'}); "
+                 + ("no root outside (Routh-Hurwitz)" if stable else "a root outside (Routh-Hurwitz fails, no axis roots left)"))
+    return notes
+
+
+def _check_residue(cert: dict) -> list[str]:
+    transfer = cert["transfer"]
+    pole = _q(cert["pole"])
+    num, den = _poly(transfer["num"]), _poly(transfer["den"])
+    factor = flint.fmpq_poly([-_fq(pole), 1])
+    quotient, remainder = divmod(den, factor)
+    if not remainder.is_zero():
+        raise _Fail(f"z = {pole} is not a pole")
+    if quotient(_fq(pole)) == 0:
+        raise _Fail(f"z = {pole} is not a simple pole")
+    value = _val(num, pole) / _val(quotient, pole) / pole
+    if value != _q(cert["scaled"]):
+        raise _Fail(f"Res/z0 = {value}, the certificate says {cert['scaled']}")
+    if (value >= 0) != cert["holds"]:
+        raise _Fail("the residue's sign differs from the certificate")
+    return [f"Res/z0 = {value} at z0 = {pole}"]
+
+
+def _charpoly_coefficients(M: list[list[_G]]) -> list[Fraction]:
+    """``E_1..E_m`` (sums of principal minors) by Faddeev-LeVerrier over the Gaussian rationals."""
+    m = len(M)
+    identity = [[_G(Fraction(int(i == j))) for j in range(m)] for i in range(m)]
+    Mk = [row[:] for row in identity]
+    coeffs = [_G(Fraction(1))]        # det(lambda I - M) = sum c_k lambda^(m-k)
+    for k in range(1, m + 1):
+        AM = [[sum((M[i][t] * Mk[t][j] for t in range(m)), _G(Fraction(0))) for j in range(m)] for i in range(m)]
+        trace = sum((AM[i][i] for i in range(m)), _G(Fraction(0)))
+        ck = _G(-trace.re / k, -trace.im / k)
+        coeffs.append(ck)
+        Mk = [[AM[i][j] + (identity[i][j] * ck) for j in range(m)] for i in range(m)]
+    # E_k = (-1)^k c_k, real for a Hermitian matrix
+    return [(-1) ** k * coeffs[k].re for k in range(1, m + 1)]
+
+
+def _check_constant_psd(cert: dict) -> list[str]:
+    M = [[_G(_q(a), _q(b)) for a, b in row] for row in cert["matrix"]]
+    m = len(M)
+    if any(M[i][j].re != M[j][i].re or M[i][j].im != -M[j][i].im for i in range(m) for j in range(m)):
+        raise _Fail("the matrix is not Hermitian")
+    E = _charpoly_coefficients(M)
+    holds = all(e >= 0 for e in E)
+    if holds != cert["holds"]:
+        raise _Fail("the characteristic coefficients contradict the certificate")
+    if not holds and "negative_minor" in cert:
+        rows = cert["negative_minor"]["rows"]
+        value = _det([[M[i][j] for j in rows] for i in rows]).re
+        if not value < 0 or value != _q(cert["negative_minor"]["value"]):
+            raise _Fail("the recorded principal minor is not negative")
+    return [f"{m}x{m} matrix: E_k = {', '.join(str(e) for e in E[:4])}{'...' if m > 4 else ''} (Faddeev-LeVerrier)"]
+
+
+
+def _chebyshev_monomial(coeffs: list) -> flint.fmpq_poly:
+    """``sum_k a_k T_k(c)`` in the monomial basis (the recurrence ``T_{k+1} = 2c T_k - T_{k-1}``)."""
+    c = flint.fmpq_poly([0, 1])
+    t0, t1 = flint.fmpq_poly([1]), c
+    out = flint.fmpq_poly([])
+    for k, a in enumerate(_q(v) for v in coeffs):
+        if k >= 2:
+            t0, t1 = t1, 2 * c * t1 - t0
+        out += _fq(a) * (t0 if k == 0 else t1)
+    return out
+
+
+def _as_sign_certificate(cert: dict) -> dict:
+    """A Chebyshev-basis sign certificate (long delays) as a monomial sign certificate: the
+    same claim about ``num(c) den(c)``, converted here (up to the degree limit)."""
+    degree = len(cert["numerator"]) + len(cert["denominator"]) - 2
+    if degree > _max_degree():
+        raise _Skip(f"degree {degree} above the checker's limit {_max_degree()} (HAPTICPROOF_CHECK_MAX_DEGREE)")
+    num, den = _chebyshev_monomial(cert["numerator"]), _chebyshev_monomial(cert["denominator"])
+    out = {k: v for k, v in cert.items() if k not in ("numerator", "denominator", "basis", "cover")}
+    out.update(certificate="sign", polynomial=[str(a) for a in (num * den).coeffs()],
+               numerator=[str(a) for a in num.coeffs()], denominator=[str(a) for a in den.coeffs()])
+    return out
+
+
+def _check_chebyshev(cert: dict) -> list[str]:
+    return _check_sign(_as_sign_certificate(cert)) + ["converted from the Chebyshev basis"]
+
+
+def _check_determinant(cert: dict) -> list[str]:
+    """``det M(s) = numerator/denominator`` (lowest terms) for the rational matrix ``M`` (entries
+    ``{num, den}`` in ``s``), proved by exact evaluation at more points than the degree of the
+    polynomial identity allows; then the roots certificate of the numerator (Routh-Hurwitz) and,
+    when ``rhp_zero`` is claimed, a zero of ``det M`` in ``Re s > 0``."""
+    num, den = _poly(cert["numerator"]), _poly(cert["denominator"])
+    if num.is_zero() or den.is_zero():
+        raise _Fail("the determinant is identically zero (or has a zero denominator)")
+    if num.gcd(den).degree() > 0:
+        raise _Fail("numerator and denominator are not coprime")
+    rows = [[(_poly(e["num"]), _poly(e["den"])) for e in row] for row in cert["matrix"]]
+    m = len(rows)
+    if any(len(row) != m for row in rows):
+        raise _Fail("the matrix is not square")
+    lcms, degree = [], 0
+    for row in rows:
+        lcm = flint.fmpq_poly([1])
+        for _, d in row:
+            lcm = lcm * d / lcm.gcd(d)
+        lcms.append(lcm)
+        present = [n.degree() + lcm.degree() - d.degree() for n, d in row if not n.is_zero()]
+        if not present:
+            raise _Fail("a zero row: the determinant vanishes identically")
+        degree += max(present)
+    product = flint.fmpq_poly([1])
+    for lcm in lcms:
+        product *= lcm
+    if max(degree + den.degree(), num.degree() + product.degree()) > 4 * _max_degree():
+        raise _Skip("determinant identity above the checker's degree limit")
+    # det(M) * product is a polynomial of degree <= `degree`; the identity
+    # det(M) * product * den - num * product = 0 has degree <= bound
+    bound = max(degree + den.degree(), num.degree() + product.degree())
+    checked, point = 0, Fraction(0)
+    while checked <= bound:
+        point += 1
+        if _val(product, point) == 0 or _val(den, point) == 0:
+            continue
+        M = [[_G(_val(n, point) / _val(d, point)) for n, d in row] for row in rows]
+        if _det(M).re * _val(den, point) != _val(num, point):
+            raise _Fail(f"det M differs from numerator/denominator at s = {point}")
+        checked += 1
+    notes = [f"det M = numerator/denominator at {checked} points (identity proved by degree)"]
+    roots = cert.get("roots")
+    if roots is not None:
+        if _poly(roots["polynomial"]) != num:
+            raise _Fail("the roots certificate is not about the numerator")
+        notes += _check_roots(roots)
+        if cert.get("rhp_zero") and not roots["outside"] > 0:
+            raise _Fail("no zero in Re s > 0 is certified")
+        if cert.get("rhp_zero"):
+            notes.append("a zero of det M in Re s > 0")
+    return notes
+
+
+_CHECKS = {"sign": _check_sign, "psd": _check_psd, "roots": _check_roots, "residue": _check_residue,
+           "constant-psd": _check_constant_psd, "chebyshev-sign": _check_chebyshev, "determinant": _check_determinant}
+
+
+def check_certificate(cert: dict) -> CheckResult:
+    """Re-verify one certificate (a JSON object with a ``"certificate"`` kind)."""
+    kind = cert.get("certificate")
+    check = _CHECKS.get(kind)
+    if check is None:
+        return CheckResult(True, f"unknown certificate kind {kind!r}", verified=False)
+    try:
+        notes = check(cert)
+        if kind == "sign" and "transfer" in cert:
+            notes += _check_transfer_sign(cert, cert["transfer"])
+        if kind == "chebyshev-sign" and "transfer" in cert:
+            notes += _check_transfer_sign(_as_sign_certificate(cert), cert["transfer"])
+    except _Skip as skip:
+        return CheckResult(True, f"not re-verified: {skip}", verified=False)
+    except _Fail as fail:
+        return CheckResult(False, f"FAILED: {fail}")
+    except (KeyError, TypeError, ValueError, ZeroDivisionError) as err:
+        return CheckResult(False, f"FAILED: malformed certificate ({type(err).__name__}: {err})")
+    return CheckResult(True, "; ".join(notes))
+
+
+# ---------------------------------------------------------------------------------------------
+# whole reports
+# ---------------------------------------------------------------------------------------------
+
+
+@dataclass
+class ReportCheck:
+    """Per-entry results of :func:`check_report`."""
+
+    entries: list[tuple[str, list[CheckResult]]]
+
+    @property
+    def failed(self) -> list[tuple[str, CheckResult]]:
+        return [(name, r) for name, results in self.entries for r in results if not r.ok]
+
+    @property
+    def ok(self) -> bool:
+        return not self.failed
+
+    def summary(self) -> str:
+        lines = []
+        verified = unverifiable = 0
+        for name, results in self.entries:
+            if not results:
+                lines.append(f"{name}: no certificate (not re-verifiable)")
+                unverifiable += 1
+                continue
+            good = sum(r.ok and r.verified for r in results)
+            skipped = [r for r in results if r.ok and not r.verified]
+            bad = [r for r in results if not r.ok]
+            text = f"{name}: {good}/{len(results)} certificates re-verified"
+            if skipped:
+                text += "; " + "; ".join(r.reason for r in skipped[:2])
+            if bad:
+                text += "; " + "; ".join(r.reason for r in bad[:3])
+            lines.append(text)
+            verified += good == len(results)
+        lines.append(f"{len(self.entries)} entries: {verified} fully re-verified, {len(self.failed)} certificate(s) failed, "
+                     f"{unverifiable} without a certificate")
+        return "\n".join(lines)
+
+
+def certificates(node: Any) -> Iterator[dict]:
+    """Every certificate object (a dict with a ``certificate`` kind) inside a JSON value."""
+    if isinstance(node, dict):
+        if isinstance(node.get("certificate"), str):
+            yield node
+            return
+        for value in node.values():
+            yield from certificates(value)
+    elif isinstance(node, list):
+        for value in node:
+            yield from certificates(value)
+
+
+def check_certificates(node: Any) -> list[CheckResult]:
+    """:func:`check_certificate` on every certificate inside a JSON value (in document order)."""
+    return [check_certificate(c) for c in certificates(node)]
+
+
+def _entries(report: Any) -> list[tuple[str, Any]]:
+    """Top-level entries: audit equations, derive conditions, or the report itself."""
+    if isinstance(report, dict) and "papers" in report:
+        return [(f"{p['paper']} ({e['id']})", e) for p in report["papers"] for e in p.get("equations", [])]
+    if isinstance(report, dict) and "equations" in report:
+        return [(f"{report.get('paper', '?')} ({e['id']})", e) for e in report["equations"]]
+    if isinstance(report, dict) and "conditions" in report:
+        return [(c.get("name", f"condition {i + 1}"), c) for i, c in enumerate(report["conditions"])]
+    return [("report", report)]
+
+
+def check_report(report: Any) -> ReportCheck:
+    """Re-verify every certificate in a saved JSON report (a dict, or a JSON string).
+
+    >>> check_report({"conditions": [{"name": "x", "decision": "proved"}]}).summary().splitlines()[0]
+    'x: no certificate (not re-verifiable)'
+    """
+    if isinstance(report, str):
+        report = json.loads(report)
+    out = []
+    for name, entry in _entries(report):
+        out.append((name, check_certificates(entry)))
+    return ReportCheck(out)

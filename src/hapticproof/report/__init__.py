@@ -1,0 +1,1 @@
+"""Views of findings and derivations: LaTeX, HTML, readable text, summaries, exports, figures."""

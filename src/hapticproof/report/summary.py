@@ -1,0 +1,203 @@
+"""Summaries of a scene's derivation: what ``hapticproof derive`` prints and notebooks show.
+
+>>> from hapticproof.systems.singleuser import SingleUserScene
+>>> summary = summarize_single_user(SingleUserScene.virtual_wall(K=2, B=0, b="0.0012", T="0.001"))
+>>> summary.verdict, summary.witness
+('proved', None)
+>>> [c.decision.value for c in summary.conditions]
+['proved', 'proved', 'proved', 'proved']
+>>> sorted(summary.to_json())[:4]
+['G_inverse', 'approximation', 'conditions', 'delay']
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+from typing import Any
+
+import sympy as sp
+
+from hapticproof.report import latex as tex
+from hapticproof.core.evidence import Decision, to_jsonable
+from hapticproof.core.lazy import profile
+from hapticproof.core.notation import shorten_numbers
+from hapticproof.report.readable import brief, full_text
+from hapticproof.systems.models import inverse_transfer
+from hapticproof.exact.conditions import Condition
+from hapticproof.analysis.positivereal import conditions, hermitian, poles, positive_real, residues, worst_case
+from hapticproof.systems.singleuser import SingleUserScene
+from hapticproof.exact.unitcircle import CRational, ThetaForm
+
+__all__ = ["SceneSummary", "summarize_single_user"]
+
+COS = r"\cos(\omega T)"
+
+
+@dataclass(frozen=True)
+class SceneSummary:
+    """The derived conditions of one scene, ready to print as text, LaTeX or JSON."""
+
+    system: str
+    approximation: str
+    delay: Any
+    G_inverse: sp.Expr
+    hermitian_part: Any
+    poles: list
+    residues: list
+    worst_case: Any
+    verdict: str
+    witness: Any
+    reason: str
+    minimiser: Any = None
+    minimum: Any = None
+    stages: dict = field(default_factory=dict)
+    conditions: tuple[Condition, ...] = ()
+
+    def to_json(self) -> dict[str, Any]:
+        out = {
+            "system": self.system,
+            "approximation": self.approximation,
+            "delay": self.delay,
+            "G_inverse": sp.sstr(self.G_inverse),
+            "hermitian_part": full_text(self.hermitian_part),
+            "poles": [{"z": p.value, "multiplicity": p.multiplicity, "location": p.location} for p in self.poles],
+            "residues": [{"z": r.pole, "residue": r.residue, "condition": r.outcome.decision.value} for r in self.residues],
+            "worst_case": sp.sstr(self.worst_case) if self.worst_case is not None else None,
+            "conditions": [c.to_json() for c in self.conditions],
+            "verdict": self.verdict,
+            "witness": self.witness,
+            "reason": self.reason,
+            "minimiser": self.minimiser,
+            "minimum": self.minimum,
+        }
+        if self.stages:
+            out["stages_seconds"] = self.stages
+        return to_jsonable(out)
+
+    def to_text(self, verbose: bool = False) -> str:
+        lines = [
+            f"system:          {self.system} ({self.approximation} difference, delay n = {self.delay})",
+            f"G^-1(z)          = {brief(self.G_inverse, verbose=verbose)}",
+            f"Re G^-1 (c = cos wT) = {brief(self.hermitian_part, verbose=verbose)}",
+            "poles:           " + ", ".join(f"z = {p.value} ({p.location}{'' if p.multiplicity == 1 else f', x{p.multiplicity}' if p.multiplicity > 0 else ', multiplicity n+...'})" for p in self.poles),
+            "residues:        " + (", ".join(f"Res(z = {r.pole}) = {sp.sstr(r.residue)} [{r.outcome.reason}]" for r in self.residues) or "none on |z| = 1"),
+            f"worst case:      {brief(self.worst_case, verbose=verbose) if self.worst_case not in (None, sp.true, sp.false) else _minimum_text(self)}",
+            "conditions:",
+        ]
+        width = max((len(c.name) for c in self.conditions), default=0)
+        for cond in self.conditions:
+            lines.append(f"  {cond.name.ljust(width)}  {cond.decision.value:<9}  {shorten_numbers(cond.outcome.reason, verbose=verbose)}")
+        lines.append(f"verdict:         {self.verdict}  ({shorten_numbers(self.reason, verbose=verbose)})")
+        if self.witness:
+            lines.append("witness:         " + ", ".join(f"{k} = {_show(v)}" for k, v in self.witness.items()))
+        if self.stages:
+            lines.append("stages (s):      " + ", ".join(f"{k} {v:.4f}" for k, v in self.stages.items()))
+        return "\n".join(lines)
+
+    def latex_rows(self) -> list[tuple[str, str, str]]:
+        """``(label, left-hand side, right-hand side)`` of each derived display."""
+        herm = self.hermitian_part
+        rows = [
+            ("inverse transfer function", r"G^{-1}(z)", "= " + tex.to_latex(self.G_inverse)),
+            ("Hermitian part on the unit circle", r"\Re\, G^{-1}(e^{j\omega T})",
+             "= " + (tex.to_latex(_as_expr(herm), cos_name=COS) if not isinstance(herm, str) else herm)),
+        ]
+        for r in self.residues:
+            rows.append(("residue on the unit circle", r"\operatorname{Res}_{z=" + tex.to_latex(r.pole) + r"} G^{-1}",
+                         "= " + tex.to_latex(r.residue)))
+        if self.worst_case is not None and self.worst_case not in (sp.true, sp.false):
+            rows.append(("worst case over frequency", r"\text{worst case: }", tex.to_latex(self.worst_case, cos_name=COS)))
+        return rows
+
+    def to_latex(self) -> str:
+        """The derived displays as one ``aligned`` block (mathematics, for a display or a notebook)."""
+        rows = [lhs + " &" + (rhs if rhs.startswith("=") else " " + rhs) for _, lhs, rhs in self.latex_rows()]
+        return "\\begin{aligned}\n" + " \\\\\n".join(rows) + "\n\\end{aligned}"
+
+    def latex_document(self) -> str:
+        """A complete LaTeX document: the scene, the labelled derived displays, the decision."""
+        items = [(label, lhs + (" " if rhs.startswith("=") else " ") + rhs) for label, lhs, rhs in self.latex_rows()]
+        notes = [("verdict", f"{self.verdict} ({self.reason})")]
+        if self.witness is not None:
+            notes.append(("witness", f"c = cos(wT) = {self.witness}"))
+        if self.minimiser is not None:
+            notes.append(("minimiser", f"c = {self.minimiser}, minimum = {self.minimum}"))
+        intro = tex.escape_text(f"{self.system} scene, {self.approximation} difference, delay n = {self.delay}.")
+        return tex.derivation_document(f"hapticproof derive {self.system}", items, notes, intro=intro)
+
+    def _repr_latex_(self) -> str:
+        return "$$" + self.to_latex() + "$$"
+
+    def __repr__(self) -> str:  # short and free of timings (notebooks compare it)
+        return f"SceneSummary({self.system}, {self.approximation}, delay {self.delay}: {self.verdict})"
+
+    def dumps(self, fmt: str, fragment: bool = False, verbose: bool = False) -> str:
+        """``json``, ``latex`` (a complete document; ``fragment``: one amsmath display) or text."""
+        if fmt == "json":
+            return json.dumps(self.to_json(), indent=2)
+        if fmt == "latex":
+            return tex.display(self.to_latex()) if fragment else self.latex_document()
+        return self.to_text(verbose=verbose)
+
+
+def _as_expr(value: Any) -> Any:
+    return value.expr() if isinstance(value, CRational) else value
+
+
+def _readable(expr: sp.Expr) -> sp.Expr:
+    """A polynomial expanded, a rational function as one fraction (not a sum of fractions)."""
+    num, den = sp.fraction(sp.cancel(sp.together(expr)))
+    if not den.free_symbols:
+        return sp.expand(expr)
+    return sp.Mul(sp.expand(num), sp.Pow(sp.expand(den), -1), evaluate=False)
+
+
+def _show(value: Any) -> str:
+    if isinstance(value, (list, tuple)):
+        return " + j*".join(str(v) for v in value) if len(value) == 2 else str(list(value))
+    return str(value)
+
+
+def _minimum_text(summary: SceneSummary) -> str:
+    if summary.minimiser is None:
+        if isinstance(summary.delay, sp.Symbol):
+            return "depends on n (see the delay margin below)"
+        return "see the conditions"
+    where = summary.minimiser.approx(12) if hasattr(summary.minimiser, "approx") else summary.minimiser
+    value = summary.minimum
+    if hasattr(value, "mid"):
+        value = f"{float(value.mid()):.12g}"
+    return f"min Re G^-1 = {value} at c = {where}"
+
+
+def summarize_single_user(scene: SingleUserScene, with_profile: bool = False) -> SceneSummary:
+    """Derive and collect everything ``hapticproof derive single-user`` reports."""
+    form = hermitian(scene)
+    if isinstance(form, ThetaForm):
+        theta = sp.Symbol("theta")
+        herm = form.expr(theta)
+    else:
+        # numeric forms stay flint polynomials: a degree-1000 c-form is never built in SymPy
+        # just to be summarised (readable.brief and readable.full_text read them directly)
+        herm = form if form.is_numeric else _readable(form.expr())
+    wc = worst_case(scene)
+    verdict = positive_real(scene)
+    witness = dict(verdict.witness) if (verdict.witness and verdict.decision == Decision.DISPROVED) else None
+    return SceneSummary(
+        system="single-user",
+        approximation=scene.approximation,
+        delay=scene.delay,
+        G_inverse=inverse_transfer(scene),
+        hermitian_part=herm,
+        poles=poles(scene),
+        residues=residues(scene),
+        worst_case=wc.condition,
+        verdict=verdict.decision.value,
+        witness=witness,
+        reason=verdict.reason,
+        minimiser=wc.minimiser,
+        minimum=wc.minimum,
+        stages=profile(scene) if with_profile else {},
+        conditions=tuple(conditions(scene)),
+    )

@@ -1,0 +1,907 @@
+r"""Scenes: frozen descriptions of *what* to analyse, as a user writes them -- in Python, on the
+command line, in a scene file (TOML) or in a paper file's ``[scenes.X]`` table.
+
+:class:`Scene` names the system and its fields; :meth:`Scene.build` gives the analysis model
+(:class:`~hapticproof.systems.singleuser.SingleUserScene`, :class:`~hapticproof.systems.multiuser.MultiUserScene`,
+:class:`~hapticproof.systems.teleoperator.TeleoperatorScene` or an impedance matrix).
+
+Scene files
+-----------
+``tomllib`` and written by a small writer of our own.
+
+A scene file holds the fields of :class:`~hapticproof.systems.scene.Scene` at the top level -- the
+same names as the command-line options of ``hapticproof derive`` and ``boundary`` -- and the
+parameters in a ``[params]`` table (``--param NAME=VALUE``). A paper file's ``[scenes.X]``
+tables have exactly the same fields (:func:`scene_from_table`).
+
+.. code-block:: toml
+
+    # a virtual wall with a virtual mass, on a 1 kHz haptic device
+    system = "single-user"          # single-user | multi-user | teleoperator | network
+    approximation = "forward"       # forward | backward | tustin (the HVE model of X_h)
+    environment = "K + B*(z - 1)/(T*z) + M*(z - 1)**2/(T**2*z**2)"
+    delay = 0                       # n = t_d/T; "n" keeps it symbolic
+
+    [params]
+    K = 2                           # numbers are exact: 0.001 is 1/1000
+    B = 0.01
+    M = "positive"                  # an assumption: M stays a symbol
+    T = 0.001
+    b = "9/10"
+
+Numbers are exact (TOML floats are read by their decimal text, never as binary floats);
+expressions are read by :func:`hapticproof.core.expr.read_expression`. A mistake is one line naming
+the file, the line and the field (:class:`SceneFileError`).
+
+>>> scene = loads('system = "single-user"\nenvironment = "K + B*(z-1)/(T*z)"\n[params]\nT = 0.001\n')
+>>> scene.param_values
+{'T': 1/1000}
+>>> loads('system = "single-user"\nenviroment = "K"\n', "wall.toml")
+Traceback (most recent call last):
+...
+hapticproof.systems.scene.SceneFileError: wall.toml:2: unknown field 'enviroment' (fields: system, approximation, environment, controller, discretize, delay, users, graph, uniform, active, operator, matrix, ports, params)
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, replace
+from typing import Any
+
+import sympy as sp
+
+from hapticproof.core.errors import SceneError
+from hapticproof.core.evidence import exact
+from hapticproof.core.symbols import n as N_SYM
+from hapticproof.core.symbols import z as Z_SYM
+from hapticproof.systems.singleuser import APPROXIMATIONS, SingleUserScene, delay_ratio, virtual_wall
+import json
+import re
+import sys
+import tomllib
+from decimal import Decimal
+from pathlib import Path
+from hapticproof.core.errors import HapticproofError, InputFormatError
+from hapticproof.core.expr import write_expression
+
+__all__ = ["SYSTEMS", "Scene", "FIELDS", "SceneFileError", "loads", "dumps", "read_scene", "write_scene", "scene_from_table",            "read_matrix", "toml_value", "line_of"]
+
+
+#: Systems a :class:`Scene` describes.
+SYSTEMS = ("single-user", "multi-user", "teleoperator", "network")
+
+
+#: Terminations that are words rather than impedances (boundary only).
+TERMINATIONS = ("free", "clamped")
+
+
+#: Controller presets of the teleoperator paper.
+PRESETS = ("pd", "filtered-pd")
+
+
+_GRAPHS = ("complete", "path", "star", "ring")
+
+
+#: Names every system reserves, with their meaning (``m``... enter only stability boundaries).
+RESERVED = {
+    "single-user": {"b": "device damping", "T": "sampling period", "z_a": "operator's shortage of passivity",
+                    "t_d": "delay time (n = t_d/T)", "m": "device mass (stability only)"},
+    "multi-user": {"T": "sampling period", "m": "device masses (stability only)"},
+    "teleoperator": {"b_m": "master damping", "b_s": "slave damping", "T": "sampling period",
+                     "alpha": "position scaling", "m_m": "master mass (stability only)",
+                     "m_s": "slave mass (stability only)", "m": "both masses (stability only)",
+                     "b": "both dampings"},
+    "network": {},
+}
+
+
+def _assumption_of(symbol: sp.Symbol) -> str | None:
+    """The assumption word of a symbol built in Python (``None``: no assumption)."""
+    for word, attr in (("positive", "is_positive"), ("negative", "is_negative"), ("nonnegative", "is_nonnegative"),
+                       ("nonpositive", "is_nonpositive"), ("integer", "is_integer"), ("real", "is_real")):
+        if getattr(symbol, attr):
+            return word
+    return None
+
+
+def _param_value(name: str, value: Any, where: str) -> Any:
+    """A parameter value, normalised: an exact rational, an assumption word or an expression."""
+    from decimal import Decimal
+    from fractions import Fraction
+
+    from hapticproof.core.expr import ASSUMPTIONS, read_expression, read_number
+
+    if isinstance(value, bool):
+        raise SceneError(f"{where}{name}: {value!r} is not a number, an expression or an assumption")
+    if isinstance(value, (int, Fraction)):
+        return sp.Rational(value)
+    if isinstance(value, float):
+        # a Python float is read by its shortest decimal text: 0.001 is 1/1000, as typed
+        return read_number(repr(value), f"{where}{name}")
+    if isinstance(value, Decimal):
+        return read_number(str(value), f"{where}{name}")
+    if isinstance(value, sp.Basic):
+        if value.is_Rational:
+            return value
+        if value.is_Float:
+            return sp.Rational(value)
+        return value
+    if isinstance(value, str):
+        text = value.strip()
+        if text in ASSUMPTIONS:
+            return text
+        try:
+            return read_number(text)
+        except SceneError:
+            pass
+        except Exception:  # noqa: BLE001 - not a plain number: read it as an expression
+            pass
+        expr = read_expression(text, None, where=f"{where}{name}")
+        if expr.is_Symbol:
+            import difflib
+
+            close = difflib.get_close_matches(text, list(ASSUMPTIONS), n=1, cutoff=0.75)
+            if close:
+                raise SceneError(f"{where}{name}: {text!r} is not an assumption; did you mean {close[0]!r}?")
+        return expr if not expr.is_Rational else sp.Rational(expr)
+    raise SceneError(f"{where}{name}: cannot use {value!r} (a number, an expression or one of "
+                     f"{', '.join(ASSUMPTIONS)})")
+
+
+@dataclass(frozen=True, slots=True)
+class Scene:
+    """A scene as a user describes it: the same fields in the Python API, a scene file (TOML), a
+    paper file's ``[scenes.X]`` table and the command-line options of ``derive`` and
+    ``boundary`` (``--environment`` is ``environment``, ``--param K=2`` an entry of ``params``).
+
+    Parameters
+    ----------
+    system : {'single-user', 'multi-user', 'teleoperator', 'network'}
+    approximation : {'forward', 'backward', 'tustin'}
+        HVE model: the approximation of ``X_h = Z{v_h/s}`` (single- and multi-user).
+    environment : str or expr, optional
+        Single-user: the virtual environment ``H(z)`` (default: the wall ``K + B*(z-1)/(T*z)``),
+        or ``H(s)`` with ``discretize``. Teleoperator: the slave's termination ``Z_e(s)``,
+        ``'free'`` or ``'clamped'`` (stability only).
+    controller : str or expr, optional
+        Teleoperator: ``C(z)``, or ``C(s)`` with ``discretize``, or ``'pd'`` (eq. 33, default) /
+        ``'filtered-pd'``. Single-user: a synonym of ``environment`` (the virtual environment is
+        the haptic loop's controller).
+    discretize : {'forward', 'backward', 'tustin', 'zoh', 'matched'}, optional
+        How a continuous design in ``s`` becomes discrete (:mod:`hapticproof.systems.discretize`).
+    delay : int, 'n' or list of int
+        ``n = t_d/T`` in samples; ``'n'`` keeps it symbolic; multi-user: one per user.
+    users, graph, uniform : multi-user
+        Number of users, the coupling graph (``complete``, ``path``, ``star``, ``ring`` or edges
+        ``1-2,2-3``) and whether all users share one symbol per group (``b, K_0, B_0, K, B, z_a``).
+    active : bool
+        Include the operator's shortage of passivity ``z_a`` as a symbol.
+    operator : str or expr, optional
+        The operator's impedance ``Z_h(s)`` (stability; for passivity its shortage of
+        passivity is ``z_a`` when ``z_a`` is not given), ``'free'`` or ``'clamped'``.
+    params : mapping
+        Name -> exact number (``0.9`` is 9/10), an expression of other parameters (``'K/2'``)
+        or an assumption (``'positive'``, ``'nonnegative'``, ``'real'``, ``'integer'``...).
+        Any names; unnamed parameters stay symbolic with the papers' signs (``b, K, T``
+        positive, ``B, z_a`` non-negative) or ``real``.
+    matrix, ports : network
+        Impedance matrix ``Z(s)`` (rows of expressions in ``s``) and port sizes.
+
+    Examples
+    --------
+    >>> scene = Scene("single-user", environment="K + B*(z-1)/(T*z) + M*(z-1)**2/(T**2*z**2)",
+    ...               params={"K": 2, "B": "0.01", "M": "0.5", "T": "1/1000", "b": "0.9"})
+    >>> scene.build().H
+    2 + 10*(z - 1)/z + 500000*(z - 1)**2/z**2
+    >>> Scene.from_toml(scene.to_toml()) == scene
+    True
+    """
+
+    system: str
+    approximation: str = "forward"
+    environment: Any = None
+    controller: Any = None
+    discretize: str | None = None
+    delay: Any = 0
+    users: int | None = None
+    graph: str = "complete"
+    uniform: bool = False
+    active: bool = False
+    operator: Any = None
+    params: Any = ()
+    matrix: Any = None
+    ports: Any = None
+
+    def __post_init__(self) -> None:
+        from hapticproof.systems.discretize import METHODS
+
+        where = ""
+        set_ = lambda name, value: object.__setattr__(self, name, value)  # noqa: E731
+        if self.system not in SYSTEMS:
+            raise SceneError(f"unknown system {self.system!r}; choose one of {', '.join(SYSTEMS)}")
+        if self.approximation not in APPROXIMATIONS:
+            raise SceneError(f"unknown approximation {self.approximation!r}; choose one of {', '.join(APPROXIMATIONS)}")
+        if self.discretize is not None and self.discretize not in METHODS:
+            raise SceneError(f"unknown discretisation {self.discretize!r}; choose one of {', '.join(METHODS)}")
+        for name in ("uniform", "active"):
+            if not isinstance(getattr(self, name), bool):
+                raise SceneError(f"{name} must be true or false, got {getattr(self, name)!r}")
+        # parameters first: their assumptions decide the symbols of every expression
+        items = self.params.items() if isinstance(self.params, Mapping) else tuple(self.params)
+        params: dict[str, Any] = {}
+        from hapticproof.core.expr import parameter_symbol
+
+        for key, value in items:
+            key = str(key).strip()
+            parameter_symbol(key)                       # a valid name, not z or s
+            if key in params:
+                raise SceneError(f"parameter {key} given twice")
+            params[key] = _param_value(key, value, where)
+        system = self.system
+        if system in ("single-user", "multi-user") and self.controller is not None:
+            if self.environment is not None or system == "multi-user":
+                raise SceneError(f"{system}: give the virtual environment once (environment; controller is its synonym)")
+            set_("environment", self.controller)
+            set_("controller", None)
+        if system == "multi-user" and self.environment is not None:
+            raise SceneError("multi-user scenes couple users by K_0i, B_0i, K_ij, B_ij (no custom environment)")
+        if system != "teleoperator" and self.controller is not None:
+            raise SceneError(f"{system}: no controller field (teleoperator only)")
+        if system == "network":
+            if self.matrix is None:
+                raise SceneError("a network scene needs its impedance matrix (matrix)")
+        elif self.matrix is not None or self.ports is not None:
+            raise SceneError("matrix and ports describe a network scene")
+        # expressions, read with the parameters' assumptions
+        assumptions = {k: v for k, v in params.items() if isinstance(v, str)}
+        continuous_env = system == "teleoperator" or self.discretize is not None
+        if system == "teleoperator":
+            set_("environment", self._expr(self.environment, "s", "environment", assumptions, words=TERMINATIONS))
+            controller = self.controller
+            if isinstance(controller, str) and controller.strip().lower() in PRESETS:
+                if self.discretize is not None:
+                    raise SceneError(f"the preset {controller!r} is already discrete; discretize applies to C(s)")
+                set_("controller", controller.strip().lower())
+            else:
+                set_("controller", self._expr(controller, "s" if self.discretize else "z", "controller", assumptions))
+        else:
+            set_("environment", self._expr(self.environment, "s" if continuous_env else "z", "environment", assumptions))
+        if self.discretize is not None and (self.environment if system != "teleoperator" else self.controller) in (None, "pd", "filtered-pd"):
+            raise SceneError("discretize needs a continuous design in s (environment, or controller for a teleoperator)")
+        set_("operator", self._expr(self.operator, "s", "operator", assumptions, words=TERMINATIONS))
+        # the symbols of the expressions, normalised (a Python symbol with other assumptions
+        # gets the scene's: equal scenes print, save and read back equal)
+        for name in ("environment", "controller", "operator"):
+            value = getattr(self, name)
+            if isinstance(value, sp.Basic):
+                set_(name, self._normalise(value, name, params))
+        params = {k: (self._normalise(v, k, params) if isinstance(v, sp.Basic) and not v.is_Rational else v)
+                  for k, v in params.items()}
+        set_("params", tuple(sorted(params.items())))
+        # delays, users, graph
+        set_("delay", self._delay(self.delay))
+        if system == "multi-user":
+            users = 2 if self.users is None else self.users
+            if isinstance(users, bool) or not isinstance(users, int) or users < 1:
+                raise SceneError(f"users must be a positive integer, got {users!r}")
+            set_("users", users)
+            graph = str(self.graph).strip().lower().replace(" ", "")
+            set_("graph", graph)
+            _edges_of(graph, users)                     # validate
+            if isinstance(self.delay, tuple) and len(self.delay) != users:
+                raise SceneError(f"delay: {len(self.delay)} values for {users} users")
+        else:
+            if self.users is not None:
+                raise SceneError("users applies to multi-user scenes")
+            if self.graph != "complete" or self.uniform:
+                raise SceneError("graph and uniform apply to multi-user scenes")
+            if isinstance(self.delay, tuple):
+                raise SceneError("one delay per user applies to multi-user scenes")
+        if system == "network":
+            rows = tuple(tuple(self._expr(e, "s", f"matrix[{i + 1}][{j + 1}]", assumptions) for j, e in enumerate(row))
+                         for i, row in enumerate(self.matrix))
+            if not rows or any(len(r) != len(rows) for r in rows):
+                raise SceneError("the impedance matrix must be square and not empty")
+            set_("matrix", tuple(tuple(self._normalise(e, "matrix", params) for e in row) for row in rows))
+            if self.ports is not None:
+                ports = tuple(int(p) for p in self.ports)
+                if sum(ports) != len(rows) or any(p < 1 for p in ports):
+                    raise SceneError(f"ports {list(ports)} must be positive sizes adding up to {len(rows)}")
+                set_("ports", ports)
+
+    # -- helpers of construction --------------------------------------------------------------
+    @staticmethod
+    def _expr(value: Any, variable: str, name: str, assumptions: Mapping[str, str],
+              words: tuple[str, ...] = ()) -> Any:
+        from hapticproof.core.expr import normalise_variables, read_expression
+
+        if value is None:
+            return None
+        if isinstance(value, str):
+            if value.strip().lower() in words:
+                return value.strip().lower()
+            return read_expression(value, variable, where=name, assumptions=assumptions)
+        if isinstance(value, (int, float)) and not isinstance(value, bool):
+            return _param_value(name, value, "")
+        if isinstance(value, sp.Basic):
+            return normalise_variables(value, variable, name)
+        raise SceneError(f"{name}: expected an expression, got {value!r}")
+
+    @staticmethod
+    def _normalise(expr: sp.Expr, where: str, params: Mapping[str, Any]) -> sp.Expr:
+        from hapticproof.core.expr import parameter_symbol
+
+        mapping = {}
+        for sym in expr.free_symbols:
+            if sym.name in ("z", "s"):
+                continue
+            word = params.get(sym.name) if isinstance(params.get(sym.name), str) else None
+            target = parameter_symbol(sym.name, word)
+            if sym != target:
+                # a parameter given a value is substituted whatever its symbol's assumption
+                # (Scene.with_params on a scene whose B was declared "real", say)
+                if word is None and sym.name not in params and _assumption_of(sym) not in (None, _assumption_of(target)):
+                    raise SceneError(f"{where}: the symbol {sym.name} carries the assumption {_assumption_of(sym)!r}; "
+                                     f"declare it in params ({sym.name} = {_assumption_of(sym)!r})")
+                mapping[sym] = target
+        return expr.xreplace(mapping) if mapping else expr
+
+    @staticmethod
+    def _delay(delay: Any) -> Any:
+        if isinstance(delay, (list, tuple)):
+            values = tuple(Scene._delay(d) for d in delay)
+            if any(not isinstance(v, int) for v in values):
+                raise SceneError("per-user delays must be integers")
+            return values if len(set(values)) > 1 else values[0]
+        if isinstance(delay, str) and delay.strip() == "n":
+            return "n"
+        if isinstance(delay, sp.Symbol) and delay.name == "n":
+            return "n"
+        if isinstance(delay, str):
+            if "," in delay:
+                return Scene._delay([d for d in delay.split(",")])
+            try:
+                delay = sp.Rational(delay.strip())
+            except (TypeError, ValueError):
+                raise SceneError(f"the delay n = t_d/T must be a non-negative integer or 'n', got {delay!r}") from None
+        value = sp.sympify(delay)
+        if not (value.is_Integer and value >= 0):
+            raise SceneError(f"the delay n = t_d/T must be a non-negative integer or 'n', got {delay}")
+        return int(value)
+
+    # -- reading the fields -------------------------------------------------------------------
+    @property
+    def param_values(self) -> dict[str, Any]:
+        """Parameters with a value (a number or an expression)."""
+        return {k: v for k, v in self.params if not isinstance(v, str)}
+
+    @property
+    def assumptions(self) -> dict[str, str]:
+        """Parameters with an assumption only (they stay symbolic)."""
+        return {k: v for k, v in self.params if isinstance(v, str)}
+
+    def symbol(self, name: str) -> sp.Symbol:
+        """The symbol of ``name`` in this scene (its assumption, else the default)."""
+        from hapticproof.core.expr import parameter_symbol
+
+        return parameter_symbol(name, self.assumptions.get(name))
+
+    def with_params(self, values: Mapping[str, Any] | None = None, **named: Any) -> Scene:
+        """The scene with more (or changed) parameters; a value ``None`` removes one.
+
+        >>> Scene("single-user").with_params(K=2, T="0.001").param_values
+        {'K': 2, 'T': 1/1000}
+        """
+        params = dict(self.params)
+        for key, value in list((values or {}).items()) + list(named.items()):
+            if value is None:
+                params.pop(key, None)
+            else:
+                params[key] = value
+        return replace(self, params=params)
+
+    def replace(self, **fields: Any) -> Scene:
+        """The scene with other field values (validated again)."""
+        return replace(self, **fields)
+
+    # -- building the models ------------------------------------------------------------------
+    def _substitution(self, extra: Mapping[str, Any] | None = None) -> dict[sp.Symbol, Any]:
+        """Symbol -> value for every parameter with a value; expression values are substituted
+        until only free symbols and numbers remain (a cycle is an error)."""
+        values = dict(self.param_values)
+        values.update(extra or {})
+        mapping = {self.symbol(k): (v if isinstance(v, sp.Basic) else exact(v)) for k, v in values.items()}
+        for _ in range(len(mapping) + 1):
+            changed = False
+            for sym, value in list(mapping.items()):
+                if isinstance(value, sp.Basic) and value.free_symbols & set(mapping):
+                    new = value.xreplace(mapping)
+                    if new != value:
+                        mapping[sym] = new
+                        changed = True
+            if not changed:
+                return {k: (sp.cancel(v) if v.free_symbols else v) for k, v in mapping.items()}
+        raise SceneError("the parameter expressions refer to each other in a cycle")
+
+    def names(self) -> set[str]:
+        """Every parameter name the scene's model uses (before values are substituted)."""
+        model = self._model(substitute=False)
+        if self.system == "network":
+            free = set().union(*(e.free_symbols for e in model))
+        else:
+            free = set(model.parameters)
+        for value in (self.environment, self.controller, self.operator):
+            if isinstance(value, sp.Basic):
+                free |= value.free_symbols
+        names = {s.name for s in free} - {"z", "s", "n"}
+        for value in self.param_values.values():
+            if isinstance(value, sp.Basic):
+                names |= {s.name for s in value.free_symbols}
+        return names | (set(RESERVED[self.system]) & set(dict(self.params)))
+
+    def check_names(self) -> None:
+        """Every parameter given must be used by the scene (a misspelt name is an error).
+
+        >>> Scene("single-user", params={"Q": 1}).check_names()
+        Traceback (most recent call last):
+        ...
+        hapticproof.core.errors.SceneError: unknown parameter 'Q': this single-user scene has B, K, T, b
+        """
+        known = self.names() | set(RESERVED[self.system])
+        if self.system == "multi-user":
+            known |= {"b", "K_0", "B_0", "K", "B", "z_a"} | {f"m_{i + 1}" for i in range(self.users)}
+        for name in dict(self.params):
+            if name not in known:
+                shown = sorted(self.names() - {name}) or ["no parameters"]
+                raise SceneError(f"unknown parameter {name!r}: this {self.system} scene has {', '.join(shown)}")
+
+    def build(self) -> Any:
+        """The analysis model with the parameter values substituted: a :class:`SingleUserScene`,
+        :class:`~hapticproof.systems.multiuser.MultiUserScene`,
+        :class:`~hapticproof.systems.teleoperator.TeleoperatorScene` or, for a network, the impedance
+        matrix (``sympy.Matrix``).
+
+        >>> Scene("teleoperator", controller="K_p + K_i*T*z/(z - 1)").build().C
+        K_i*T*z/(z - 1) + K_p
+        """
+        self.check_names()
+        return self._model(substitute=True)
+
+    def _model(self, substitute: bool) -> Any:
+        mapping = self._substitution() if substitute else {}
+        sub = (lambda e: sp.sympify(e).xreplace(mapping) if mapping else sp.sympify(e))  # noqa: E731
+        if self.system == "single-user":
+            return self._single_user(mapping, sub)
+        if self.system == "multi-user":
+            return self._multi_user(mapping)
+        if self.system == "teleoperator":
+            return self._teleoperator(mapping, sub)
+        Z = sp.Matrix([[sub(e) for e in row] for row in self.matrix])
+        return Z
+
+    def environment_z(self) -> sp.Expr | None:
+        """The discrete environment ``H(z)`` (single-user) or controller ``C(z)`` (teleoperator)
+        before values are substituted: the continuous design discretised when asked."""
+        from hapticproof.systems.discretize import discretize
+
+        design = self.environment if self.system == "single-user" else self.controller
+        if self.system == "teleoperator" and design in (None, "pd", "filtered-pd"):
+            from hapticproof.systems.teleoperator import filtered_pd_controller, pd_controller
+
+            K, B, T = self.symbol("K"), self.symbol("B"), self.symbol("T")
+            return filtered_pd_controller(K, B, T, self.symbol("a")) if design == "filtered-pd" else pd_controller(K, B, T)
+        if design is None:
+            return virtual_wall(self.symbol("K"), self.symbol("B"), self.symbol("T"))
+        if self.discretize is not None:
+            return discretize(design, self.discretize, self.symbol("T"))
+        return design
+
+    def _z_a(self, mapping: Mapping[sp.Symbol, Any]) -> Any:
+        z_a = self.symbol("z_a")
+        if z_a in mapping:
+            return mapping[z_a]
+        if "z_a" in self.assumptions or self.active:
+            return z_a
+        if isinstance(self.operator, sp.Basic) and not (self.operator.xreplace(dict(mapping)).free_symbols - {Z_SYM} - {sp.Symbol("s")}):
+            from hapticproof.systems.impedance import Impedance
+            from hapticproof.core.symbols import s as S_SYM
+
+            num, den = sp.fraction(sp.cancel(sp.together(self.operator.xreplace(dict(mapping)))))
+            imp = Impedance(tuple(sp.Poly(num, S_SYM).all_coeffs()), tuple(sp.Poly(den, S_SYM).all_coeffs()))
+            return sp.nsimplify(imp.shortage_of_passivity())
+        return sp.Integer(0)
+
+    def _single_user(self, mapping, sub) -> SingleUserScene:
+        T = sub(self.symbol("T"))
+        b = sub(self.symbol("b"))
+        H = sub(self.environment_z())
+        delay: Any = N_SYM if self.delay == "n" else self.delay
+        t_d = self.symbol("t_d")
+        if t_d in mapping:
+            if self.delay not in (0, "n"):
+                raise SceneError("give the delay once: delay or t_d")
+            delay = delay_ratio(mapping[t_d], T) if T.is_number else sp.cancel(mapping[t_d] / T)
+        return SingleUserScene(b=b, T=T, H=H, approximation=self.approximation, delay=delay, z_a=self._z_a(mapping))
+
+    def _multi_user(self, mapping) -> Any:
+        from hapticproof.systems.multiuser import UNIFORM_SYMBOLS, MultiUserScene
+
+        edges = _edges_of(self.graph, self.users)
+        active = self.active or "z_a" in dict(self.params)
+        z_a = None if active else self._z_a(mapping)      # from the operator's impedance, or 0
+        if self.delay == "n":
+            raise SceneError("multi-user scenes need integer delays")
+        if self.uniform:
+            scene = MultiUserScene.uniform(self.users, delay=self.delay, edges=edges, approximation=self.approximation,
+                                           z_a=UNIFORM_SYMBOLS["z_a"] if active else (z_a or 0))
+        else:
+            scene = MultiUserScene.symbolic(self.users, edges=edges, delays=self.delay, active=active,
+                                            approximation=self.approximation)
+            if z_a:
+                scene = replace(scene, z_a=(z_a,) * self.users)
+        if not mapping:
+            return scene
+        groups = {"b": "b", "K_0": "K0", "B_0": "B0", "z_a": "z_a", "K": "K", "B": "B"}
+        values: dict[sp.Symbol, Any] = {}
+        by_name = {s.name: s for s in scene.parameters}
+        for sym, value in mapping.items():
+            name = sym.name
+            if name in by_name:
+                values[by_name[name]] = value
+            elif not self.uniform and name in groups:
+                for member in getattr(scene, groups[name]):
+                    if isinstance(member, sp.Symbol):
+                        values.setdefault(member, value)
+        # per-user names win over group names
+        for sym, value in mapping.items():
+            if sym.name in by_name:
+                values[by_name[sym.name]] = value
+        rename = {s: parameter_like(s, self) for s in scene.parameters}
+        sub = lambda v: sp.sympify(v).xreplace(values).xreplace(rename)  # noqa: E731
+        return replace(scene, b=tuple(map(sub, scene.b)), T=sub(scene.T), K0=tuple(map(sub, scene.K0)),
+                       B0=tuple(map(sub, scene.B0)), K=tuple(map(sub, scene.K)), B=tuple(map(sub, scene.B)),
+                       z_a=tuple(map(sub, scene.z_a)))
+
+    def _teleoperator(self, mapping, sub) -> Any:
+        from hapticproof.systems.teleoperator import TeleoperatorScene
+
+        if self.delay not in (0,):
+            if self.delay == "n":
+                raise SceneError("teleoperator scenes need an integer communication delay")
+        values = {s.name: v for s, v in mapping.items()}
+        mass = lambda name: values.get(name, values.get("m"))  # noqa: E731
+        # "b" is both dampings: a value, or an assumption (one symbol b for both robots)
+        both = self.symbol("b") if "b" in self.assumptions else None
+        damping = lambda name: values.get(name, values.get("b", both if both is not None and name not in self.assumptions  # noqa: E731
+                                                           else self.symbol(name)))
+        alpha = values.get("alpha", self.symbol("alpha") if "alpha" in self.assumptions else 1)
+        return TeleoperatorScene(mass("m_m"), mass("m_s"), damping("b_m"), damping("b_s"), sub(self.symbol("T")),
+                                 sub(self.environment_z()), alpha)
+
+    # -- files ------------------------------------------------------------------------------------
+    @classmethod
+    def from_table(cls, table: Mapping[str, Any], where: str = "", base: str | None = None,
+                   assumptions: Mapping[str, str] | None = None) -> Scene:
+        """A scene from a TOML table (a scene file, or a paper file's ``[scenes.X]``), see
+        :mod:`hapticproof.systems.scene`; ``assumptions`` (name -> word) come from outside, e.g. a
+        paper's ``[symbols]``."""
+
+        return scene_from_table(table, where=where, base=base, assumptions=assumptions)
+
+    @classmethod
+    def from_toml(cls, text: str, where: str = "scene") -> Scene:
+        """A scene from the text of a scene file."""
+
+        return loads(text, where)
+
+    @classmethod
+    def read(cls, path: Any) -> Scene:
+        """A scene from a scene file (``.toml``)."""
+
+        return read_scene(path)
+
+    def to_toml(self) -> str:
+        """The scene file text; :meth:`from_toml` reads it back equal."""
+
+        return dumps(self)
+
+    def write(self, path: Any) -> Any:
+        """Write the scene file (``-`` is standard output)."""
+
+        return write_scene(self, path)
+
+
+def parameter_like(symbol: sp.Symbol, scene: Scene) -> sp.Symbol:
+    """A model symbol (``b_1``, ``K_12``...) with the assumption the scene gives its name."""
+    word = scene.assumptions.get(symbol.name)
+    if word is None:
+        return symbol
+    from hapticproof.core.expr import parameter_symbol
+
+    return parameter_symbol(symbol.name, word)
+
+
+def _edges_of(graph: str, m: int) -> tuple[tuple[int, int], ...] | None:
+    """The coupling graph's edges (0-based) from ``complete``, ``path``, ``star``, ``ring`` or
+    ``1-2,2-3`` (``None``: complete)."""
+    if graph == "complete":
+        return None
+    if graph == "path":
+        return tuple((i, i + 1) for i in range(m - 1))
+    if graph == "star":
+        return tuple((0, i) for i in range(1, m))
+    if graph == "ring":
+        return tuple(sorted({tuple(sorted((i, (i + 1) % m))) for i in range(m)} - {(0, 0)})) if m > 1 else ()
+    edges = []
+    for item in graph.split(","):
+        try:
+            i, j = (int(v) for v in item.split("-"))
+        except ValueError:
+            raise SceneError(f"graph: expected complete, path, star, ring or edges like 1-2,2-3; got {item!r}") from None
+        if not (1 <= i <= m and 1 <= j <= m) or i == j:
+            raise SceneError(f"graph: edge {item!r} needs two different users in 1..{m}")
+        edges.append((i - 1, j - 1))
+    return tuple(edges)
+
+
+# =============================================================================================
+# Scene files: TOML in, TOML out
+# =============================================================================================
+
+
+#: The fields of a scene table, in the order they are written.
+FIELDS = ("system", "approximation", "environment", "controller", "discretize", "delay", "users", "graph",
+          "uniform", "active", "operator", "matrix", "ports", "params")
+
+_TYPES: dict[str, tuple[type, ...]] = {
+    "system": (str,), "approximation": (str,), "environment": (str, int, Decimal), "controller": (str, int, Decimal),
+    "discretize": (str,), "delay": (int, str, list), "users": (int,), "graph": (str,), "uniform": (bool,),
+    "active": (bool,), "operator": (str, int, Decimal), "matrix": (list, str), "ports": (list, str), "params": (dict,),
+}
+
+
+class SceneFileError(InputFormatError):
+    """A scene file (or scene table) that cannot be read: names the file, line and field."""
+
+
+def line_of(text: str | None, key: str, table: str = "") -> int | None:
+    """The line (1-based) of ``key = ...`` in ``[table]`` of a TOML text (``None`` if not found).
+
+    >>> line_of('a = 1\\n[params]\\nK = 2\\n', "K", "params")
+    3
+    """
+    if not text:
+        return None
+    current = ""
+    pattern = re.compile(r"\s*(?:\"" + re.escape(key) + r"\"|'" + re.escape(key) + r"'|" + re.escape(key) + r")\s*=")
+    for number, line in enumerate(text.splitlines(), 1):
+        header = re.match(r"\s*\[+\s*([^\]]+?)\s*\]+", line)
+        if header:
+            current = header.group(1).strip()
+            continue
+        if current == table and pattern.match(line):
+            return number
+    return None
+
+
+def _where(source: str, text: str | None, key: str, table: str = "") -> str:
+    line = line_of(text, key, table)
+    return f"{source}:{line}" if line is not None else source
+
+
+def read_matrix(path: str | Path) -> tuple[list[list[str]], tuple[int, ...] | None]:
+    """Entries (text) and port sizes of a matrix file: rows of comma-separated entries ('#'
+    comments) or JSON (``{"matrix": [[...]], "ports": [..]}`` or a list of rows)."""
+    path = Path(path)
+    try:
+        content = path.read_text(encoding="utf-8")
+    except OSError as err:
+        raise SceneFileError(f"cannot read {path}: {err.strerror}") from None
+    ports = None
+    if path.suffix.lower() == ".json":
+        try:
+            data = json.loads(content)
+        except json.JSONDecodeError as err:
+            raise SceneFileError(f"{path}:{err.lineno}: invalid JSON ({err.msg})") from None
+        rows, ports = (data.get("matrix"), data.get("ports")) if isinstance(data, dict) else (data, None)
+        if not isinstance(rows, list) or not all(isinstance(r, list) for r in rows):
+            raise SceneFileError(f"{path}: expected a list of rows (or {{'matrix': [...]}})")
+        table = [[str(e) for e in r] for r in rows]
+    else:
+        table = []
+        for line in content.splitlines():
+            line = line.split("#", 1)[0].strip()
+            if line:
+                table.append([e.strip() for e in line.split(",")])
+    if not table:
+        raise SceneFileError(f"{path}: no matrix rows")
+    return table, (tuple(int(p) for p in ports) if ports else None)
+
+
+def _plain(value: Any) -> Any:
+    """TOML values as the scene expects them (decimals as exact text)."""
+    if isinstance(value, Decimal):
+        return str(value)
+    if isinstance(value, list):
+        return [_plain(v) for v in value]
+    if isinstance(value, dict):
+        return {k: _plain(v) for k, v in value.items()}
+    return value
+
+
+def scene_from_table(table: Mapping[str, Any], where: str = "scene", base: str | Path | None = None,
+                     assumptions: Mapping[str, str] | None = None, text: str | None = None, prefix: str = ""):
+    """A :class:`~hapticproof.systems.scene.Scene` from a table of fields (a parsed scene file, or a
+    paper file's ``[scenes.X]``). ``base`` resolves a relative matrix file; ``assumptions``
+    adds parameter assumptions from outside (a paper's ``[symbols]``), the table's own
+    ``[params]`` winning; ``text`` and ``prefix`` (the table's TOML path, ``'scenes.wall'``)
+    let errors name the line.
+
+    >>> scene_from_table({"system": "teleoperator", "controller": "K_p + K_d*(z - 1)/(T*z)"}).controller
+    K_d*(z - 1)/(T*z) + K_p
+    """
+
+    if not isinstance(table, Mapping):
+        raise SceneFileError(f"{where}: a scene is a table of fields")
+    fields: dict[str, Any] = {}
+    for key, value in table.items():
+        if key not in FIELDS:
+            raise SceneFileError(f"{_where(where, text, key, prefix)}: unknown field {key!r} (fields: {', '.join(FIELDS)})")
+        if not isinstance(value, _TYPES[key]) or (isinstance(value, bool) and bool not in _TYPES[key]):
+            kinds = " or ".join(t.__name__.replace("Decimal", "number").replace("dict", "table").replace("str", "text")
+                                .replace("int", "integer").replace("list", "list") for t in _TYPES[key])
+            raise SceneFileError(f"{_where(where, text, key, prefix)}: field {key!r} must be {kinds}, got {value!r}")
+        fields[key] = _plain(value)
+    if "system" not in fields:
+        raise SceneFileError(f"{where}: missing field 'system' (single-user, multi-user, teleoperator or network)")
+    params = dict(fields.pop("params", {}))
+    for name, value in (assumptions or {}).items():
+        params.setdefault(name, value)
+    for name, value in params.items():
+        if isinstance(value, (list, dict)):
+            raise SceneFileError(f"{_where(where, text, name, (prefix + '.params').lstrip('.'))}: parameter {name!r} "
+                                 "must be a number, an expression or an assumption")
+    if isinstance(fields.get("matrix"), str):
+        path = Path(fields["matrix"])
+        if base is not None and not path.is_absolute():
+            path = Path(base) / path
+        rows, ports = read_matrix(path)
+        fields["matrix"] = rows
+        if ports and "ports" not in fields:
+            fields["ports"] = list(ports)
+    if isinstance(fields.get("ports"), str):
+        fields["ports"] = [p for p in fields["ports"].split(",")]
+    try:
+        return Scene(**fields, params=params)
+    except HapticproofError as err:
+        message = str(err)
+        key = _field_in(message, list(fields) + list(params))
+        table_name = (prefix + ".params").lstrip(".") if key in params else prefix
+        raise SceneFileError(f"{_where(where, text, key, table_name) if key else where}: {message}") from None
+
+
+def _field_in(message: str, keys: list[str]) -> str | None:
+    for key in sorted(keys, key=len, reverse=True):
+        if message.startswith(key) or f" {key}" in message or f"{key}:" in message or f"{key!r}" in message:
+            return key
+    return None
+
+
+def loads(text: str, where: str = "scene", base: str | Path | None = None):
+    """A scene from the text of a scene file."""
+    try:
+        table = tomllib.loads(text, parse_float=Decimal)
+    except tomllib.TOMLDecodeError as err:
+        raise SceneFileError(f"{where}: {err}") from None
+    return scene_from_table(table, where=where, base=base, text=text)
+
+
+def read_scene(path: str | Path):
+    """A scene from a scene file (``-``: standard input)."""
+    if str(path) == "-":
+        return loads(sys.stdin.read(), "<stdin>")
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except OSError as err:
+        raise SceneFileError(f"cannot read {path}: {err.strerror}") from None
+    return loads(text, str(path), base=path.parent)
+
+
+# ---------------------------------------------------------------------------------------------
+# writing
+# ---------------------------------------------------------------------------------------------
+
+_BARE = re.compile(r"^[A-Za-z0-9_-]+$")
+
+
+def toml_value(value: Any) -> str:
+    """One TOML value: strings quoted (JSON escapes are TOML escapes), exact numbers as integers
+    or quoted exact text (``"1/3"``, ``"0.001"``), lists inline.
+
+    >>> toml_value(sp.Rational(1, 1000)), toml_value(sp.Rational(1, 3)), toml_value([1, "n"]), toml_value(True)
+    ('"0.001"', '"1/3"', '[1, "n"]', 'true')
+    """
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, sp.Basic) and value.is_Integer:
+        return str(int(value))
+    if isinstance(value, sp.Basic) and value.is_Rational:
+        return json.dumps(_decimal_text(value))
+    if isinstance(value, sp.Basic):
+        return json.dumps(write_expression(value))
+    if isinstance(value, str):
+        return json.dumps(value, ensure_ascii=False)
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(toml_value(v) for v in value) + "]"
+    raise TypeError(f"cannot write {value!r} as TOML")
+
+
+def _decimal_text(q: sp.Rational) -> str:
+    """``p/q`` as a terminating decimal when it is one, else the fraction."""
+    p, d = int(q.p), int(q.q)
+    twos = fives = 0
+    while d % 2 == 0:
+        d //= 2
+        twos += 1
+    while d % 5 == 0:
+        d //= 5
+        fives += 1
+    if d != 1:
+        return f"{q.p}/{q.q}"
+    digits = max(twos, fives)
+    scaled = abs(p) * (10**digits // int(q.q))
+    text = str(scaled).rjust(digits + 1, "0")
+    text = text[:-digits] + "." + text[-digits:]
+    return ("-" if p < 0 else "") + text
+
+
+def dumps(scene) -> str:
+    """The scene file text (fields that differ from their defaults, then ``[params]``).
+
+    >>> print(dumps(Scene("single-user", delay=3, params={"K": 2, "T": "0.001", "M": "positive"})).strip())
+    # hapticproof scene
+    system = "single-user"
+    delay = 3
+    <BLANKLINE>
+    [params]
+    K = 2
+    M = "positive"
+    T = "0.001"
+    """
+
+    default = Scene(scene.system) if scene.system != "network" else None
+    lines = ["# hapticproof scene"]
+    for name in FIELDS[:-1]:
+        value = getattr(scene, name)
+        if value is None:
+            continue
+        if default is not None and name != "system" and value == getattr(default, name):
+            continue
+        if name == "matrix":
+            rows = ",\n".join("  [" + ", ".join(toml_value(e) for e in row) + "]" for row in value)
+            lines.append(f"matrix = [\n{rows},\n]")
+            continue
+        if name == "users" and scene.system == "multi-user" and value == 2:
+            continue
+        lines.append(f"{name} = {toml_value(value)}")
+    if scene.params:
+        lines += ["", "[params]"]
+        for key, value in scene.params:
+            shown = key if _BARE.match(key) else json.dumps(key)
+            lines.append(f"{shown} = {toml_value(value)}")
+    return "\n".join(lines) + "\n"
+
+
+def write_scene(scene, path: str | Path) -> Path | None:
+    """Write the scene file; ``-`` writes to standard output (returns ``None``)."""
+    text = dumps(scene)
+    if str(path) == "-":
+        sys.stdout.write(text)
+        return None
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(text, encoding="utf-8")
+    return path
