@@ -10,9 +10,10 @@ for _variable in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_variable, "1")
 os.environ.setdefault("MPLBACKEND", "Agg")
 
-# Private derivation modules register onto another paper when that paper's module imports them;
-# collecting them again as separate modules (import-mode=importlib) would register twice.
-collect_ignore_glob = ["derivations/_*.py"]
+# The section modules of a paper's package register onto its PAPER when the package imports them;
+# collecting them again as separate modules (import-mode=importlib) would register twice. They
+# hold no doctests (the registered papers are tested through the audit).
+collect_ignore_glob = ["derivations/*/*.py"]
 
 # Property tests draw the same examples on every run (CI must not pass or fail by luck);
 # HYPOTHESIS_PROFILE=explore draws fresh random examples, as when hunting for new failures.

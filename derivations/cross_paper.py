@@ -43,9 +43,9 @@ def _relation(paper: str, eq: str) -> sp.Basic:
 
 def _teleoperator_intro(which: str) -> sp.Basic:
     """The condition quoted by the teleoperator paper's introduction (parsed from its claim)."""
-    from hapticproof.derivations import teleoperator as tele
+    from hapticproof.derivations.teleoperator.claims import intro_condition
 
-    return tele.intro_condition(which)
+    return intro_condition(which)
 
 
 def _reading(rel: sp.Basic, var: sp.Symbol = b) -> str:
@@ -124,8 +124,8 @@ def tele_routh(ctx: AuditContext) -> Finding:
                 derivation="both quotes as bounds on b", quotes=('teleoperator:intro-colgate', 'hve:3'))
 def tele_colgate(ctx: AuditContext) -> Finding:
     from hapticproof.audit.runner import quoted_math
-    from hapticproof.derivations import teleoperator as tele
     from hapticproof.audit.reader.printed import parse_printed
+    from hapticproof.derivations.teleoperator import paper as tele
 
     # both quote Colgate and Schenkel's condition for the wall K + sB: the quoted wall must be it
     quotes = quoted_math(tele.PAPER.get("intro-colgate").printed)

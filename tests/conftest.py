@@ -30,19 +30,19 @@ def artefacts() -> Path:
     return path
 
 
-#: Set to 1 where the papers' transcriptions are intentionally absent (e.g. an sdist build):
-#: the verbatim tests then skip; anywhere else a missing ``../shared/papers`` fails them.
-NO_PAPERS = "HAPTICPROOF_NO_PAPERS"
+#: Where the papers' transcriptions are. Set (CI sets it when ``../shared/papers`` is there), a
+#: missing folder fails the verbatim tests; unset, they read ``../shared/papers`` beside the
+#: checkout and skip with the reason when it is absent (a fresh clone on its own).
+PAPERS = "HAPTICPROOF_PAPERS"
 
 
 @pytest.fixture(scope="session")
 def paper_transcriptions() -> Path:
-    """``$HAPTICPROOF_PAPERS`` or ``../shared/papers`` beside the checkout (CI has it). Missing
-    papers fail the test unless ``HAPTICPROOF_NO_PAPERS=1`` says they are absent on purpose, so
-    the verbatim tests cannot vanish silently."""
-    path = Path(os.environ.get("HAPTICPROOF_PAPERS", ROOT.parent / "shared" / "papers"))
+    """``$HAPTICPROOF_PAPERS`` or ``../shared/papers`` beside the checkout."""
+    given = os.environ.get(PAPERS, "")
+    path = Path(given) if given else ROOT.parent / "shared" / "papers"
     if not path.is_dir():
-        if os.environ.get(NO_PAPERS, "") not in ("", "0"):
-            pytest.skip(f"paper transcriptions intentionally absent ({NO_PAPERS} is set)")
-        pytest.fail(f"paper transcriptions not found at {path} (set HAPTICPROOF_PAPERS, or {NO_PAPERS}=1 to skip)")
+        if given:
+            pytest.fail(f"paper transcriptions not found at {path} ({PAPERS} is set)")
+        pytest.skip(f"paper transcriptions not found at {path} (a clone on its own; set {PAPERS} to run the verbatim tests)")
     return path

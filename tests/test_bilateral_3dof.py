@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 import sympy as sp
 
-import hapticproof.derivations.bilateral_3dof as paper
+from hapticproof.derivations.bilateral_3dof import paper
 from hapticproof.audit.runner import audit_paper
 from hapticproof.core.evidence import Decision
 from hapticproof.analysis.nport import positive_real
@@ -101,7 +101,7 @@ def test_table1_verdicts():
     assert stable.decision == Decision.PROVED
     assert stable.symmetrization.evidence.facts["block_compatible_minors_checked"] == 399
     assert paper.table1_verdict(6).decision == Decision.DISPROVED
-    cert = paper._search("k6")
+    cert = paper.searched_terminations("k6")
     assert cert is not None and cert.terminations_positive_real and all(r.real > 0 for r in cert.roots)
 
 
@@ -115,7 +115,7 @@ def test_fig3_energies_and_input_impedances():
 
 def test_counterexamples_of_theorem9_are_passive_and_unstable():
     for name in ("cycle", "leading", "unit"):
-        roots, degree, passive = paper._certified(name)
+        roots, degree, passive = paper.certified(name)
         assert passive and roots and all(r.real > 0 for r in roots)
     # the cycle network really satisfies A and B (no symmetrization condition survives)
     from hapticproof.analysis.networks import symmetrization_conditions

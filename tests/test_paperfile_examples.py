@@ -1,6 +1,6 @@
 """The example paper files: every faithful display gets the verdict the mathematics says, and
 every deliberately altered one (ids ``ALTERED-...``) the pinned verdict; and the single-user part
-of the HVE paper written as a paper file agrees with the hand-written module derivations/hve.py.
+of the HVE paper written as a paper file agrees with the hand-written modules of derivations/hve/.
 
 Claims of hve.py's Sections 1-3.1 that the paper file cannot express, and why:
 

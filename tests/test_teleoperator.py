@@ -1,5 +1,5 @@
 """Sampled-data teleoperator passivity (hapticproof.analysis.teleoperator) and the audit of the
-teleoperator paper (derivations/teleoperator.py)."""
+teleoperator paper (derivations/teleoperator/)."""
 
 from __future__ import annotations
 

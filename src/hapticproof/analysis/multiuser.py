@@ -1,5 +1,5 @@
-r"""m-user haptic virtual environments (HVE paper, Section 3.2): scenes, ``G^{-1}(z)`` as an
-``m x m`` matrix, and exact positive-realness with its structured worst cases.
+r"""Exact positive realness of m-user haptic virtual environments (HVE paper, Section 3.2) with its
+structured worst cases (the scene and ``G^{-1}(z)`` are :mod:`hapticproof.systems.multiuser`).
 
 The model (Fig. 7b, eqs. 37-39, 47, 56), derived rather than copied
 ---------------------------------------------------------------------

@@ -1,4 +1,5 @@
-"""Exact sampled-data loops: zero-order hold by the matrix exponential, spectral stability.
+"""Exact sampled-data loops: zero-order hold by the matrix exponential, spectral stability (the
+loops themselves are :mod:`hapticproof.systems.loops`).
 
 A *scene* is a frozen value object describing one sampled-data loop: continuous devices
 (mass ``m``, damping ``b``), their port terminations (an operator or environment impedance

@@ -1,6 +1,5 @@
 r"""HVE paper, introduction: the quoted classic conditions (2), (4), (5) and the claims that (25)
-and (36) are "identical to" Gil et al. 2009 ([7]). Registered onto
-:data:`hapticproof.derivations.hve.PAPER` (imported at the end of ``hve.py``).
+and (36) are "identical to" Gil et al. 2009 ([7]).
 
 Each quote is compared with the classic result *derived* by the toolkit
 (:mod:`hapticproof.analysis.classics`, :mod:`hapticproof.analysis.boundary`): the exact ZOH stability boundary of
@@ -17,10 +16,13 @@ from hapticproof.analysis import boundary as bnd
 from hapticproof.analysis import classics
 from hapticproof.audit.runner import AuditContext
 from hapticproof.audit.compare import NotABound, as_bound, compare_bounds
-from hapticproof.derivations.hve import PAPER, TABLE
 from hapticproof.core.evidence import Evidence, Finding, Method, Verdict
+from hapticproof.derivations.hve.paper import PAPER, TABLE
+
 
 K, B, b, T, t_d, z_a = (TABLE.lookup(name) for name in ("K", "B", "b", "T", "t_d", "z_a"))
+
+
 b_h, k_h = TABLE.lookup("b_h"), TABLE.lookup("k_h")
 
 
@@ -34,7 +36,7 @@ def _linear_delayed() -> sp.Basic:
     return sp.Gt(cond.lhs, cond.rhs, evaluate=False)
 
 
-def _reading(condition: sp.Basic) -> str:
+def reading_of_b(condition: sp.Basic) -> str:
     """What a printed condition says about b (for details built from the display)."""
     try:
         return str(as_bound(condition, b))
@@ -70,7 +72,7 @@ def eq2(ctx: AuditContext) -> Finding:
     leading = classics.leading_order_boundary(0, operator=True).condition      # B + b + b_h > K T/2
     leading = sp.Gt(leading.lhs, sp.expand(leading.rhs), evaluate=False)
     against_leading = compare_bounds(printed, sp.Ge(leading.lhs, leading.rhs), b, what="(2)")
-    reading = _reading(printed)
+    reading = reading_of_b(printed)
     facts: dict = {"leading_order": leading, "against_leading_order": against_leading.verdict.value,
                    "printed_form": against_leading.evidence.facts.get("printed_form")}
     if against_leading.verdict not in (Verdict.CONFIRMED, Verdict.CONSERVATIVE):
@@ -110,7 +112,7 @@ def eq2(ctx: AuditContext) -> Finding:
                 assumptions="b, K, T > 0; B >= 0 ('valid only for low values of B', as the text says)",
                 derivation="exact ZOH stability boundary (Jury, closed form) and its small-damping expansion")
 def eq4(ctx: AuditContext) -> Finding:
-    from hapticproof.derivations.teleoperator import routh_finding
+    from hapticproof.derivations.teleoperator.claims import routh_finding
 
     return routh_finding(ctx.relation(), "Gil et al.'s condition (4)")
 
@@ -143,7 +145,7 @@ def eq5(ctx: AuditContext) -> Finding:
     cmp = compare_bounds(printed, sp.Ge(derived.lhs, derived.rhs), b, what="(5)")
     if cmp.verdict == Verdict.CONFIRMED:
         return cmp
-    reading = _reading(printed)
+    reading = reading_of_b(printed)
     # the slip the quote suggests: T where Gil et al. have T/2 (derived condition with T/2 -> T)
     half_slip = sp.Gt(derived.lhs, derived.rhs.subs(T, 2 * T), evaluate=False)
     is_half_slip = compare_bounds(printed, sp.Ge(half_slip.lhs, half_slip.rhs), b).verdict == Verdict.CONFIRMED
@@ -169,7 +171,7 @@ def eq5(ctx: AuditContext) -> Finding:
             Verdict.TYPO,
             f"(5) reads {reading}; the delayed linear condition derived from the exact ZOH loop (leading order for every n) "
             f"is K (T/2 + t_d) < b + B, as Gil et al. 2009 publish it, and (5) is exactly that with T for T/2: at t_d = 0 it "
-            f"reads {_reading(at_zero)} ({vs4_verdict} against (4), b + B > KT/2); {loop}",
+            f"reads {reading_of_b(at_zero)} ({vs4_verdict} against (4), b + B > KT/2); {loop}",
             evidence, derived=derived, corrected=corrected)
     return Finding(cmp.verdict,
                    f"(5) reads {reading}, not the delayed linear condition K (T/2 + t_d) < b + B derived from the exact ZOH "
@@ -186,16 +188,16 @@ def _identical_to_7(ctx: AuditContext, eq_id: str, reduce: dict) -> Finding:
         reference = _as_lower(quoted)
     except NotABound as err:
         return Finding(Verdict.INCONSISTENT,
-                       f"the quote (5) reads {_reading(quoted)}: not a lower bound on b ({err.reason}), so it cannot be the "
-                       f"condition ({eq_id}), which reads {_reading(mine)}",
-                       Evidence(Method.CANONICAL_FORM, facts={"ids": [eq_id, "5"], "reading": _reading(mine)}),
+                       f"the quote (5) reads {reading_of_b(quoted)}: not a lower bound on b ({err.reason}), so it cannot be the "
+                       f"condition ({eq_id}), which reads {reading_of_b(mine)}",
+                       Evidence(Method.CANONICAL_FORM, facts={"ids": [eq_id, "5"], "reading": reading_of_b(mine)}),
                        derived=derived)
     vs_quote = compare_bounds(mine, reference, b, what=f"({eq_id}) against (5)")
     facts = {"ids": [eq_id, "5"], "versus_derived": vs_derived.verdict.value, "versus_quote_(5)": vs_quote.verdict.value,
-             "reading": _reading(mine), "quote_reading": _reading(quoted)}
+             "reading": reading_of_b(mine), "quote_reading": reading_of_b(quoted)}
     if vs_quote.verdict == Verdict.CONFIRMED:
-        return Finding(Verdict.CONFIRMED, f"({eq_id}){' at z_a = 0' if reduce else ''} reads {_reading(mine)}, the same "
-                       f"condition as the quote (5), {_reading(quoted)}", Evidence(vs_quote.evidence.method, facts=facts))
+        return Finding(Verdict.CONFIRMED, f"({eq_id}){' at z_a = 0' if reduce else ''} reads {reading_of_b(mine)}, the same "
+                       f"condition as the quote (5), {reading_of_b(quoted)}", Evidence(vs_quote.evidence.method, facts=facts))
     gap = ""
     try:
         gap = f" (bounds differ by {sp.sstr(sp.simplify(as_bound(_as_lower(quoted), b).bound - as_bound(mine, b).bound))})"
@@ -203,9 +205,9 @@ def _identical_to_7(ctx: AuditContext, eq_id: str, reduce: dict) -> Finding:
         pass
     return Finding(
         Verdict.INCONSISTENT,
-        f"({eq_id}){' at z_a = 0' if reduce else ''} reads {_reading(mine)}, {vs_derived.verdict.value} against the linear "
+        f"({eq_id}){' at z_a = 0' if reduce else ''} reads {reading_of_b(mine)}, {vs_derived.verdict.value} against the linear "
         f"condition of Gil et al. 2009 as derived and published (K(T/2 + t_d) < b + B), but not the paper's own quote (5), "
-        f"{_reading(quoted)}{gap}: {vs_quote.verdict.value} against it (witness)",
+        f"{reading_of_b(quoted)}{gap}: {vs_quote.verdict.value} against it (witness)",
         Evidence(Method.COUNTEREXAMPLE, witness=vs_quote.evidence.witness, facts=facts),
         derived=derived,
         corrected=r"\text{identical to [7] as published: } K < \frac{B+b}{\frac{T}{2}+t_d} \text{ (correct (5))}",
