@@ -524,7 +524,7 @@ class Scene:
         return SingleUserScene(b=b, T=T, H=H, approximation=self.approximation, delay=delay, z_a=self._z_a(mapping))
 
     def _multi_user(self, mapping) -> Any:
-        from hapticproof.systems.multiuser import UNIFORM_SYMBOLS, MultiUserScene
+        from hapticproof.systems.multiuser import UNIFORM_SYMBOLS, MultiUserScene, map_values
 
         edges = _edges_of(self.graph, self.users)
         active = self.active or "z_a" in dict(self.params)
@@ -558,9 +558,9 @@ class Scene:
                 values[by_name[sym.name]] = value
         rename = {s: parameter_like(s, self) for s in scene.parameters}
         sub = lambda v: sp.sympify(v).xreplace(values).xreplace(rename)  # noqa: E731
-        return replace(scene, b=tuple(map(sub, scene.b)), T=sub(scene.T), K0=tuple(map(sub, scene.K0)),
-                       B0=tuple(map(sub, scene.B0)), K=tuple(map(sub, scene.K)), B=tuple(map(sub, scene.B)),
-                       z_a=tuple(map(sub, scene.z_a)))
+        each = lambda vals: map_values(sub, vals)  # noqa: E731 - a uniform scene repeats one value per edge
+        return replace(scene, b=each(scene.b), T=sub(scene.T), K0=each(scene.K0), B0=each(scene.B0), K=each(scene.K),
+                       B=each(scene.B), z_a=each(scene.z_a))
 
     def _teleoperator(self, mapping, sub) -> Any:
         from hapticproof.systems.teleoperator import TeleoperatorScene
