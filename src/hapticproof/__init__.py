@@ -42,6 +42,7 @@ _PUBLIC = {
     "worst_case": "hapticproof.analysis.positivereal",
     "NumericScene": "hapticproof.analysis.fastpath",
     "decide": "hapticproof.analysis.fastpath",
+    "ispassive": "hapticproof.analysis.passivity",
     "delay_margin": "hapticproof.analysis.design",
     "passive_range": "hapticproof.analysis.design",
     "check_certificate": "hapticproof.exact.checker",

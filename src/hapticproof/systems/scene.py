@@ -237,6 +237,7 @@ class Scene:
             if key in params:
                 raise SceneError(f"parameter {key} given twice")
             params[key] = _param_value(key, value, where)
+        self._read_systems(params)
         system = self.system
         if system in ("single-user", "multi-user") and self.controller is not None:
             if self.environment is not None or system == "multi-user":
@@ -310,6 +311,25 @@ class Scene:
                 set_("ports", ports)
 
     # -- helpers of construction --------------------------------------------------------------
+    def _read_systems(self, params: dict[str, Any]) -> None:
+        """A python-control or SymPy system as environment, controller or operator becomes its
+        exact expression (:func:`hapticproof.systems.lti.expression_of`); a sampling period it
+        carries is the scene's ``T`` (given as well, they must agree)."""
+        from hapticproof.systems.lti import expression_of, is_lti_object
+
+        for name in ("environment", "controller", "operator"):
+            value = getattr(self, name)
+            if not is_lti_object(value):
+                continue
+            expr, dt = expression_of(value)
+            object.__setattr__(self, name, expr)
+            if dt is None:
+                continue
+            period = sp.Rational(dt.numerator, dt.denominator)
+            if "T" in params and params["T"] != period:
+                raise SceneError(f"{name}: the system's sampling period dt = {period} differs from T = {params['T']}")
+            params["T"] = period
+
     @staticmethod
     def _expr(value: Any, variable: str, name: str, assumptions: Mapping[str, str],
               words: tuple[str, ...] = ()) -> Any:
