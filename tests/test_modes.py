@@ -162,3 +162,21 @@ def test_symbolic_uniform_many_users_is_the_exact_condition():
     assert sp.expand(wc.condition.lhs - wc.condition.rhs - exact) == 0
     got = [c.decision for c in conditions(scene)]
     assert got[:3] == [Decision.PROVED] * 3 and got[3] == Decision.SYMBOLIC
+
+
+def test_delay_margin_by_modes_is_the_matrix_routes():
+    """The margin from the two extreme modes against every delay decided on the 5 x 5 matrix."""
+    from dataclasses import replace
+
+    from hapticproof.analysis.design import delay_margin
+
+    for edges in (None, [(i, i + 1) for i in range(4)]):          # lambda_max = 5, and 2 + 2 cos(pi/5)
+        scene = MultiUserScene.uniform(5, b=R(6, 100), K0=2, B0=R(1, 1000), K=1, B=R(1, 10000), T=R(1, 1000),
+                                       edges=edges)
+        dm = delay_margin(scene)
+        assert dm.decision == Decision.PROVED and dm.method.startswith("modes")
+        assert 0 <= dm.margin < 12
+        for n in range(dm.margin + 2):
+            at_n = replace(scene, delays=(n,) * 5)
+            matrix = decide_psd_on_circle(hermitian(at_n), transfer=transfer_entries(at_n)).decision
+            assert matrix == (Decision.PROVED if n <= dm.margin else Decision.DISPROVED), (edges, n, dm.margin)

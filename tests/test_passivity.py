@@ -232,3 +232,16 @@ def test_bilinear_oracle_agrees_with_the_scalar_one():
         b = bilinear_positive_real(sp.Matrix([[F]])).verdict
         assert "uncertain" in (a, b) or a == b, (F, a, b)
         assert expected_decision(discrete_positive_real(F)) in (None, ispassive(F).decision.value)
+
+
+def test_flint_hermitian_part_is_the_sympy_one():
+    """The flint Hermitian part of a discrete matrix against the generic SymPy route, exactly."""
+    from hapticproof.analysis.passivity import circle_hermitian
+    from hapticproof.exact.psd import hermitian_part_matrix
+
+    G = sp.Matrix([[2 + 1 / (z - 1), R(1, 3) / z], [(z + R(1, 2)) / (z**2 - R(1, 4)), 1 + z**-3 / (z - R(1, 5))]])
+    system = from_object(G)
+    mine, generic = circle_hermitian(system), hermitian_part_matrix(system.matrix())
+    assert not mine.is_symmetric
+    for c0, s0 in ((R(3, 5), R(4, 5)), (R(-5, 13), R(12, 13)), (R(8, 17), -R(15, 17))):
+        assert sp.simplify(mine.at(c0, s0) - generic.at(c0, s0)) == sp.zeros(2, 2)

@@ -40,7 +40,7 @@ from hapticproof.exact.conditions import Condition, combine, pole_conditions
 from hapticproof.exact.kernel import decide_rational_sign, locate_roots, transfer_json
 from hapticproof.systems.lti import ExactSystem, from_object, hermitian_system
 
-__all__ = ["PassivityResult", "ispassive", "PROPER", "HERMITIAN"]
+__all__ = ["PassivityResult", "ispassive", "circle_hermitian", "PROPER", "HERMITIAN"]
 
 #: Names of the conditions that are not those of :func:`hapticproof.exact.conditions.pole_conditions`.
 PROPER = "proper (no pole at z = infinity)"
@@ -160,7 +160,7 @@ def _lcm(polys: list[flint.fmpq_poly]) -> flint.fmpq_poly:
 
 
 def _discrete_matrix(system: ExactSystem) -> list[Condition]:
-    from hapticproof.exact.psd import decide_psd_on_circle, hermitian_part_matrix, residue_matrices
+    from hapticproof.exact.psd import decide_psd_on_circle
 
     conditions = [_proper(system)]
     den = _lcm([d for row in system.entries for _, d in row])
@@ -173,12 +173,11 @@ def _discrete_matrix(system: ExactSystem) -> list[Condition]:
         poles = Outcome(Decision.PROVED, Evidence(Method.ROOT_ISOLATION, facts=facts), "no pole outside the unit circle")
     simple = Outcome(Decision.PROVED if roots.boundary_simple else Decision.DISPROVED, Evidence(Method.ROOT_ISOLATION, facts=facts),
                      "every unit-circle pole is simple" if roots.boundary_simple else "a unit-circle pole is not simple")
-    G = system.matrix()
     if roots.boundary and roots.boundary_simple:
-        residues = residue_matrices(G)
-        bad = [r.outcome for r in residues if r.outcome.decision != Decision.PROVED]
-        residue = bad[0] if bad else Outcome(Decision.PROVED, Evidence(Method.CANONICAL_FORM, facts={"residues": [r.outcome for r in residues]}),
-                                             "; ".join(r.outcome.reason for r in residues))
+        outcomes = [_residue_matrix(system, r) for r in roots.boundary]
+        bad = [o for o in outcomes if o.decision != Decision.PROVED]
+        residue = bad[0] if bad else Outcome(Decision.PROVED, Evidence(Method.CANONICAL_FORM, facts={"residues": outcomes}),
+                                             "; ".join(o.reason for o in outcomes))
     elif roots.boundary:
         residue = Outcome(Decision.UNDECIDED, Evidence(Method.CANONICAL_FORM), "not examined: a unit-circle pole is not simple")
     else:
@@ -186,8 +185,58 @@ def _discrete_matrix(system: ExactSystem) -> list[Condition]:
     conditions += [Condition("poles in |z| <= 1", poles), Condition("unit-circle poles simple", simple),
                    Condition("residue matrices Res/z0 Hermitian PSD", residue)]
     transfer = {"variable": "z", "entries": system.to_json()["entries"]}
-    herm = decide_psd_on_circle(hermitian_part_matrix(G), transfer=transfer)
+    herm = decide_psd_on_circle(circle_hermitian(system), transfer=transfer)
     return conditions + [Condition(HERMITIAN, herm.outcome)]
+
+
+def _residue_matrix(system: ExactSystem, root: Any) -> Outcome:
+    """``R/z0`` Hermitian PSD at a simple unit-circle pole: exact from flint at ``z0 = +-1``
+    (``R_ij = P_ij(z0)/Q_ij'(z0)``), by SymPy's residues at other poles."""
+    from hapticproof.exact.kernel import decide_constant_psd
+    from hapticproof.exact.psd import residue_matrices
+
+    if root.value is None:
+        found = residue_matrices(system.matrix())
+        bad = [r.outcome for r in found if r.outcome.decision != Decision.PROVED]
+        return bad[0] if bad else Outcome(Decision.PROVED, Evidence(Method.CANONICAL_FORM), "; ".join(r.outcome.reason for r in found))
+    z0 = flint.fmpq(int(sp.Rational(root.value).p), int(sp.Rational(root.value).q))
+    n = system.shape[0]
+    R = sp.zeros(n, n)
+    for i, row in enumerate(system.entries):
+        for j, (num, den) in enumerate(row):
+            if den.degree() > 0 and den(z0) == 0:
+                v = num(z0) / den.derivative()(z0) / z0
+                R[i, j] = sp.Rational(int(v.p), int(v.q))
+    what = f"the residue matrix at z = {sp.sstr(root.value)} (divided by z0)"
+    if R != R.T:
+        return Outcome(Decision.DISPROVED, Evidence(Method.CANONICAL_FORM, witness={"pole": str(root.value)}, facts={"matrix": R}),
+                       f"{what} is not symmetric")
+    return decide_constant_psd(R, what)
+
+
+def circle_hermitian(system: ExactSystem) -> Any:
+    """``M = G + G^H`` on the unit circle as a numeric :class:`~hapticproof.exact.psd.HermitianPart`
+    built from flint polynomials (no SymPy): ``Re G_ij`` and ``Im G_ij / sin(theta)`` of ``P/Q`` are
+    ``P(z)Q(1/z)`` in the Chebyshev bases ``T_k`` and ``U_{k-1}`` over ``|Q|^2``."""
+    from hapticproof.exact.psd import HermitianPart, PolyRing
+    from hapticproof.exact.unitcircle import fast_cross, symmetric_to_c
+
+    zero, cvar, one = flint.fmpq(0), flint.fmpq_poly([0, 1]), flint.fmpq_poly([1])
+    n = system.shape[0]
+    parts = {}
+    for i, row in enumerate(system.entries):
+        for j, (num, den) in enumerate(row):
+            p, q = num.coeffs(), den.coeffs()
+            cross = fast_cross(p, q) if p else {}
+            parts[i, j] = (symmetric_to_c(cross, zero, cvar, one, +1), symmetric_to_c(cross, zero, cvar, one, -1),
+                           symmetric_to_c(fast_cross(q, q), zero, cvar, one, +1))
+    common = _lcm([d for _, _, d in parts.values()])
+    if common(flint.fmpq(0)) < 0:
+        common = -common
+    lift = lambda key, k: parts[key][k] * (common / parts[key][2])  # noqa: E731
+    A = tuple(tuple(lift((i, j), 0) + lift((j, i), 0) for j in range(n)) for i in range(n))
+    S = tuple(tuple(lift((i, j), 1) - lift((j, i), 1) for j in range(n)) for i in range(n))
+    return HermitianPart(PolyRing.over(()), A, S, common)
 
 
 def _continuous(system: ExactSystem) -> list[Condition]:
