@@ -43,6 +43,8 @@ _PUBLIC = {
     "NumericScene": "hapticproof.analysis.fastpath",
     "decide": "hapticproof.analysis.fastpath",
     "ispassive": "hapticproof.analysis.passivity",
+    "inverse_transfer_system": "hapticproof.systems.lti",
+    "hermitian_system": "hapticproof.systems.lti",
     "delay_margin": "hapticproof.analysis.design",
     "passive_range": "hapticproof.analysis.design",
     "check_certificate": "hapticproof.exact.checker",
