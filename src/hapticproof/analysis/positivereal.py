@@ -37,7 +37,7 @@ from hapticproof.core.symbols import z as Z_SYM
 from hapticproof.exact.unitcircle import CRational, ThetaForm, circle_real_part, hermitian_part_rational, numerator_denominator, theta_form
 from hapticproof.exact.conditions import HERMITIAN, RESIDUES, Condition, POLES_IN_DISK, POLES_SIMPLE, combine, pole_conditions
 
-__all__ = ["conditions", "transfer_polynomials", "numeric_scene", "Pole", "Residue", "WorstCase", "poles_of", "unit_circle_residues", "hermitian_of", "decide_hermitian", "symbolic_minimum", "poles", "residues", "hermitian", "worst_case", "positive_real"]
+__all__ = ["conditions", "transfer_polynomials", "numeric_scene", "Pole", "Residue", "WorstCase", "poles_of", "unit_circle_residues", "hermitian_of", "decide_hermitian", "symbolic_minimum", "symbolic_c_degree", "SYMBOLIC_CFORM_LIMIT", "poles", "residues", "hermitian", "worst_case", "positive_real"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -409,6 +409,11 @@ def worst_case(scene: SingleUserScene) -> WorstCase:
 
         out = hermitian_outcome(numeric_scene(scene), polynomials=transfer_polynomials(scene))
         return WorstCase(out, sp.true if out.decision == Decision.PROVED else sp.false, out.minimiser, out.minimum)
+    if not scene.delay.is_Symbol and symbolic_c_degree(scene) > SYMBOLIC_CFORM_LIMIT:
+        d = symbolic_c_degree(scene)
+        reason = (f"Re G^-1 is a polynomial of degree up to {d} in c with parameters: no closed-form worst case (not built; "
+                  "give the parameters numbers for the exact decision, or keep the delay symbolic, n)")
+        return WorstCase(Outcome(Decision.SYMBOLIC, Evidence(Method.STRUCTURAL, facts={"degree": d, "reason": reason}), reason), None)
     form = hermitian(scene)
     if isinstance(form, ThetaForm):
         outcome = Outcome(
@@ -418,6 +423,19 @@ def worst_case(scene: SingleUserScene) -> WorstCase:
         )
         return WorstCase(outcome, None)
     return symbolic_minimum(form.expr())
+
+
+#: A symbolic scene's ``Re G^{-1}`` is built as a polynomial in ``c`` up to this degree (a
+#: second or two); above it, it is a large exact object the symbolic answer cannot use (its worst
+#: case has no closed form above degree 2) and is built only when asked (``derive --full``).
+SYMBOLIC_CFORM_LIMIT = 100
+
+
+def symbolic_c_degree(scene: SingleUserScene) -> int:
+    """A bound on the degree in ``c`` of ``Re G^{-1}`` for an integer delay, read off ``G^{-1}``'s degrees in ``z``."""
+    num, den = sp.fraction(sp.cancel(environment_path(scene)))
+    dn, dd = (sp.Poly(p, Z_SYM).degree() if p.has(Z_SYM) else 0 for p in (num, den))
+    return max(dn, dd + int(scene.delay))
 
 
 @stage("conditions")

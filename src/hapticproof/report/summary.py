@@ -25,7 +25,8 @@ from hapticproof.core.notation import shorten_numbers
 from hapticproof.report.readable import brief, full_text
 from hapticproof.systems.models import inverse_transfer
 from hapticproof.exact.conditions import Condition
-from hapticproof.analysis.positivereal import conditions, hermitian, poles, positive_real, residues, transfer_polynomials, worst_case
+from hapticproof.analysis.positivereal import (SYMBOLIC_CFORM_LIMIT, conditions, hermitian, poles, positive_real, residues,
+                                              symbolic_c_degree, transfer_polynomials, worst_case)
 from hapticproof.systems.singleuser import SingleUserScene
 from hapticproof.exact.unitcircle import CRational
 
@@ -203,8 +204,12 @@ def summarize_single_user(scene: SingleUserScene, with_profile: bool = False, fu
         herm = hermitian(scene).expr(sp.Symbol("theta"))
     elif scene.is_numeric and not full and _c_degree(scene) > CFORM_LIMIT:
         herm = None
-        skipped["hermitian_part"] = (f"Re G^-1 as a polynomial in c has degree {_c_degree(scene)}; the decision "
+        skipped["hermitian_part"] = (f"Re G^-1 as a polynomial in c has degree up to {_c_degree(scene)}; the decision "
                                      "needs only its closed form in theta", "--full")
+    elif not scene.is_numeric and not full and symbolic_c_degree(scene) > SYMBOLIC_CFORM_LIMIT:
+        herm = None
+        skipped["hermitian_part"] = (f"Re G^-1 as a polynomial in c with parameters has degree up to {symbolic_c_degree(scene)} "
+                                     "and no closed-form worst case", "--full")
     else:
         form = hermitian(scene)
         # numeric forms stay flint polynomials: a degree-1000 c-form is never built in SymPy
@@ -234,6 +239,6 @@ def summarize_single_user(scene: SingleUserScene, with_profile: bool = False, fu
 
 
 def _c_degree(scene: SingleUserScene) -> int:
-    """The degree in ``c`` of a numeric scene's ``Re G^{-1}`` (that of ``G^{-1} = P/Q``)."""
+    """A bound on the degree in ``c`` of a numeric scene's ``Re G^{-1}`` (that of ``G^{-1} = P/Q``)."""
     P, Q = transfer_polynomials(scene)
     return max(P.degree(), Q.degree())
