@@ -107,3 +107,14 @@ def test_flint_reading_of_H_is_the_sympy_reading(approximation):
     num, den = sp.fraction(sp.cancel(sp.together(H)))
     as_expr = lambda coeffs: sum(sp.Rational(c.numerator, c.denominator) * z**k for k, c in enumerate(coeffs))  # noqa: E731
     assert sp.cancel(as_expr(ns.H[0]) / as_expr(ns.H[1]) - num / den) == 0
+
+
+def test_symbolic_long_delays_answer_without_the_large_polynomial(capsys):
+    code, out, _ = run(capsys, "derive", "single-user", "--delay", "300", "--format", "json")
+    data = json.loads(out)
+    assert code == 0 and data["verdict"] == "symbolic" and data["hermitian_part"] is None
+    assert data["skipped"]["hermitian_part"]["option"] == "--full"
+    # below the limit the condition min_c(...) >= 0 is built, and summarised in text (a traceback before)
+    code, text, _ = run(capsys, "derive", "single-user", "--delay", "60")
+    worst = next(line for line in text.splitlines() if line.startswith("worst case:"))
+    assert code == 0 and "min_c(polynomial of c: degree 61" in worst and worst.endswith(">= 0")
