@@ -180,3 +180,19 @@ def test_delay_margin_by_modes_is_the_matrix_routes():
             at_n = replace(scene, delays=(n,) * 5)
             matrix = decide_psd_on_circle(hermitian(at_n), transfer=transfer_entries(at_n)).decision
             assert matrix == (Decision.PROVED if n <= dm.margin else Decision.DISPROVED), (edges, n, dm.margin)
+
+
+def test_equal_scenes_hash_equal_however_built():
+    """The memoised hash follows equality: pickled copies (worker processes) and complete graphs
+    given edge by edge hash like the original."""
+    import itertools
+    import pickle
+
+    a = MultiUserScene.uniform(4, b=R(1, 50), K0=1, B0=0, K=2, B=0, T=R(1, 1000))
+    hash(a)
+    b = pickle.loads(pickle.dumps(a))
+    c = MultiUserScene.uniform(4, b=R(1, 50), K0=1, B0=0, K=2, B=0, T=R(1, 1000),
+                               edges=list(itertools.combinations(range(4), 2)))
+    assert a == b == c and hash(a) == hash(b) == hash(c)
+    ring = MultiUserScene.uniform(4, edges=[(0, 1), (1, 2), (2, 3), (0, 3)])
+    assert ring != a and pickle.loads(pickle.dumps(ring)) == ring

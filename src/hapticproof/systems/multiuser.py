@@ -8,7 +8,7 @@ import functools
 import itertools
 import operator
 from collections.abc import Iterable, Mapping, Sequence
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field, fields, replace
 from typing import Any
 
 import sympy as sp
@@ -178,7 +178,8 @@ class MultiUserScene:
         memo = self._facts()
         if "hash" not in memo:
             distinct = lambda values: frozenset(_distinct(values))  # noqa: E731 - equal scenes: equal sets
-            edges = ("complete", self.users) if self.edges is complete_graph(self.users) else self.edges
+            m = self.users            # distinct valid pairs: all m(m-1)/2 of them is the complete graph
+            edges = ("complete", m) if len(self.edges) == m * (m - 1) // 2 else self.edges
             memo["hash"] = hash((len(self.b), distinct(self.b), self.T, distinct(self.K0), distinct(self.B0), edges,
                                  distinct(self.K), distinct(self.B), self.delays, distinct(self.z_a), self.approximation))
         return memo["hash"]
@@ -187,6 +188,15 @@ class MultiUserScene:
         if self._memo is None:
             object.__setattr__(self, "_memo", {})
         return self._memo
+
+    def __getstate__(self) -> list:            # the memo stays home: a hash is valid in one process only
+        return [None if f.name == "_memo" else getattr(self, f.name) for f in fields(self)]
+
+    def __setstate__(self, state: list) -> None:
+        for f, value in zip(fields(self), state):
+            object.__setattr__(self, f.name, value)
+        if self.edges == complete_graph(len(self.b)):          # the shared tuple again (no edge validation)
+            object.__setattr__(self, "edges", complete_graph(len(self.b)))
 
     def __post_init__(self) -> None:
         m = len(self.b)

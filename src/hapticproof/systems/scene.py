@@ -162,7 +162,9 @@ class Scene:
     environment : str or expr, optional
         Single-user: the virtual environment ``H(z)`` (default: the wall ``K + B*(z-1)/(T*z)``),
         or ``H(s)`` with ``discretize``. Teleoperator: the slave's termination ``Z_e(s)``,
-        ``'free'`` or ``'clamped'`` (stability only).
+        ``'free'`` or ``'clamped'`` (stability only). A python-control or SymPy system is read
+        exactly (:mod:`hapticproof.systems.lti`; floats by their decimal text) and its ``dt`` is
+        ``T``; so for ``controller`` and ``operator``.
     controller : str or expr, optional
         Teleoperator: ``C(z)``, or ``C(s)`` with ``discretize``, or ``'pd'`` (eq. 33, default) /
         ``'filtered-pd'``. Single-user: a synonym of ``environment`` (the virtual environment is
