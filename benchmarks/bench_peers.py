@@ -3,10 +3,13 @@
 For the HVE forward-difference virtual wall (K = 2, B = 0.001, T = 1 ms) with delays 0, 3, 10 and
 ``b`` at 1e-2, 1e-6 and 1e-9 relative above and below the exact boundary, both libraries decide
 the same 18 scenes in this process: hapticproof builds the scene from numbers and returns the
-whole positive-real decision with certificates (``hapticproof.analysis.fastpath.decide``); python-control
-builds ``G^-1`` as a transfer function and calls ``control.ispassive`` (its KYP LMI, solved by
-cvxopt), once as it is and once with the integrator pole damped to ``z = 1 - 1e-6``. Medians over
-``--repeat`` runs; every verdict is judged against the exact answer. Writes
+whole positive-real decision with certificates (``hapticproof.analysis.fastpath.decide``), through
+its public API (``positive_real(SingleUserScene.virtual_wall(...))``) and through
+``hapticproof.ispassive`` on the peer's transfer function; python-control builds ``G^-1`` as a
+transfer function and calls ``control.ispassive`` (its KYP LMI, solved by cvxopt), once as it is and
+once with the integrator pole damped to ``z = 1 - 1e-6``. The methods are called in turn,
+``--repeat`` times, and their medians compared; every verdict is judged against the exact answer.
+Writes
 ``benchmarks/results/peers.json`` and ``peers.png``.
 
     pip install 'hapticproof[bench]'          # python-control + cvxopt (else the peer column is skipped)
@@ -42,6 +45,8 @@ def main() -> None:
     for name, s in summary.items():
         if isinstance(s, dict):
             ratio = f", {s['median_ratio_to_hapticproof']:.1f}x hapticproof's median" if "median_ratio_to_hapticproof" in s else ""
+            if "median_ratio_to_ispassive" in s:
+                ratio += f", {s['median_ratio_to_ispassive']:.3f} of control.ispassive's"
             print(f"{name:40s} median {s['median_seconds'] * 1e3:7.2f} ms, max {s['max_seconds'] * 1e3:7.1f} ms, "
                   f"wrong verdicts {s['wrong_verdicts']} of {s['of']}{ratio}")
     if "peer_note" in summary:

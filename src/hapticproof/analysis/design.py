@@ -161,17 +161,19 @@ def _flint_poly(poly: sp.Poly) -> flint.fmpq_poly:
     return flint.fmpq_poly([as_fmpq(poly.domain.to_sympy(a)) for a in poly.all_coeffs()[::-1]])
 
 
-def _single_user_parts(model: Any) -> tuple[flint.fmpq_poly, flint.fmpq_poly, flint.fmpq]:
-    from hapticproof.systems.models import environment_path
-    from hapticproof.exact.unitcircle import numerator_denominator
+def _numeric(model: Any) -> Any:
+    """The single-user model at delay 0 as a :class:`~hapticproof.analysis.fastpath.NumericScene`:
+    every delay of the search is then decided on the fast path, without SymPy."""
+    from hapticproof.analysis.fastpath import NumericScene
 
-    base = replace(model, delay=sp.Integer(0))
-    Pe, Qe = numerator_denominator(environment_path(base))
-    P, Q = _flint_poly(Pe), _flint_poly(Qe)
-    g = P.gcd(Q) if not P.is_zero() else Q
-    if g.degree() > 0:
-        P, Q = P / g, Q / g
-    return P, Q, as_fmpq(model.b - model.z_a)
+    return NumericScene.from_scene(replace(model, delay=sp.Integer(0)))
+
+
+def _single_user_parts(ns: Any) -> tuple[flint.fmpq_poly, flint.fmpq_poly, flint.fmpq]:
+    from hapticproof.analysis.fastpath import path_polynomials
+
+    P, Q = path_polynomials(ns)
+    return P, Q, flint.fmpq(ns.b.numerator, ns.b.denominator) - flint.fmpq(ns.z_a.numerator, ns.z_a.denominator)
 
 
 def _symmetric_c(p: flint.fmpq_poly, q: flint.fmpq_poly) -> flint.fmpq_poly:
@@ -192,12 +194,12 @@ def _upper_rational(ball: flint.arb) -> flint.fmpq:
     return flint.fmpq(simple.numerator, simple.denominator)
 
 
-def _bound_route(model: Any) -> dict[str, Any] | None:
+def _bound_route(ns: Any) -> dict[str, Any] | None:
     """``a, R, M_0, F_0(1)`` and the certificates of the bound, or ``None`` when ``F`` has
     another unit-circle pole, a pole outside, or a double pole at ``z = 1``."""
     from hapticproof.exact.kernel import decide_rational_sign, locate_roots
 
-    P, Q, a = _single_user_parts(model)
+    P, Q, a = _single_user_parts(ns)
     if Q.degree() <= 0:
         P0, Q0, R = P, Q, flint.fmpq(0)
     else:
@@ -230,15 +232,26 @@ def _bound_route(model: Any) -> dict[str, Any] | None:
     return {"a": a, "R": R, "M0": M0, "F0_1": F0_at_1, "certificate": cert}
 
 
-def _decide_single(model: Any, n: int) -> Outcome:
-    from hapticproof.analysis.positivereal import positive_real
+def _decide_single(ns: Any, n: int) -> Outcome:
+    """The whole decision at delay ``n`` (:func:`hapticproof.analysis.fastpath.decide`, the numeric
+    route of :func:`hapticproof.analysis.positivereal.positive_real`)."""
+    from hapticproof.analysis.fastpath import decide
 
-    return positive_real(replace(model, delay=sp.Integer(n)))
+    return decide(replace(ns, delay=n), minimum=False)
 
 
-def delay_margin(scene: Any, max_delay: int = 2000) -> DelayMargin:
+#: A delay-margin search stops after this many seconds unless told otherwise; it then ends
+#: ``undecided`` and says which delays it decided.
+DEADLINE = 60.0
+
+
+def delay_margin(scene: Any, max_delay: int = 2000, *, deadline: float | None = DEADLINE,
+                 progress: Any = None) -> DelayMargin:
     """The delay margin of a numeric single- or multi-user scene (exact; see the module
-    docstring). ``max_delay`` caps the one-by-one search when no bound ends it.
+    docstring). ``max_delay`` caps the one-by-one search when no bound ends it; ``deadline``
+    (seconds, ``None``: none) bounds its time -- past it the answer is ``undecided`` with the delays
+    decided so far; ``progress(done, total)`` is called as the search goes (a progress bar).
+    Uniform m-user scenes are searched on their two extreme modes (:mod:`hapticproof.analysis.modes`).
 
     >>> from hapticproof.systems.scene import Scene
     >>> dm = delay_margin(Scene("single-user", params={"b": "0.02", "K": 2, "B": 0, "T": "0.001"}))
@@ -250,85 +263,134 @@ def delay_margin(scene: Any, max_delay: int = 2000) -> DelayMargin:
 
     start = time.perf_counter()
     model = _model(scene)
+    clock = _Clock(start, deadline, progress)
     if isinstance(model, MultiUserScene):
-        return _multi_margin(model, max_delay, start)
+        return _multi_margin(model, max_delay, clock)
     if not isinstance(model, SingleUserScene):
         raise SceneError("the delay margin applies to single- and multi-user scenes (the teleoperator bound (32) "
                          "has no delay)")
     free = model.parameters - ({model.delay} if model.delay.is_Symbol else set())
     if free:
         raise SceneError(f"the delay margin needs numbers for {', '.join(sorted(map(str, free)))}")
-    T = model.T
-    route = _bound_route(model)
+    return _single_margin(_numeric(model), max_delay, clock)
+
+
+@dataclass
+class _Clock:
+    """The search's start, deadline and progress callback (throttled to a few calls a second)."""
+
+    start: float
+    deadline: float | None
+    progress: Any = None
+    last: float = 0.0
+
+    def expired(self, next_cost: float = 0.0) -> bool:
+        """Past the deadline, or past it by the time the next step (as long as the last) ends."""
+        return self.deadline is not None and time.perf_counter() - self.start + next_cost > self.deadline
+
+    def tick(self, done: int, total: int, force: bool = False) -> None:
+        now = time.perf_counter()
+        if self.progress is not None and (force or now - self.last > 0.2):
+            self.last = now
+            self.progress(done, max(total, done, 1))
+
+    def elapsed(self) -> float:
+        return time.perf_counter() - self.start
+
+
+def _single_margin(ns: Any, max_delay: int, clock: _Clock) -> DelayMargin:
+    T = _rational(ns.T)
+    route = _bound_route(ns)
     decided: list[int] = []
+    decide = lambda n: _decide_single(ns, n)  # noqa: E731
     if route is None:
-        return _scan(lambda n: _decide_single(model, n), 0, None, max_delay, T, "exact", start, {}, None)
+        return _scan(decide, 0, None, max_delay, T, "exact", clock, {}, None)
     a, R, M0, F01 = route["a"], route["R"], route["M0"], route["F0_1"]
     proof = {"a = b - z_a": to_rational(a), "R = Res(F, 1)": to_rational(R), "M_0 >= max|F_0|": to_rational(M0),
              "F_0(1)": to_rational(F01)}
     if route["certificate"] is not None:
         proof["M_0 certificate"] = route["certificate"].to_json()
     if R < 0:
-        out = _decide_single(model, 0)
+        out = decide(0)
         return DelayMargin(Decision.PROVED, -1, T, "exact", "the residue at z = 1 is negative for every delay",
-                           decided=(0,), failing=out, proof=proof, seconds=time.perf_counter() - start)
+                           decided=(0,), failing=out, proof=proof, seconds=clock.elapsed())
     if R == 0:
         if a >= M0:
-            first = _decide_single(model, 0)
+            first = decide(0)
             if first.decision == Decision.PROVED:
                 return DelayMargin(Decision.PROVED, None, T, "bound", "Re G^-1 >= a - max|F| >= 0 for every n (no "
-                                   "pole on the circle)", decided=(0,), proof=proof, seconds=time.perf_counter() - start)
-        return _scan(lambda n: _decide_single(model, n), 0, None, max_delay, T, "exact", start, proof, None)
+                                   "pole on the circle)", decided=(0,), proof=proof, seconds=clock.elapsed())
+        return _scan(decide, 0, None, max_delay, T, "exact", clock, proof, None)
     low = math.floor(to_rational((a - M0) / R - flint.fmpq(1, 2)))
     fail = math.floor(to_rational((a + F01) / R - flint.fmpq(1, 2))) + 1
     low = max(low, -1)
     fail = max(fail, 0)
     proof.update({"N_low": low, "n_fail": fail})
     if low >= 0:
-        first = _decide_single(model, 0)       # the poles and residues, once (the same for every n)
+        first = decide(0)       # the poles and residues, once (the same for every n)
         decided.append(0)
         if first.decision != Decision.PROVED:
             return DelayMargin(Decision.PROVED, -1, T, "exact", "not passive without delay", decided=(0,),
-                               failing=first, proof=proof, seconds=time.perf_counter() - start)
+                               failing=first, proof=proof, seconds=clock.elapsed())
     limit = to_rational(a + F01 - R * (fail + flint.fmpq(1, 2)))
     at_fail = Outcome(Decision.DISPROVED,
                       Evidence(Method.ENDPOINT_ANALYSIS, witness={"c": "-> 1", "limit": limit},
                                facts={"limit": f"a + F_0(1) - R(n + 1/2) at n = {fail}"}),
                       f"Re G^-1 -> a + F_0(1) - R(n + 1/2) = {limit} < 0 as c -> 1 (w -> 0) at n = {fail}")
-    return _scan(lambda n: at_fail if n == fail else _decide_single(model, n), low + 1, fail, max_delay, T,
-                 "bound+exact", start, proof, low if low >= 0 else None, decided)
+    return _scan(lambda n: at_fail if n == fail else decide(n), low + 1, fail, max_delay, T,
+                 "bound+exact", clock, proof, low if low >= 0 else None, decided)
 
 
-def _scan(decide, first: int, last: int | None, max_delay: int, T: Any, method: str, start: float,
+def _rational(value: Any) -> sp.Rational:
+    return sp.Rational(value.numerator, value.denominator) if isinstance(value, Fraction) else sp.Rational(value)
+
+
+def _scan(decide, first: int, last: int | None, max_delay: int, T: Any, method: str, clock: _Clock,
           proof: dict, proved_up_to: int | None, decided: list[int] | None = None) -> DelayMargin:
     decided = list(decided or [])
     stop = last if last is not None else max_delay
     stop = min(stop, max(first, 0) + max_delay) if last is not None else stop
     how = (f"every n <= {proved_up_to} by the bound Re G^-1 >= a - R(n + 1/2) - M_0 >= 0; " if proved_up_to is not None
            else "")
+    total = stop - first + 1
+    cost = 0.0
     for n in range(first, stop + 1):
+        if clock.expired(cost):
+            clock.tick(n - first, total, force=True)
+            covered = ("no further delay decided" if n == first else f"n = {first} decided exactly, passive" if n == first + 1
+                       else f"n = {first}..{n - 1} decided exactly, each passive")
+            return DelayMargin(Decision.UNDECIDED, None, T, method,
+                               f"deadline of {clock.deadline:g} s reached: {how}{covered}; not decided beyond n = {n - 1}"
+                               + (f" (not passive from n = {last} on)" if last is not None else ""),
+                               lower=n - 1, upper=None if last is None else last - 1, proved_up_to=proved_up_to,
+                               decided=tuple(decided), proof=proof, seconds=clock.elapsed())
+        began = time.perf_counter()
         out = decide(n)
+        cost = time.perf_counter() - began
         decided.append(n)
+        clock.tick(n - first + 1, total)
         if out.decision == Decision.PROVED:
             continue
+        clock.tick(total, total, force=True)
         if out.decision == Decision.DISPROVED:
             reason = how + (f"n = {first}..{n - 1} decided exactly, n = {n} disproved" if n > first
                             else f"n = {n} disproved")
             return DelayMargin(Decision.PROVED, n - 1, T, method, reason, lower=n - 1, upper=n - 1,
                                proved_up_to=proved_up_to, decided=tuple(decided), failing=out, proof=proof,
-                               seconds=time.perf_counter() - start)
+                               seconds=clock.elapsed())
         return DelayMargin(Decision.UNDECIDED, None, T, method, f"the decision at n = {n} is {out.decision.value}: "
                            f"{out.reason}", lower=n - 1, upper=last, proved_up_to=proved_up_to,
-                           decided=tuple(decided), proof=proof, seconds=time.perf_counter() - start)
+                           decided=tuple(decided), proof=proof, seconds=clock.elapsed())
+    clock.tick(total, total, force=True)
     return DelayMargin(Decision.UNDECIDED, None, T, method,
                        f"passive for every n <= {stop} (searched up to --max-delay {max_delay})" +
                        (f"; not passive from n = {last} on" if last is not None else "; no bound ends the search"),
                        lower=stop, upper=None if last is None else last - 1, proved_up_to=proved_up_to,
-                       decided=tuple(decided), proof=proof, seconds=time.perf_counter() - start)
+                       decided=tuple(decided), proof=proof, seconds=clock.elapsed())
 
 
-def _multi_margin(model: Any, max_delay: int, start: float) -> DelayMargin:
-    from hapticproof.analysis.multiuser import positive_real
+def _multi_margin(model: Any, max_delay: int, clock: _Clock) -> DelayMargin:
+    from hapticproof.analysis.multiuser import by_modes, positive_real
     from hapticproof.exact.charpoly import is_psd
 
     if model.parameters:
@@ -336,6 +398,8 @@ def _multi_margin(model: Any, max_delay: int, start: float) -> DelayMargin:
     if len(set(model.delays)) > 1:
         raise SceneError("the delay margin asks for one common delay n; this scene has per-user delays")
     m = model.users
+    if by_modes(model):
+        return _modes_margin(model, max_delay, clock)
     base = replace(model, delays=(0,) * m)
     from hapticproof.systems.multiuser import inverse_transfer_matrix
     from hapticproof.core.symbols import z as Z
@@ -363,7 +427,44 @@ def _multi_margin(model: Any, max_delay: int, start: float) -> DelayMargin:
             last = lo
     proof = {"upper": "M(1)/2 -> D + F_0(1) - (n + 1/2) T Kmat is not PSD from n = %s on" % last} if last is not None else {}
     decide = lambda n: positive_real(replace(model, delays=(n,) * m))  # noqa: E731
-    return _scan(decide, 0, last, max_delay, model.T, "exact", start, proof, None)
+    return _scan(decide, 0, last, max_delay, model.T, "exact", clock, proof, None)
+
+
+def _modes_margin(model: Any, max_delay: int, clock: _Clock) -> DelayMargin:
+    """A uniform scene's margin from its modes: for each delay the passive ``lambda`` form an interval
+    containing 0 (:mod:`hapticproof.analysis.modes`), so the margin is ``min(N(0), N(lambda_max))``;
+    an irrational ``lambda_max`` is bracketed, ``N(hi) <= N(lambda_max) <= N(lo)``."""
+    from hapticproof.analysis.modes import largest_eigenvalue, mode_wall
+
+    top = largest_eigenvalue(model)
+    zero = _single_margin(mode_wall(model, 0), max_delay, clock)
+    if top == 0:
+        return replace(zero, method="modes: " + zero.method, seconds=clock.elapsed())
+    if top.is_Rational:
+        ends = [Fraction(int(top.p), int(top.q))] * 2
+    else:
+        mid = Fraction(str(sp.N(top, 40)))
+        ends = [mid - Fraction(1, 2**100), mid + Fraction(1, 2**100)]
+    margins = [_single_margin(mode_wall(model, lam), max_delay, clock) for lam in dict.fromkeys(ends)]
+    margins = [zero] + (margins if len(margins) == 2 else margins * 2)
+    value = lambda dm: math.inf if dm.unbounded else dm.margin  # noqa: E731
+    if all(dm.decision == Decision.PROVED for dm in margins):
+        lo_bound, hi_bound = min(value(margins[0]), value(margins[2])), min(value(margins[0]), value(margins[1]))
+        if lo_bound == hi_bound:
+            winner = min(margins, key=value)
+            n = None if lo_bound == math.inf else int(lo_bound)
+            reason = (f"uniform couplings: the modes lambda = 0 and lambda_max = {sp.sstr(top)} decide every delay; "
+                      f"their margins {', '.join(str(dm.margin) for dm in margins[:2 if top.is_Rational else 3])}: "
+                      + winner.reason)
+            return DelayMargin(Decision.PROVED, n, model.T, "modes: " + winner.method, reason, lower=n, upper=n,
+                               proved_up_to=winner.proved_up_to, decided=winner.decided, failing=winner.failing,
+                               proof={"modes": [dm.to_json() for dm in margins]}, seconds=clock.elapsed())
+    lowers = [dm.lower if dm.decision != Decision.PROVED else dm.margin for dm in margins]
+    return DelayMargin(Decision.UNDECIDED, None, model.T, "modes",
+                       "the modes' margins do not settle it: " + ("; ".join(dm.reason for dm in margins if dm.decision != Decision.PROVED)
+                                                                  or f"lambda_max = {sp.sstr(top)} is bracketed too widely"),
+                       lower=min((v for v in lowers if v is not None), default=None),
+                       proof={"modes": [dm.to_json() for dm in margins]}, seconds=clock.elapsed())
 
 
 # =============================================================================================

@@ -36,6 +36,7 @@ from typing import Any
 import flint
 
 from hapticproof.exact import trigpoly
+from hapticproof.exact.canonical import flint_fraction
 from hapticproof.core.errors import SceneError
 from hapticproof.core.evidence import Decision, Evidence, Method, Outcome
 from hapticproof.exact.kernel import SignCertificate, sign_outcome, q_str
@@ -184,9 +185,13 @@ class NumericScene:
 
         if not scene.is_numeric:
             raise SceneError("the fast path needs a scene whose parameters are all numbers")
-        num, den = sp.fraction(sp.cancel(sp.together(sp.sympify(scene.H))))
-        pn, pd = sp.Poly(num, Z_SYM), sp.Poly(den, Z_SYM)
-        coeffs = [[_fraction(sp.Rational(a), "H") for a in p.all_coeffs()[::-1]] for p in (pn, pd)]
+        pair = flint_fraction(scene.H, Z_SYM)            # the tree read directly: no SymPy algebra
+        if pair is not None:
+            coeffs = [[Fraction(int(a.p), int(a.q)) for a in p.coeffs()] or [Fraction(0)] for p in pair]
+        else:
+            num, den = sp.fraction(sp.cancel(sp.together(sp.sympify(scene.H))))
+            pn, pd = sp.Poly(num, Z_SYM), sp.Poly(den, Z_SYM)
+            coeffs = [[_fraction(sp.Rational(a), "H") for a in p.all_coeffs()[::-1]] for p in (pn, pd)]
         return cls(b=scene.b, T=scene.T, H=(tuple(coeffs[0]), tuple(coeffs[1])), approximation=scene.approximation,
                    delay=int(scene.delay), z_a=scene.z_a)
 

@@ -69,6 +69,7 @@ from hapticproof.exact.kernel import decide_constant_psd, locate_roots, poly_jso
 from hapticproof.core.lazy import stage
 from hapticproof.systems.models import integrator
 from hapticproof.exact.conditions import Condition, combine
+from hapticproof.analysis.modes import decides_by_modes, largest_eigenvalue, mode_conditions, spectrum
 from hapticproof.analysis.positivereal import worst_case as single_worst_case
 from hapticproof.exact.psd import HermitianPart, Minor, PolyRing, affine_worst_case, decide_psd_on_circle, nonnegative_certificate, residue_matrices as matrix_residues
 from hapticproof.exact.psd import principal_minors as psd_minors
@@ -78,7 +79,7 @@ from hapticproof.core.symbols import z as Z_SYM
 from hapticproof.exact.unitcircle import hermitian_part_rational, imaginary_part_rational
 from hapticproof.systems.multiuser import MultiUserScene, UNIFORM_SYMBOLS, damping_matrix, inverse_transfer_matrix, laplacian, stiffness_matrix
 
-__all__ = ["Mode", "MatrixWorstCase", "PSD", "residues", "hermitian", "principal_minors", "worst_case", "positive_real", "conditions", "transfer_entries", "kernel_bounds", "worst_case_matrix", "uniform_modes", "uniform_condition", "sufficient_condition", "hve_leading_minor_counterexample"]
+__all__ = ["MODE_USERS", "by_modes", "extreme_modes", "Mode", "MatrixWorstCase", "PSD", "residues", "hermitian", "principal_minors", "worst_case", "positive_real", "conditions", "transfer_entries", "kernel_bounds", "worst_case_matrix", "uniform_modes", "uniform_condition", "sufficient_condition", "hve_leading_minor_counterexample"]
 
 
 @stage("residues")
@@ -309,19 +310,45 @@ def uniform_modes(scene: MultiUserScene) -> tuple[Mode, ...]:
     if not scene.is_uniform:
         raise SceneError("uniform_modes needs a uniform scene (equal per-user values and edge weights)")
     m = scene.users
-    if scene.is_complete:
-        spectrum = {sp.Integer(0): 1, sp.Integer(m): m - 1} if m > 1 else {sp.Integer(0): 1}
-    else:
-        spectrum = laplacian([0] * m, scene.weights([1] * len(scene.edges))).eigenvals()
+    values = spectrum(scene)
+    if values is None:
+        values = laplacian([0] * m, scene.weights([1] * len(scene.edges))).eigenvals()
+    return tuple(_mode(scene, lam, mult) for lam, mult in sorted(values.items(), key=lambda kv: float(kv[0])))
+
+
+def _mode(scene: MultiUserScene, lam: Any, multiplicity: int) -> Mode:
     K0, B0 = scene.K0[0], scene.B0[0]
     K = scene.K[0] if scene.K else sp.Integer(0)
     B = scene.B[0] if scene.B else sp.Integer(0)
-    modes = []
-    for lam, mult in sorted(spectrum.items(), key=lambda kv: float(kv[0])):
-        wall = SingleUserScene.virtual_wall(K=K0 + lam * K, B=B0 + lam * B, b=scene.b[0], T=scene.T,
-                                            approximation=scene.approximation, delay=scene.delays[0], z_a=scene.z_a[0])
-        modes.append(Mode(sp.nsimplify(lam), int(mult), wall))
-    return tuple(modes)
+    wall = SingleUserScene.virtual_wall(K=K0 + lam * K, B=B0 + lam * B, b=scene.b[0], T=scene.T,
+                                        approximation=scene.approximation, delay=scene.delays[0], z_a=scene.z_a[0])
+    return Mode(sp.nsimplify(lam) if lam.is_Rational else lam, int(multiplicity), wall)
+
+
+#: Uniform scenes with at least this many users are decided by their two extreme modes
+#: (:mod:`hapticproof.analysis.modes`) rather than by the ``2^m`` minors / characteristic
+#: coefficients of the m x m Hermitian part; smaller ones keep the matrix certificates.
+MODE_USERS = 5
+
+
+def by_modes(scene: MultiUserScene) -> bool:
+    """Is the scene decided by modes (uniform, one delay, a known spectrum, ``m >=`` :data:`MODE_USERS`)?"""
+    return scene.users >= MODE_USERS and decides_by_modes(scene)
+
+
+def extreme_modes(scene: MultiUserScene) -> tuple[Mode, ...]:
+    """The modes ``lambda = 0`` and ``lambda = lambda_max`` of a uniform scene: the Hermitian part and
+    the residues are affine in ``lambda``, so these two decide (:mod:`hapticproof.analysis.modes`).
+
+    >>> [md.eigenvalue for md in extreme_modes(MultiUserScene.uniform(6, edges=[(i, i + 1) for i in range(5)]))]
+    [0, sqrt(3) + 2]
+    """
+    if not decides_by_modes(scene):
+        raise SceneError("extreme_modes needs a uniform scene with one delay on a graph of known spectrum")
+    top = largest_eigenvalue(scene)
+    values = spectrum(scene) if scene.users <= 64 else None
+    mult = (lambda lam: values.get(lam, 1)) if values else (lambda lam: 1 if lam == 0 else (scene.users - 1 if scene.is_complete else 1))  # noqa: E731
+    return tuple(_mode(scene, lam, mult(lam)) for lam in ((sp.Integer(0), top) if top != 0 else (sp.Integer(0),)))
 
 
 def worst_case_matrix(scene: MultiUserScene) -> sp.ImmutableMatrix:
@@ -446,14 +473,19 @@ def worst_case(scene: MultiUserScene) -> MatrixWorstCase:
     the affine Loewner argument (no delay), the Dirichlet bound (equal delays, ``B = 0``);
     otherwise ``undecided`` (give numbers).
     """
+    if scene.is_numeric and by_modes(scene):
+        herm = mode_conditions(scene)[-1].outcome
+        holds = herm.decision == Decision.PROVED
+        witness = herm.witness.get("c") if herm.witness else None
+        return MatrixWorstCase(herm, sp.true if holds else sp.false, "uniform-modes", witness)
     if scene.is_numeric:
         decision = decide_psd_on_circle(hermitian(scene), transfer=transfer_entries(scene))
         holds = decision.decision == Decision.PROVED
         return MatrixWorstCase(decision.outcome, sp.true if holds else sp.false, "root-isolation",
                                decision.witness, {"failing_k": decision.failing})
-    if scene.is_uniform and (not scene.has_delay or not scene.damped):
+    if scene.is_uniform and (not scene.has_delay or not scene.damped) and decides_by_modes(scene):
         conditions = []
-        modes = uniform_modes(scene)
+        modes = extreme_modes(scene)
         for md in modes:
             wc = _mode_condition(md.scene)
             conditions.append(wc)
@@ -467,6 +499,11 @@ def worst_case(scene: MultiUserScene) -> MatrixWorstCase:
                           "(lambda: Laplacian eigenvalues); exact per mode")
         minimiser = sp.Integer(-1) if not scene.has_delay else kernel_bounds(scene.approximation, scene.delays[0]).argmin_K
         return MatrixWorstCase(outcome, condition, "uniform-modes", minimiser)
+    if by_modes(scene):
+        outcome = Outcome(Decision.UNDECIDED, Evidence(Method.STRUCTURAL, facts={"reason": "symbolic, delayed and damped"}),
+                          "symbolic parameters with delays and damping: the modes have no closed-form worst case; "
+                          "substitute numbers for an exact decision")
+        return MatrixWorstCase(outcome, None, "none")
     H = hermitian(scene)
     if not scene.has_delay:
         aff = affine_worst_case(H)
@@ -535,7 +572,12 @@ def conditions(scene: MultiUserScene) -> list[Condition]:
     >>> s = MultiUserScene.uniform(2, b="0.02", K0=10, B0=0, K=5, B=0, T="0.001")
     >>> [c.decision.value for c in conditions(s)]
     ['proved', 'proved', 'proved', 'proved']
+
+    Uniform scenes with :data:`MODE_USERS` users or more are decided by their extreme modes
+    (:func:`hapticproof.analysis.modes.mode_conditions`: two single-user decisions, any ``m``).
     """
+    if scene.is_numeric and by_modes(scene):
+        return mode_conditions(scene)
     dens = flint.fmpq_poly([1])
     for n in sorted(set(scene.delays)):
         for _, den in _kernel_polynomials(scene.approximation, n):
@@ -551,19 +593,40 @@ def conditions(scene: MultiUserScene) -> list[Condition]:
                         Evidence(Method.ROOT_ISOLATION, facts=facts),
                         "every unit-circle pole of the kernels is simple" if roots.boundary_simple
                         else "a unit-circle pole of the kernels is not simple")
-    R = sp.Matrix(scene.T * stiffness_matrix(scene))
-    if R.free_symbols:
-        from hapticproof.exact.psd import psd_outcome
-
-        residue = psd_outcome(R, "the residue matrix T Kmat at z = 1")
+    if by_modes(scene):
+        residue = _mode_residue(scene)
     else:
-        residue = decide_constant_psd(R, "the residue matrix T Kmat at z = 1")
+        residue = _matrix_residue(scene)
     wc = worst_case(scene)
     herm = wc.outcome
     if wc.decision == Decision.SYMBOLIC and wc.condition is not None:
         herm = Outcome(Decision.SYMBOLIC, herm.evidence, f"{sp.sstr(wc.condition)} ({herm.reason})", minimiser=wc.minimiser)
     return [Condition("poles in |z| <= 1", poles_ok), Condition("unit-circle poles simple", simple_ok),
             Condition("residue matrix at z = 1 PSD", residue), Condition("M(c) = G^-1 + G^-H PSD for all c", herm)]
+
+
+def _mode_residue(scene: MultiUserScene) -> Outcome:
+    """``T Kmat = T (K_0 I + K L)`` PSD iff ``T (K_0 + lambda K) >= 0`` at ``lambda = 0`` and ``lambda_max``."""
+    top = largest_eigenvalue(scene)
+    K = scene.K[0] if scene.K else sp.Integer(0)
+    ends = [sp.expand(scene.T * scene.K0[0]), sp.expand(scene.T * (scene.K0[0] + top * K))]
+    what = "the residue matrix T Kmat at z = 1 (eigenvalues T(K_0 + lambda K), lambda in [0, lambda_max])"
+    if all(v.is_nonnegative for v in ends):
+        return Outcome(Decision.PROVED, Evidence(Method.STRUCTURAL, facts={"eigenvalues": ends}),
+                       f"{what} is PSD: T K_0 >= 0 and T(K_0 + lambda_max K) >= 0 under the parameters' signs")
+    if any(v.is_negative for v in ends):
+        return Outcome(Decision.DISPROVED, Evidence(Method.STRUCTURAL, witness={"eigenvalue": min(ends)}), f"{what} is not PSD")
+    cond = sp.And(*[sp.Ge(v, 0) for v in ends if not v.is_nonnegative])
+    return Outcome(Decision.SYMBOLIC, Evidence(Method.STRUCTURAL, facts={"condition": cond}), f"{what} is PSD iff {sp.sstr(cond)}")
+
+
+def _matrix_residue(scene: MultiUserScene) -> Outcome:
+    R = sp.Matrix(scene.T * stiffness_matrix(scene))
+    if R.free_symbols:
+        from hapticproof.exact.psd import psd_outcome
+
+        return psd_outcome(R, "the residue matrix T Kmat at z = 1")
+    return decide_constant_psd(R, "the residue matrix T Kmat at z = 1")
 
 
 @stage("positive_real")

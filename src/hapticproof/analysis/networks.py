@@ -385,7 +385,7 @@ def _unstable_subnetwork(Z: RationalMatrix, blocks) -> tuple[tuple[int, ...], An
 
 
 def absolute_stability(Z: Any, ports: Sequence[int] | None = None, search: bool = True, seed: int = 0,
-                       deadline: float = 10.0) -> StabilityVerdict:
+                       deadline: float = 10.0, progress: Any = None) -> StabilityVerdict:
     """Absolute stability of an n-port with impedance matrix ``Z`` (exact where possible).
 
     In this order:
@@ -423,7 +423,8 @@ def absolute_stability(Z: Any, ports: Sequence[int] | None = None, search: bool 
         if not search:
             return None
         return search_terminations(Zr, ports, hints=_hints(*results), seed=seed, deadline=deadline, clamp_all=open_circuit,
-                                   similarity=sym.similarity_at if sym is not None else None, prefer=prefer)
+                                   similarity=sym.similarity_at if sym is not None else None, prefer=prefer,
+                                   progress=progress)
 
     pr = positive_real(Zr)
     poles = pr.poles

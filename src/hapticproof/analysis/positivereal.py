@@ -37,7 +37,7 @@ from hapticproof.core.symbols import z as Z_SYM
 from hapticproof.exact.unitcircle import CRational, ThetaForm, circle_real_part, hermitian_part_rational, numerator_denominator, theta_form
 from hapticproof.exact.conditions import HERMITIAN, RESIDUES, Condition, POLES_IN_DISK, POLES_SIMPLE, combine, pole_conditions
 
-__all__ = ["conditions", "transfer_polynomials", "numeric_scene", "Pole", "Residue", "WorstCase", "poles_of", "unit_circle_residues", "hermitian_of", "decide_hermitian", "symbolic_minimum", "poles", "residues", "hermitian", "worst_case", "positive_real"]
+__all__ = ["conditions", "transfer_polynomials", "numeric_scene", "Pole", "Residue", "WorstCase", "poles_of", "unit_circle_residues", "hermitian_of", "decide_hermitian", "symbolic_minimum", "symbolic_c_degree", "SYMBOLIC_CFORM_LIMIT", "poles", "residues", "hermitian", "worst_case", "positive_real"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -341,7 +341,50 @@ def residues(scene: SingleUserScene) -> list[Residue]:
                                    Outcome(Decision.UNDECIDED, Evidence(Method.CANONICAL_FORM),
                                            "residue at a unit-circle pole other than 1 with a symbolic delay")))
         return out
+    if scene.is_numeric:
+        return _numeric_residues(scene)
     return unit_circle_residues(inverse_transfer(scene), poles(scene))
+
+
+#: Up to this degree of ``G^{-1}``'s denominator an algebraic unit-circle pole gets its residue in
+#: closed form (SymPy); above it the residue is the kernel's certified value (the decision is the
+#: kernel's in both cases).
+EXACT_RESIDUE_DEGREE = 200
+
+
+def _numeric_residues(scene: SingleUserScene) -> list[Residue]:
+    """Residues at the unit-circle poles of a numeric scene from flint polynomials: exact at
+    ``z = +-1`` (``P(z0)/Q'(z0)``), in closed form for other poles when ``Q`` is small, else the
+    kernel's certified approximation -- no SymPy limit of a degree-n expression."""
+    from hapticproof.exact.kernel import residue_outcome
+
+    P, Q = transfer_polynomials(scene)
+    boundary = locate_roots(Q, "disk").boundary if Q.degree() > 0 else ()
+    if any(r.value is None for r in boundary) and Q.degree() <= EXACT_RESIDUE_DEGREE:
+        return unit_circle_residues(inverse_transfer(scene), poles(scene))
+    out: list[Residue] = []
+    for root in boundary:
+        pole = sp.Rational(root.value) if root.value is not None else None
+        if root.multiplicity > 1:
+            outcome = Outcome(Decision.DISPROVED, Evidence(Method.ROOT_ISOLATION, facts={"pole": root.label(), "multiplicity": root.multiplicity}),
+                              f"the unit-circle pole z = {root.label()} is not simple")
+            out.append(Residue(pole if pole is not None else sp.nan, sp.nan, sp.nan, outcome))
+            continue
+        outcome = residue_outcome(P, Q, root)
+        if pole is not None:
+            z0 = flint.fmpq(int(pole.p), int(pole.q))
+            value = P(z0) / Q.derivative()(z0)
+            residue = sp.Rational(int(value.p), int(value.q))
+            out.append(Residue(pole, residue, residue / pole, outcome))
+            continue
+        cert = outcome.evidence.facts["certificate"]
+        c0 = float(root.cosine.approx(17)) if hasattr(root.cosine, "approx") else float(root.cosine)
+        z0 = complex(c0, (1 - c0 * c0) ** 0.5)
+        scaled = cert.approx
+        value = sp.Float(scaled.real, 12) + sp.I * sp.Float(scaled.imag, 12) if scaled is not None else sp.nan
+        out.append(Residue(sp.Float(z0.real, 12) + sp.I * sp.Float(z0.imag, 12), value * (sp.Float(z0.real, 12) + sp.I * sp.Float(z0.imag, 12)),
+                           value, outcome))
+    return out
 
 
 @stage("hermitian")
@@ -366,6 +409,11 @@ def worst_case(scene: SingleUserScene) -> WorstCase:
 
         out = hermitian_outcome(numeric_scene(scene), polynomials=transfer_polynomials(scene))
         return WorstCase(out, sp.true if out.decision == Decision.PROVED else sp.false, out.minimiser, out.minimum)
+    if not scene.delay.is_Symbol and symbolic_c_degree(scene) > SYMBOLIC_CFORM_LIMIT:
+        d = symbolic_c_degree(scene)
+        reason = (f"Re G^-1 is a polynomial of degree up to {d} in c with parameters: no closed-form worst case (not built; "
+                  "give the parameters numbers for the exact decision, or keep the delay symbolic, n)")
+        return WorstCase(Outcome(Decision.SYMBOLIC, Evidence(Method.STRUCTURAL, facts={"degree": d, "reason": reason}), reason), None)
     form = hermitian(scene)
     if isinstance(form, ThetaForm):
         outcome = Outcome(
@@ -375,6 +423,19 @@ def worst_case(scene: SingleUserScene) -> WorstCase:
         )
         return WorstCase(outcome, None)
     return symbolic_minimum(form.expr())
+
+
+#: A symbolic scene's ``Re G^{-1}`` is built as a polynomial in ``c`` up to this degree (a
+#: second or two); above it, it is a large exact object the symbolic answer cannot use (its worst
+#: case has no closed form above degree 2) and is built only when asked (``derive --full``).
+SYMBOLIC_CFORM_LIMIT = 100
+
+
+def symbolic_c_degree(scene: SingleUserScene) -> int:
+    """A bound on the degree in ``c`` of ``Re G^{-1}`` for an integer delay, read off ``G^{-1}``'s degrees in ``z``."""
+    num, den = sp.fraction(sp.cancel(environment_path(scene)))
+    dn, dd = (sp.Poly(p, Z_SYM).degree() if p.has(Z_SYM) else 0 for p in (num, den))
+    return max(dn, dd + int(scene.delay))
 
 
 @stage("conditions")

@@ -719,6 +719,7 @@ def search_terminations(
     clamp_all: bool = False,
     similarity: Callable[[complex], np.ndarray] | None = None,
     prefer: Sequence[Sequence[int]] = (),
+    progress: Callable[[int, int], None] | None = None,
 ) -> TerminationSearch:
     """Search passive terminations making the coupled network unstable, verify them exactly, and
     stop by ``deadline`` seconds. Returns the report; its ``certificate`` is None when nothing
@@ -732,7 +733,8 @@ def search_terminations(
     positive combination of its port-power forms is PSD (then no velocity makes all of them
     deliver power). ``prefer`` lists port subsets (0-based port numbers) to try first, e.g. a
     subnetwork known to be potentially unstable. Time spent importing SciPy does not count
-    against the deadline.
+    against the deadline. ``progress(done, total)`` is called as the (point, subset) tasks are
+    worked through (a progress bar; the report says what was covered when the deadline ends it).
 
     >>> import sympy as sp
     >>> out = search_terminations(sp.Matrix([[1, 3], [3, 1]]))
@@ -752,6 +754,8 @@ def search_terminations(
     counts = {"candidates": 0, "verifications": 0, "promising": 0}
 
     def report(cert: InstabilityCertificate | None, complete: bool) -> TerminationSearch:
+        if progress is not None:
+            progress(1, 1)
         return TerminationSearch(cert, time.monotonic() - start, deadline, complete, tuple(points_tried),
                                  tuple(subsets_tried), counts["candidates"], counts["verifications"], restarts,
                                  tuple(strategies_used), counts["promising"])
@@ -807,7 +811,9 @@ def search_terminations(
                 scored.append((points.index(p) >= hint_count, float(f"{relative:.2g}"), k, number, p))
     tasks = [(p, number) for *_, number, p in sorted(scored, key=lambda t: t[:4])]
     counts["promising"] = len(tasks)
-    for s0, number in tasks:
+    for task, (s0, number) in enumerate(tasks):
+        if progress is not None:
+            progress(task, len(tasks))
         subset = subsets[number]
         point = points.index(s0)
         M = values[s0]

@@ -28,7 +28,7 @@ from typing import Any
 
 from hapticproof.bench.timing import median_time
 
-__all__ = ["peer_cases", "peer_study", "delay_study", "margin_search_study", "map_study", "plot_peers", "plot_delays",
+__all__ = ["peer_cases", "peer_study", "interleaved", "delay_study", "margin_search_study", "map_study", "plot_peers", "plot_delays",
            "peer_available"]
 
 #: The scene of the comparison (HVE forward-difference virtual wall, Phantom-like numbers).
@@ -83,6 +83,33 @@ def _ours(case: dict[str, Any]):
     return run
 
 
+def _api(case: dict[str, Any]):
+    """The public API as a user calls it: a :class:`~hapticproof.systems.singleuser.SingleUserScene`
+    from numbers, :func:`~hapticproof.analysis.positivereal.positive_real` (its stage cache cleared
+    after each call: every run is a first decision)."""
+    from hapticproof.analysis.positivereal import positive_real
+    from hapticproof.core.lazy import clear
+    from hapticproof.systems.singleuser import SingleUserScene
+
+    def run():
+        scene = SingleUserScene.virtual_wall(K=case["K"], B=case["B"], b=case["b"], T=case["T"], delay=case["delay"])
+        out = positive_real(scene)
+        clear(scene)
+        return out
+
+    return run
+
+
+def _ispassive(case: dict[str, Any]):
+    """:func:`hapticproof.ispassive` on the very ``control.tf`` the peer gets (its floats' exact values)."""
+    from hapticproof.analysis.passivity import ispassive
+
+    def run():
+        return ispassive(_peer_system(case))
+
+    return run
+
+
 def _peer_system(case: dict[str, Any], damping: float = 0.0):
     """``G^{-1}(z)`` as a python-control transfer function in ``z`` (floats, ``dt = T``):
     ``(b z^{n+1}(z - r) + (KT + B) z - B) / (z^{n+1}(z - r))`` with ``r = 1 - damping``."""
@@ -116,22 +143,36 @@ def _peer(case: dict[str, Any], damping: float = 0.0):
     return run
 
 
+def interleaved(funcs: dict[str, Callable[[], Any]], repeat: int) -> dict[str, tuple[Any, float]]:
+    """``name -> (last result, median seconds)``, the functions called in turn ``repeat`` times
+    (side by side: a drift of the machine's speed hits every column alike)."""
+    times: dict[str, list[float]] = {name: [] for name in funcs}
+    results: dict[str, Any] = {}
+    for _ in range(max(1, repeat)):
+        for name, func in funcs.items():
+            start = time.perf_counter()
+            results[name] = func()
+            times[name].append(time.perf_counter() - start)
+    return {name: (results[name], statistics.median(times[name])) for name in funcs}
+
+
 def peer_study(delays: Sequence[int] = (0, 3, 10), rels: Sequence[float] = (1e-2, 1e-6, 1e-9), repeat: int = 15,
                peer: bool = True, reference: bool = True, check: bool = True,
                log: Callable[[str], None] = lambda line: None) -> dict[str, Any]:
     """hapticproof's end-to-end numeric decision against python-control's ``ispassive``.
 
-    For every case: median wall time over ``repeat`` runs in this warm process of (a) building
-    the scene from numbers and deciding it (:func:`hapticproof.analysis.fastpath.decide`, the whole
-    decision with certificates) and (b) building ``G^{-1}`` as a ``control.tf`` and calling
-    ``control.ispassive`` (its state-space realization and KYP LMI). Two peer pipelines are run:
-    ``ispassive`` on ``G^{-1}`` as it is (its integrator pole ``z = 1`` lies on the circle, so
-    the LMI is feasible only on its boundary), and on a variant with the pole damped to
-    ``z = 1 - 1e-6`` (strictly stable, the usual workaround; it changes the exact answer by
-    ``O(1e-6)``, so near the boundary it may legitimately disagree). Every verdict is judged
-    against the exact answer of the original scene. ``reference``: also check that
-    :func:`hapticproof.analysis.positivereal.positive_real` (the SymPy path) gives the same decision;
-    ``check``: re-verify every certificate with :mod:`hapticproof.exact.checker` (untimed).
+    For every case, the methods are called in turn ``repeat`` times in this warm process
+    (:func:`interleaved`) and their median wall times compared: (a) the fast path, the scene from
+    numbers to the whole decision with certificates (:func:`hapticproof.analysis.fastpath.decide`);
+    (b) the public API, ``positive_real(SingleUserScene.virtual_wall(...))`` (:func:`_api`); (c)
+    :func:`hapticproof.ispassive` on the ``control.tf`` of ``G^{-1}``; (d) python-control's
+    ``control.ispassive`` on the same transfer function (its state-space realization and KYP LMI),
+    and on a variant with the integrator pole damped to ``z = 1 - 1e-6`` (strictly stable, the usual
+    workaround; it changes the exact answer by ``O(1e-6)``). Every verdict is judged against the
+    exact answer of the original scene (passive iff ``b >= b*``; the floats of the transfer function
+    move the boundary by ~1e-16 relative, far inside the 1e-9 placement). ``reference``: also check
+    that :func:`hapticproof.analysis.positivereal.positive_real` on the SymPy scene gives the same
+    decision; ``check``: re-verify every certificate with :mod:`hapticproof.exact.checker` (untimed).
     """
     from hapticproof.exact.checker import check_certificates
     from hapticproof.core.evidence import to_jsonable
@@ -141,11 +182,21 @@ def peer_study(delays: Sequence[int] = (0, 3, 10), rels: Sequence[float] = (1e-2
     variants = {"ispassive": 0.0, "ispassive (pole damped to 1 - 1e-6)": 1e-6} if missing is None else {}
     rows = []
     for case in cases:
-        out, seconds = median_time(_ours(case), repeat)
+        funcs = {"hapticproof": _ours(case), "hapticproof API": _api(case)}
+        if missing is None:
+            funcs["hapticproof.ispassive"] = _ispassive(case)
+        funcs.update({name: _peer(case, damping) for name, damping in variants.items()})
+        timed = interleaved(funcs, repeat)
+        out, seconds = timed["hapticproof"]
         verdict = out.decision.value == "proved"
         row = {k: (str(v) if isinstance(v, Fraction) else v) for k, v in case.items()}
         row["hapticproof"] = {"seconds": seconds, "verdict": verdict, "decision": out.decision.value,
                               "wrong": verdict != case["truth"]}
+        for name in ("hapticproof API", "hapticproof.ispassive"):
+            if name in timed:
+                value, t = timed[name]
+                v = value.decision.value == "proved"
+                row[name] = {"seconds": t, "verdict": v, "decision": value.decision.value, "wrong": v != case["truth"]}
         if check:
             results = check_certificates(to_jsonable(out.to_json()))
             row["hapticproof"]["certificates"] = len(results)
@@ -157,18 +208,25 @@ def peer_study(delays: Sequence[int] = (0, 3, 10), rels: Sequence[float] = (1e-2
 
             scene = NumericScene.virtual_wall(K=case["K"], B=case["B"], b=case["b"], T=case["T"], delay=case["delay"])
             row["hapticproof"]["reference_agrees"] = positive_real(scene.to_scene()).decision == out.decision
-        for name, damping in variants.items():
-            value, seconds = median_time(_peer(case, damping), repeat)
-            row[name] = {"seconds": seconds, "verdict": value, "wrong": value != case["truth"]}
+        for name in variants:
+            value, t = timed[name]
+            row[name] = {"seconds": t, "verdict": value, "wrong": value != case["truth"]}
         rows.append(row)
+        shown = [name for name in funcs if name != "hapticproof"]
         log(f"  n={case['delay']:<3d} {case['side']:5s} rel {case['rel']:.0e}: hapticproof {row['hapticproof']['seconds'] * 1e3:7.2f} ms "
             f"{'ok' if not row['hapticproof']['wrong'] else 'WRONG'}"
-            + "".join(f" | {name} {row[name]['seconds'] * 1e3:7.1f} ms {'ok' if not row[name]['wrong'] else 'WRONG'}"
-                      for name in variants))
+            + "".join(f" | {name} {row[name]['seconds'] * 1e3:7.2f} ms {'ok' if not row[name]['wrong'] else 'WRONG'}"
+                      for name in shown))
     summary = {"cases": len(rows), "hapticproof": _summary(rows, "hapticproof")}
-    for name in variants:
-        summary[name] = _summary(rows, name)
-        summary[name]["median_ratio_to_hapticproof"] = summary[name]["median_seconds"] / summary["hapticproof"]["median_seconds"]
+    for name in ("hapticproof API", "hapticproof.ispassive", *variants):
+        if name in rows[0]:
+            summary[name] = _summary(rows, name)
+            summary[name]["median_ratio_to_hapticproof"] = summary[name]["median_seconds"] / summary["hapticproof"]["median_seconds"]
+    if "ispassive" in summary:
+        peer_median = summary["ispassive"]["median_seconds"]
+        for name in ("hapticproof", "hapticproof API", "hapticproof.ispassive"):
+            if name in summary:
+                summary[name]["median_ratio_to_ispassive"] = summary[name]["median_seconds"] / peer_median
     if missing is not None:
         summary["peer_note"] = f"peer column skipped: {missing}"
     return {"rows": rows, "summary": summary, "scene": {k: str(v) for k, v in PEER_SCENE.items()}, "repeat": repeat}
@@ -186,7 +244,7 @@ def plot_peers(data: dict[str, Any], path: str | Path) -> None:
     from matplotlib.figure import Figure
 
     rows = data["rows"]
-    names = ["hapticproof"] + [k for k in rows[0] if k.startswith("ispassive")]
+    names = [k for k in rows[0] if k.startswith(("hapticproof", "ispassive")) and isinstance(rows[0][k], dict)]
     fig = Figure(figsize=(9, 3.8))
     FigureCanvasAgg(fig)
     ax = fig.add_subplot(111)
@@ -194,7 +252,7 @@ def plot_peers(data: dict[str, Any], path: str | Path) -> None:
     labelled = False
     for i, name in enumerate(names):
         ys = [r[name]["seconds"] * 1e3 for r in rows]
-        ax.semilogy(xs, ys, "o*s"[i % 3] + "-", label=name, alpha=0.8)
+        ax.semilogy(xs, ys, "o*sdv"[i % 5] + "-", label=name, alpha=0.8)
         bad = [(x, y) for x, y, r in zip(xs, ys, rows) if r[name]["wrong"]]
         if bad:
             ax.plot([x for x, _ in bad], [y for _, y in bad], "rx", ms=10, mew=2,

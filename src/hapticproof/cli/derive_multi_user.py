@@ -27,8 +27,6 @@ from hapticproof.cli.common import add_output_option, add_scene_options, check_o
 from hapticproof.cli.derive_single_user import add_design_options, design_answers
 from hapticproof.core.errors import InputFormatError
 from hapticproof.core.evidence import to_jsonable
-from hapticproof.systems.multiuser import MultiUserScene, inverse_transfer_matrix
-from hapticproof.analysis.multiuser import conditions, hermitian, positive_real, principal_minors, residues, sufficient_condition, worst_case
 
 __all__ = ["register", "build_scene", "derive"]
 
@@ -56,12 +54,15 @@ def register(systems: argparse._SubParsersAction) -> None:
     parser.add_argument("--minors", choices=("auto", "all", "none"), default="auto",
                         help="print the principal minors (auto: when m <= 3)")
     parser.add_argument("--verbose", action="store_true", help="print large expressions in full (text format)")
+    parser.add_argument("--full", action="store_true",
+                        help="uniform scenes with 5 or more users are decided by their two extreme modes and shown "
+                        "by them; --full also builds the m x m matrices (G^-1, the residue matrix, M(c): slow for large m)")
     add_output_option(parser)
     parser.set_defaults(handler=run)
 
 
 def build_scene(users: int, delay: str = "0", uniform: bool = False, active: bool = False, graph: str = "complete",
-                approximation: str = "forward", params: dict | None = None) -> MultiUserScene:
+                approximation: str = "forward", params: dict | None = None) -> Any:
     """The scene the command line describes (parameters substituted).
 
     >>> build_scene(2, uniform=True, params={"b": 1, "K_0": 2, "B_0": 0, "K": 2, "B": 0, "T": "1/100"}).is_numeric
@@ -73,8 +74,15 @@ def build_scene(users: int, delay: str = "0", uniform: bool = False, active: boo
                  approximation=approximation, params=params or {}).build()
 
 
-def derive(scene: MultiUserScene, minors: str = "auto") -> dict[str, Any]:
-    """Everything the command prints, as SymPy objects."""
+def derive(scene: Any, minors: str = "auto", full: bool = False) -> dict[str, Any]:
+    """Everything the command prints, as SymPy objects (by modes for uniform scenes of five users
+    or more unless ``full``: :func:`derive_by_modes`)."""
+    from hapticproof.analysis.multiuser import (by_modes, conditions, hermitian, positive_real, principal_minors,
+                                                residues, sufficient_condition, worst_case)
+    from hapticproof.systems.multiuser import inverse_transfer_matrix
+
+    if by_modes(scene) and not full:
+        return derive_by_modes(scene, minors)
     G = inverse_transfer_matrix(scene)
     (res,) = [r for r in residues(scene) if r.pole == 1] or [None]
     H = hermitian(scene)
@@ -105,8 +113,86 @@ def derive(scene: MultiUserScene, minors: str = "auto") -> dict[str, Any]:
     return out
 
 
+def derive_by_modes(scene: Any, minors: str = "auto") -> dict[str, Any]:
+    """A uniform scene by its modes: ``G^{-1} = U diag(g_lambda) U^T`` over the Laplacian eigenvalues,
+    decided by the modes ``lambda = 0`` and ``lambda_max`` (:mod:`hapticproof.analysis.modes`); the
+    m x m matrices are not built (``skipped`` says so)."""
+    from hapticproof.analysis.modes import graph_kind, spectrum
+    from hapticproof.analysis.multiuser import conditions, extreme_modes, positive_real, worst_case
+    from hapticproof.systems.models import inverse_transfer
+
+    m = scene.users
+    wc = worst_case(scene)
+    verdict = positive_real(scene)
+    values = spectrum(scene) if m <= 64 else None
+    modes = [{"eigenvalue": md.eigenvalue, "multiplicity": md.multiplicity if values else None,
+              "g": inverse_transfer(md.scene)} for md in extreme_modes(scene)]
+    out: dict[str, Any] = {
+        "users": m,
+        "delays": [scene.delays[0]] if len(set(scene.delays)) == 1 else list(scene.delays),
+        "approximation": scene.approximation,
+        "graph": graph_kind(scene),
+        "edges_count": len(scene.edges),
+        "by_modes": True,
+        "spectrum": None if values is None else {sp.sstr(k): v for k, v in sorted(values.items(), key=lambda kv: float(kv[0]))},
+        "modes": modes,
+        "worst_case_method": wc.method,
+        "worst_case_condition": wc.condition,
+        "worst_c": wc.minimiser,
+        "conditions": conditions(scene),
+        "verdict": verdict.decision.value,
+        "reason": verdict.reason,
+        "witness": verdict.evidence.witness,
+        "skipped": {
+            "G_inverse": (f"the {m} x {m} matrix G^-1(z) = U diag(g_lambda) U^T is shown by its modes", "--full"),
+            "hermitian_part": (f"the {m} x {m} matrix M(c) = U diag(2 Re g_lambda(c)) U^T is shown by its modes", "--full"),
+            "residue_at_1": ("the residue matrix T Kmat = T (K_0 I + K L) has the eigenvalues T(K_0 + lambda K)", "--full"),
+        },
+    }
+    if minors == "all":
+        out["skipped"]["principal_minors"] = (f"2^{m} - 1 principal minors: the modes decide without them", "--full")
+    return out
+
+
+def _modes_text(data: dict[str, Any], verbose: bool = False) -> str:
+    from hapticproof.report.readable import brief
+
+    graph = {"complete": "complete graph", "path": "path", "ring": "ring (circulant)", "star": "star"}.get(data["graph"], "graph")
+    lines = [f"system:            {data['users']}-user HVE ({data['approximation']} difference, delay {data['delays'][0]}, "
+             f"{graph}, {data['edges_count']} edges), uniform: decided by modes",
+             "G^-1(z) = U diag(g_lambda(z)) U^T over the Laplacian eigenvalues lambda of the coupling graph, "
+             "g_lambda = single-user wall with K_0 + lambda K, B_0 + lambda B"]
+    if data["spectrum"] is not None:
+        lines.append("eigenvalues:       " + ", ".join(f"{k} (x{v})" for k, v in data["spectrum"].items()))
+    for md in data["modes"]:
+        lines.append(f"mode lambda = {sp.sstr(md['eigenvalue'])}: g(z) = {brief(md['g'], verbose=verbose)}")
+    lines.append("Re g_lambda and the residues T(K_0 + lambda K) are affine in lambda: the modes lambda = 0 and "
+                 "lambda_max decide")
+    lines.append(f"worst case ({data['worst_case_method']}): {sp.sstr(data['worst_case_condition'])}"
+                 + (f"   at c = {data['worst_c']}" if data["worst_c"] is not None else ""))
+    lines.append("conditions:")
+    width = max(len(c.name) for c in data["conditions"])
+    lines += [f"  {c.name.ljust(width)}  {c.decision.value:<9}  {c.outcome.reason}" for c in data["conditions"]]
+    lines.append(f"verdict:           {data['verdict']}  ({data['reason']})")
+    if data["witness"] and data["verdict"] == "disproved":
+        lines.append("witness:           " + ", ".join(f"{k} = {v}" for k, v in data["witness"].items()))
+    lines += [f"not computed:      {why} [{how} computes it]" for why, how in data["skipped"].values()]
+    return "\n".join(lines)
+
+
+def _modes_latex_items(data: dict[str, Any]) -> list[tuple[str, str]]:
+    items = [(f"mode lambda = {sp.sstr(md['eigenvalue'])}", r"g_{" + tex.to_latex(md["eigenvalue"]) + r"}(z) = "
+              + tex.to_latex(md["g"])) for md in data["modes"]]
+    if data["worst_case_condition"] not in (None, sp.true, sp.false):
+        items.append((f"worst case over frequency ({data['worst_case_method']})", tex.to_latex(data["worst_case_condition"])))
+    return items
+
+
 def _text(data: dict[str, Any], verbose: bool = False) -> str:
     from hapticproof.report.readable import brief
+
+    if data.get("by_modes"):
+        return _modes_text(data, verbose)
 
     lines = [
         f"system:            {data['users']}-user HVE ({data['approximation']} difference, delays {data['delays']}, "
@@ -146,6 +232,8 @@ def _matrix_items(label: str, name: str, matrix: sp.Matrix, cos_name: str | None
 
 def _latex_items(data: dict[str, Any]) -> list[tuple[str, str]]:
     """``(label, display)`` of everything the command derives."""
+    if data.get("by_modes"):
+        return _modes_latex_items(data)
     items = _matrix_items("inverse transfer matrix", r"G^{-1}(z)", data["G_inverse"])
     if data["residue_at_1"] is not None:
         items += _matrix_items("residue matrix at z = 1", "R_0", data["residue_at_1"])
@@ -164,9 +252,15 @@ def _latex(data: dict[str, Any], fragment: bool = False) -> str:
     items = _latex_items(data)
     if fragment:
         return tex.derivation_fragment(items)
-    intro = tex.escape_text(f"{data['users']}-user HVE, {data['approximation']} difference, delays {data['delays']}, "
-                            f"edges {data['edges']}.")
-    notes = [("verdict", f"{data['verdict']} ({data['reason']})"), ("residue condition", str(data["residue_condition"]))]
+    if data.get("by_modes"):
+        intro = tex.escape_text(f"{data['users']}-user HVE, {data['approximation']} difference, delay {data['delays'][0]}, "
+                                f"uniform couplings on a {data['graph']} graph, decided by its modes.")
+        notes = [("verdict", f"{data['verdict']} ({data['reason']})")]
+        notes += [(f"not computed: {name.replace('_', ' ')}", f"{why} ({how} computes it)") for name, (why, how) in data["skipped"].items()]
+    else:
+        intro = tex.escape_text(f"{data['users']}-user HVE, {data['approximation']} difference, delays {data['delays']}, "
+                                f"edges {data['edges']}.")
+        notes = [("verdict", f"{data['verdict']} ({data['reason']})"), ("residue condition", str(data["residue_condition"]))]
     if data["witness"]:
         notes.append(("witness", ", ".join(f"{k} = {v}" for k, v in to_jsonable(data["witness"]).items())))
     return tex.derivation_document(f"hapticproof derive multi-user ({data['users']} users)", items, notes, intro=intro)
@@ -177,12 +271,17 @@ def run(args: argparse.Namespace) -> int:
     if args.fragment and fmt != "latex":
         raise InputFormatError("--fragment needs --format latex")
     check_output(args.output, "--output")
+    if args.max_delay < 0 or not args.deadline > 0:
+        raise InputFormatError("--max-delay must be >= 0 and --deadline a positive number of seconds")
     spec = scene_from_args(args, "multi-user")
     scene = spec.build()
-    data = derive(scene, args.minors)
+    data = derive(scene, args.minors, full=args.full)
     extra, lines = design_answers(spec, args, args.delay_margin)
     if fmt == "json":
-        out = to_jsonable({k: ([c.to_json() for c in v] if k == "conditions" else v) for k, v in data.items()})
+        shown = {k: ([c.to_json() for c in v] if k == "conditions" else v) for k, v in data.items()}
+        if "skipped" in shown:
+            shown["skipped"] = {k: {"reason": why, "option": how} for k, (why, how) in shown["skipped"].items()}
+        out = to_jsonable(shown)
         out.update(extra)
         text = json.dumps(out, indent=2)
     elif fmt == "latex":

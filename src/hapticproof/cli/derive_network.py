@@ -45,8 +45,6 @@ from hapticproof.report import latex as tex
 from hapticproof.cli.common import add_output_option, add_scene_options, check_output, scene_from_args, write_output
 from hapticproof.core.errors import InputFormatError
 from hapticproof.core.evidence import Decision, to_jsonable
-from hapticproof.analysis.networks import absolute_stability, llewellyn, port_blocks, symmetrization_conditions
-from hapticproof.exact.rationalmatrix import RationalMatrix, pole_report
 from hapticproof.core.symbols import s  # noqa: F401 - the variable of the matrix entries
 
 __all__ = ["register", "run", "read_matrix", "parse_entry"]
@@ -107,9 +105,13 @@ def _deadline(text: str) -> float:
     return value
 
 
-def analyse(Z: sp.Matrix, ports: tuple[int, ...] | None, search: bool = True, deadline: float = 10.0) -> dict[str, Any]:
+def analyse(Z: sp.Matrix, ports: tuple[int, ...] | None, search: bool = True, deadline: float = 10.0,
+            progress: Any = None) -> dict[str, Any]:
     """The report as data (used by all formats). ``conditions`` holds every decided condition
     with its certificates (what ``hapticproof check`` re-verifies)."""
+    from hapticproof.analysis.networks import absolute_stability, llewellyn, port_blocks, symmetrization_conditions
+    from hapticproof.exact.rationalmatrix import RationalMatrix, pole_report
+
     n = Z.rows
     out: dict[str, Any] = {"size": n, "ports": list(ports) if ports else [1] * n, "matrix": Z}
     free = sorted(Z.free_symbols - {s}, key=str)
@@ -122,7 +124,7 @@ def analyse(Z: sp.Matrix, ports: tuple[int, ...] | None, search: bool = True, de
         out["note"] = "free parameters: only the symmetrization conditions are derived (fix them with --param)"
         return out
     R = RationalMatrix.from_sympy(Z)
-    verdict = absolute_stability(R, ports, search=search, deadline=deadline)
+    verdict = absolute_stability(R, ports, search=search, deadline=deadline, progress=progress)
     pr = verdict.positive_real
     rep = pole_report(R)
     out["poles"] = {"rhp": [f"{r:.6g}" for _, r in rep.rhp], "imaginary_axis": [(p.label(), m) for p, m in rep.axis],
@@ -250,9 +252,18 @@ def run(args: argparse.Namespace) -> int:
     spec = scene_from_args(args, "network")
     Z = spec.build()
     ports = spec.ports
+    import sys
+
+    from hapticproof.analysis.networks import port_blocks
+    from hapticproof.cli.terminal import progress_bar
+
     if ports is not None:
         port_blocks(Z.rows, ports)
-    report = analyse(Z, ports, search=not args.no_search, deadline=_deadline(args.deadline))
+
+    bar = progress_bar(sys.stderr, "termination search")     # a terminal only
+    report = analyse(Z, ports, search=not args.no_search, deadline=_deadline(args.deadline), progress=bar)
+    if bar is not None:
+        bar.clear()
     if args.format == "json":
         text = json.dumps(to_jsonable(report), indent=2)
     elif args.format == "latex":

@@ -38,6 +38,9 @@ def register(systems: argparse._SubParsersAction) -> None:
                         help="with --format latex: only the displays (amsmath), not a complete document")
     parser.add_argument("--verbose", action="store_true", help="print large expressions in full (text format)")
     parser.add_argument("--profile", action="store_true", help="print the time of each computed stage")
+    parser.add_argument("--full", action="store_true",
+                        help="also compute the large exact objects the decision does not need (Re G^-1 as a "
+                        "polynomial in c when its degree is above 500: long delays)")
     add_output_option(parser)
     parser.set_defaults(handler=run)
 
@@ -49,6 +52,9 @@ def add_design_options(parser: argparse.ArgumentParser, margin: bool = True) -> 
                             "numeric parameters; with --delay n it is computed unasked)")
         parser.add_argument("--max-delay", type=int, default=2000, metavar="N",
                             help="search the delay margin up to N when no bound ends the search (default 2000)")
+        parser.add_argument("--deadline", type=float, default=60.0, metavar="SECONDS",
+                            help="stop the delay-margin search after SECONDS (default 60): it then reports the "
+                            "delays it decided, undecided beyond them; a progress bar shows on a terminal")
     parser.add_argument("--range", action="append", default=[], metavar="NAME",
                         help="the exact passive range of parameter NAME with the others fixed (e.g. K: K_max; "
                         "b: b_min); repeatable")
@@ -61,7 +67,15 @@ def design_answers(scene, args: argparse.Namespace, margin_wanted: bool) -> tupl
     data: dict = {}
     lines: list[str] = []
     if margin_wanted:
-        margin = delay_margin(scene, max_delay=getattr(args, "max_delay", 2000))
+        import sys
+
+        from hapticproof.cli.terminal import progress_bar
+
+        bar = progress_bar(sys.stderr, "delay margin")        # a terminal only
+        margin = delay_margin(scene, max_delay=getattr(args, "max_delay", 2000), deadline=getattr(args, "deadline", 60.0),
+                              progress=bar)
+        if bar is not None:
+            bar.clear()
         data["delay_margin"] = margin.to_json()
         lines.append(margin.to_text())
     for name in args.range:
@@ -80,6 +94,8 @@ def run(args: argparse.Namespace) -> int:
     check_output(args.output, "--output")
     if getattr(args, "max_delay", 1) < 0:
         raise InputFormatError("--max-delay must be >= 0")
+    if not getattr(args, "deadline", 1.0) > 0:
+        raise InputFormatError("--deadline must be a positive number of seconds")
     scene = scene_from_args(args, "single-user")
     model = scene.build()
     head: list[str] = []
@@ -92,7 +108,7 @@ def run(args: argparse.Namespace) -> int:
         write_output(args.output, "\n".join(head))
         return 0
     numeric_but_delay = model.delay.is_Symbol and not (model.parameters - {model.delay})
-    summary = summarize_single_user(model, with_profile=args.profile)
+    summary = summarize_single_user(model, with_profile=args.profile, full=args.full)
     extra, lines = design_answers(scene, args, args.delay_margin or numeric_but_delay)
     if args.format == "json":
         out = summary.to_json()

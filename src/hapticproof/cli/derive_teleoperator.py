@@ -26,7 +26,6 @@ from hapticproof.cli.common import add_output_option, add_scene_options, check_o
 from hapticproof.cli.derive_single_user import add_design_options, design_answers
 from hapticproof.core.errors import InputFormatError
 from hapticproof.core.evidence import to_jsonable
-from hapticproof.analysis.teleoperator import bounds, error_coordinate_damping, passivity, passivity_conditions, worst_case
 
 __all__ = ["register", "run"]
 
@@ -52,6 +51,7 @@ def register(systems: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    from hapticproof.analysis.teleoperator import bounds, error_coordinate_damping, passivity, passivity_conditions, worst_case
     from hapticproof.systems.discretize import is_rational
     from hapticproof.core.notation import shorten_numbers
     from hapticproof.report.readable import brief, number

@@ -8,13 +8,14 @@ import random
 from collections.abc import Iterable, Iterator, Mapping
 from typing import Any
 
+import flint
 import sympy as sp
 from sympy.core.evalf import PrecisionExhausted
 from sympy.polys.fields import sfield
 
 from hapticproof.core.symbols import c as C_SYM
 
-__all__ = ["Sampler", "is_identically_zero", "canonical_rational", "canonical_fraction"]
+__all__ = ["Sampler", "is_identically_zero", "canonical_rational", "canonical_fraction", "flint_fraction"]
 
 
 _NICE = [sp.Integer(1), sp.Integer(2), sp.Rational(1, 2), sp.Integer(3), sp.Rational(1, 3), sp.Integer(5),
@@ -223,3 +224,60 @@ def certified_nonzero(value: sp.Expr) -> bool:
         if approx.is_number and abs(approx) > sp.Float(10) ** (-digits // 2):
             return True
     return sp.simplify(value) != 0
+
+
+class _NotRational(Exception):
+    pass
+
+
+def flint_fraction(expr: Any, var: sp.Symbol) -> tuple[flint.fmpq_poly, flint.fmpq_poly] | None:
+    """``(num, den)`` of a rational function of ``var`` with rational coefficients as coprime flint
+    polynomials (``den`` monic), read from the expression tree -- no ``together``/``cancel`` (the
+    numeric route of a scene needs no SymPy algebra); ``None`` when ``expr`` has other symbols,
+    floats or functions (then SymPy decides).
+
+    >>> z = sp.Symbol("z")
+    >>> flint_fraction(2 + sp.Rational(1, 1000) * (z - 1) / (sp.Rational(1, 1000) * z), z)
+    (3*x + (-1), x)
+    >>> flint_fraction(z**-3 / (z - 1), z), flint_fraction(sp.Symbol("K") * z, z)
+    ((1, x^4 + (-1)*x^3), None)
+    """
+    one = flint.fmpq_poly([1])
+
+    def walk(e: Any) -> tuple[flint.fmpq_poly, flint.fmpq_poly]:
+        if e is var or (e.is_Symbol and e == var):
+            return flint.fmpq_poly([0, 1]), one
+        if e.is_Rational:
+            return flint.fmpq_poly([flint.fmpq(int(e.p), int(e.q))]), one
+        if e.is_Add or e.is_Mul:
+            num, den = walk(e.args[0])
+            for arg in e.args[1:]:
+                n2, d2 = walk(arg)
+                if e.is_Add:
+                    num, den = (num * d2 + n2 * den, den * d2) if den != d2 else (num + n2, den)
+                else:
+                    num, den = num * n2, den * d2
+            return num, den
+        if e.is_Pow and e.exp.is_Integer:
+            num, den = walk(e.base)
+            k = int(e.exp)
+            if k < 0:
+                if num.is_zero():
+                    raise _NotRational
+                num, den, k = den, num, -k
+            return num**k, den**k
+        raise _NotRational
+
+    try:
+        num, den = walk(sp.sympify(expr))
+    except (_NotRational, AttributeError):
+        return None
+    if den.is_zero():
+        return None
+    if num.is_zero():
+        return num, one
+    g = num.gcd(den)
+    if g.degree() > 0:
+        num, den = num / g, den / g
+    lead = den.coeffs()[-1]
+    return num / lead, den / lead

@@ -70,6 +70,12 @@ def brief(expr: Any, limit: int = LIMIT, verbose: bool = False) -> str:
         return text
     if isinstance(expr, (list, tuple)):
         return f"{len(expr)} entries, {len(text)} characters [full text: --verbose or --format json]"
+    if isinstance(expr, sp.core.relational.Relational):         # a long condition: each side summarised
+        return f"{brief(expr.lhs, limit // 2)} {expr.rel_op} {brief(expr.rhs, limit // 2)}"
+    if isinstance(expr, sp.core.function.AppliedUndef) and len(expr.args) == 1:     # min_c(<long form>)
+        return f"{expr.func}({brief(expr.args[0], limit)})"
+    if not isinstance(expr, sp.Expr):
+        return f"{len(text)} characters [full text: --verbose or --format json]"
     return _summary(expr, text)
 
 

@@ -25,9 +25,10 @@ from hapticproof.core.notation import shorten_numbers
 from hapticproof.report.readable import brief, full_text
 from hapticproof.systems.models import inverse_transfer
 from hapticproof.exact.conditions import Condition
-from hapticproof.analysis.positivereal import conditions, hermitian, poles, positive_real, residues, worst_case
+from hapticproof.analysis.positivereal import (SYMBOLIC_CFORM_LIMIT, conditions, hermitian, poles, positive_real, residues,
+                                              symbolic_c_degree, transfer_polynomials, worst_case)
 from hapticproof.systems.singleuser import SingleUserScene
-from hapticproof.exact.unitcircle import CRational, ThetaForm
+from hapticproof.exact.unitcircle import CRational
 
 __all__ = ["SceneSummary", "summarize_single_user"]
 
@@ -53,6 +54,8 @@ class SceneSummary:
     minimum: Any = None
     stages: dict = field(default_factory=dict)
     conditions: tuple[Condition, ...] = ()
+    #: what was not computed because the decision does not need it: name -> (why, how to get it)
+    skipped: dict = field(default_factory=dict)
 
     def to_json(self) -> dict[str, Any]:
         out = {
@@ -60,7 +63,7 @@ class SceneSummary:
             "approximation": self.approximation,
             "delay": self.delay,
             "G_inverse": sp.sstr(self.G_inverse),
-            "hermitian_part": full_text(self.hermitian_part),
+            "hermitian_part": None if self.hermitian_part is None else full_text(self.hermitian_part),
             "poles": [{"z": p.value, "multiplicity": p.multiplicity, "location": p.location} for p in self.poles],
             "residues": [{"z": r.pole, "residue": r.residue, "condition": r.outcome.decision.value} for r in self.residues],
             "worst_case": sp.sstr(self.worst_case) if self.worst_case is not None else None,
@@ -71,6 +74,8 @@ class SceneSummary:
             "minimiser": self.minimiser,
             "minimum": self.minimum,
         }
+        if self.skipped:
+            out["skipped"] = {k: {"reason": why, "option": how} for k, (why, how) in self.skipped.items()}
         if self.stages:
             out["stages_seconds"] = self.stages
         return to_jsonable(out)
@@ -79,7 +84,7 @@ class SceneSummary:
         lines = [
             f"system:          {self.system} ({self.approximation} difference, delay n = {self.delay})",
             f"G^-1(z)          = {brief(self.G_inverse, verbose=verbose)}",
-            f"Re G^-1 (c = cos wT) = {brief(self.hermitian_part, verbose=verbose)}",
+            f"Re G^-1 (c = cos wT) = {brief(self.hermitian_part, verbose=verbose) if self.hermitian_part is not None else _skipped_text(self, 'hermitian_part')}",
             "poles:           " + ", ".join(f"z = {p.value} ({p.location}{'' if p.multiplicity == 1 else f', x{p.multiplicity}' if p.multiplicity > 0 else ', multiplicity n+...'})" for p in self.poles),
             "residues:        " + (", ".join(f"Res(z = {r.pole}) = {sp.sstr(r.residue)} [{r.outcome.reason}]" for r in self.residues) or "none on |z| = 1"),
             f"worst case:      {brief(self.worst_case, verbose=verbose) if self.worst_case not in (None, sp.true, sp.false) else _minimum_text(self)}",
@@ -98,11 +103,10 @@ class SceneSummary:
     def latex_rows(self) -> list[tuple[str, str, str]]:
         """``(label, left-hand side, right-hand side)`` of each derived display."""
         herm = self.hermitian_part
-        rows = [
-            ("inverse transfer function", r"G^{-1}(z)", "= " + tex.to_latex(self.G_inverse)),
-            ("Hermitian part on the unit circle", r"\Re\, G^{-1}(e^{j\omega T})",
-             "= " + (tex.to_latex(_as_expr(herm), cos_name=COS) if not isinstance(herm, str) else herm)),
-        ]
+        rows = [("inverse transfer function", r"G^{-1}(z)", "= " + tex.to_latex(self.G_inverse))]
+        if herm is not None:
+            rows.append(("Hermitian part on the unit circle", r"\Re\, G^{-1}(e^{j\omega T})",
+                         "= " + (tex.to_latex(_as_expr(herm), cos_name=COS) if not isinstance(herm, str) else herm)))
         for r in self.residues:
             rows.append(("residue on the unit circle", r"\operatorname{Res}_{z=" + tex.to_latex(r.pole) + r"} G^{-1}",
                          "= " + tex.to_latex(r.residue)))
@@ -119,6 +123,7 @@ class SceneSummary:
         """A complete LaTeX document: the scene, the labelled derived displays, the decision."""
         items = [(label, lhs + (" " if rhs.startswith("=") else " ") + rhs) for label, lhs, rhs in self.latex_rows()]
         notes = [("verdict", f"{self.verdict} ({self.reason})")]
+        notes += [(f"not computed: {name.replace('_', ' ')}", f"{why} ({how} computes it)") for name, (why, how) in self.skipped.items()]
         if self.witness is not None:
             notes.append(("witness", f"c = cos(wT) = {self.witness}"))
         if self.minimiser is not None:
@@ -159,6 +164,11 @@ def _show(value: Any) -> str:
     return str(value)
 
 
+def _skipped_text(summary: SceneSummary, name: str) -> str:
+    why, how = summary.skipped.get(name, ("not computed", "--full"))
+    return f"not computed: {why} [{how} computes it]"
+
+
 def _minimum_text(summary: SceneSummary) -> str:
     if summary.minimiser is None:
         if isinstance(summary.delay, sp.Symbol):
@@ -171,13 +181,37 @@ def _minimum_text(summary: SceneSummary) -> str:
     return f"min Re G^-1 = {value} at c = {where}"
 
 
-def summarize_single_user(scene: SingleUserScene, with_profile: bool = False) -> SceneSummary:
-    """Derive and collect everything ``hapticproof derive single-user`` reports."""
-    form = hermitian(scene)
-    if isinstance(form, ThetaForm):
-        theta = sp.Symbol("theta")
-        herm = form.expr(theta)
+#: A numeric scene's ``Re G^{-1}`` as a polynomial in ``c`` is computed for the summary when its
+#: degree is at most this (0.1 s); above it the decision uses the closed form in ``theta``
+#: (:mod:`hapticproof.exact.trigpoly`) and the polynomial is computed only when asked (``full``).
+CFORM_LIMIT = 500
+
+
+def summarize_single_user(scene: SingleUserScene, with_profile: bool = False, full: bool = False) -> SceneSummary:
+    """Derive and collect everything ``hapticproof derive single-user`` reports.
+
+    A numeric scene is decided on the fast path; its large exact objects (``Re G^{-1}`` as a
+    polynomial in ``c`` of degree above :data:`CFORM_LIMIT`) are computed only with ``full``, and
+    ``skipped`` says what was left out and how to get it.
+
+    >>> big = SingleUserScene.virtual_wall(K=2, B="0.001", b="0.0201", T="0.001", delay=2000)
+    >>> s = summarize_single_user(big)
+    >>> s.verdict, s.hermitian_part, s.skipped["hermitian_part"][1]
+    ('disproved', None, '--full')
+    """
+    skipped: dict[str, tuple[str, str]] = {}
+    if scene.delay.is_Symbol:
+        herm = hermitian(scene).expr(sp.Symbol("theta"))
+    elif scene.is_numeric and not full and _c_degree(scene) > CFORM_LIMIT:
+        herm = None
+        skipped["hermitian_part"] = (f"Re G^-1 as a polynomial in c has degree up to {_c_degree(scene)}; the decision "
+                                     "needs only its closed form in theta", "--full")
+    elif not scene.is_numeric and not full and symbolic_c_degree(scene) > SYMBOLIC_CFORM_LIMIT:
+        herm = None
+        skipped["hermitian_part"] = (f"Re G^-1 as a polynomial in c with parameters has degree up to {symbolic_c_degree(scene)} "
+                                     "and no closed-form worst case", "--full")
     else:
+        form = hermitian(scene)
         # numeric forms stay flint polynomials: a degree-1000 c-form is never built in SymPy
         # just to be summarised (readable.brief and readable.full_text read them directly)
         herm = form if form.is_numeric else _readable(form.expr())
@@ -200,4 +234,11 @@ def summarize_single_user(scene: SingleUserScene, with_profile: bool = False) ->
         minimum=wc.minimum,
         stages=profile(scene) if with_profile else {},
         conditions=tuple(conditions(scene)),
+        skipped=skipped,
     )
+
+
+def _c_degree(scene: SingleUserScene) -> int:
+    """A bound on the degree in ``c`` of a numeric scene's ``Re G^{-1}`` (that of ``G^{-1} = P/Q``)."""
+    P, Q = transfer_polynomials(scene)
+    return max(P.degree(), Q.degree())

@@ -4,9 +4,11 @@ matrices and ``G^{-1}(z)`` as an m x m matrix (the decisions are in
 
 from __future__ import annotations
 
+import functools
 import itertools
+import operator
 from collections.abc import Iterable, Mapping, Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, fields, replace
 from typing import Any
 
 import sympy as sp
@@ -17,7 +19,7 @@ from hapticproof.systems.models import integrator
 from hapticproof.systems.singleuser import APPROXIMATIONS, SYMBOLS, as_parameter
 from hapticproof.core.symbols import z as Z_SYM
 
-__all__ = ["UNIFORM_SYMBOLS", "MultiUserScene", "complete_graph", "user_symbols", "inverse_transfer_matrix", "stiffness_matrix", "damping_matrix", "to_sampled"]
+__all__ = ["UNIFORM_SYMBOLS", "MultiUserScene", "complete_graph", "map_values", "user_symbols", "inverse_transfer_matrix", "stiffness_matrix", "damping_matrix", "to_sampled"]
 
 
 #: Symbols of the uniform (worst-case) parameters, named as the paper prints them.
@@ -59,16 +61,55 @@ def user_symbols(m: int) -> dict[str, Any]:
     }
 
 
+@functools.lru_cache(maxsize=16)
 def complete_graph(m: int) -> tuple[tuple[int, int], ...]:
-    """Edges ``(i, j)``, ``0 <= i < j < m``, of the complete graph."""
+    """Edges ``(i, j)``, ``0 <= i < j < m``, of the complete graph (one tuple per ``m``, shared: a
+    scene holding it needs no edge validation, which matters for ``m(m-1)/2`` edges)."""
     return tuple(itertools.combinations(range(m), 2))
+
+
+def _repeats(values: tuple) -> bool:
+    """All entries one object (a uniform scene's edge weights): an identity test at C speed."""
+    return bool(values) and all(map(operator.is_, values, itertools.repeat(values[0])))
+
+
+def map_values(func: Any, values: Any) -> tuple:
+    """``tuple(map(func, values))`` with ``func`` called once per distinct object: a uniform scene
+    repeats one value ``m`` or ``m(m-1)/2`` times.
+
+    >>> map_values(lambda v: 2 * v, (1, 1, 3))
+    (2, 2, 6)
+    """
+    values = tuple(values)
+    if _repeats(values):
+        return (func(values[0]),) * len(values)
+    objects = dict(zip(map(id, values), values))
+    images = {key: func(v) for key, v in objects.items()}
+    return tuple(map(images.__getitem__, map(id, values)))
+
+
+def _exact_values(values: Any, name: str) -> tuple[sp.Expr, ...]:
+    """``as_parameter`` of each value, each distinct object converted once."""
+    return map_values(lambda v: as_parameter(name, v), values)
+
+
+def _distinct(*groups: Any) -> list:
+    """The distinct values of some tuples (by identity first, then by equality)."""
+    out: dict[int, Any] = {}
+    for values in groups:
+        values = tuple(values)
+        if _repeats(values):
+            out.setdefault(id(values[0]), values[0])
+        else:
+            out.update(zip(map(id, values), values))
+    return list(dict.fromkeys(out.values()))
 
 
 def _tuple(values: Any, m: int, name: str) -> tuple[sp.Expr, ...]:
     if isinstance(values, (list, tuple)):
         if len(values) != m:
             raise SceneError(f"{name} needs one value per user ({m}), got {len(values)}")
-        return tuple(as_parameter(name, v) for v in values)
+        return _exact_values(values, name)
     return (as_parameter(name, values),) * m
 
 
@@ -129,6 +170,33 @@ class MultiUserScene:
     delays: tuple
     z_a: tuple
     approximation: str = "forward"
+    #: derived facts computed once per scene (its hash, uniformity): m(m-1)/2 edge values make
+    #: them costly to recompute at every cache lookup
+    _memo: dict = field(default=None, init=False, repr=False, compare=False, hash=False)
+
+    def __hash__(self) -> int:
+        memo = self._facts()
+        if "hash" not in memo:
+            distinct = lambda values: frozenset(_distinct(values))  # noqa: E731 - equal scenes: equal sets
+            m = self.users            # distinct valid pairs: all m(m-1)/2 of them is the complete graph
+            edges = ("complete", m) if len(self.edges) == m * (m - 1) // 2 else self.edges
+            memo["hash"] = hash((len(self.b), distinct(self.b), self.T, distinct(self.K0), distinct(self.B0), edges,
+                                 distinct(self.K), distinct(self.B), self.delays, distinct(self.z_a), self.approximation))
+        return memo["hash"]
+
+    def _facts(self) -> dict:
+        if self._memo is None:
+            object.__setattr__(self, "_memo", {})
+        return self._memo
+
+    def __getstate__(self) -> list:            # the memo stays home: a hash is valid in one process only
+        return [None if f.name == "_memo" else getattr(self, f.name) for f in fields(self)]
+
+    def __setstate__(self, state: list) -> None:
+        for f, value in zip(fields(self), state):
+            object.__setattr__(self, f.name, value)
+        if self.edges == complete_graph(len(self.b)):          # the shared tuple again (no edge validation)
+            object.__setattr__(self, "edges", complete_graph(len(self.b)))
 
     def __post_init__(self) -> None:
         m = len(self.b)
@@ -137,12 +205,14 @@ class MultiUserScene:
         for name in ("b", "K0", "B0", "z_a"):
             object.__setattr__(self, name, _tuple(tuple(getattr(self, name)), m, name))
         object.__setattr__(self, "T", as_parameter("T", self.T))
-        edges = tuple(tuple(sorted((int(i), int(j)))) for i, j in self.edges)
-        if any(i == j or i < 0 or j >= m for i, j in edges) or len(set(edges)) != len(edges):
-            raise SceneError(f"edges must be distinct pairs of distinct users in 0..{m - 1}")
-        object.__setattr__(self, "edges", edges)
+        if self.edges is not complete_graph(m):      # the shared complete graph is valid as it is
+            edges = tuple(tuple(sorted((int(i), int(j)))) for i, j in self.edges)
+            if any(i == j or i < 0 or j >= m for i, j in edges) or len(set(edges)) != len(edges):
+                raise SceneError(f"edges must be distinct pairs of distinct users in 0..{m - 1}")
+            object.__setattr__(self, "edges", complete_graph(m) if edges == complete_graph(m) else edges)
+        edges = self.edges
         for name in ("K", "B"):
-            values = tuple(as_parameter(name, v) for v in getattr(self, name))
+            values = _exact_values(getattr(self, name), name)
             if len(values) != len(edges):
                 raise SceneError(f"{name} needs one value per edge ({len(edges)})")
             object.__setattr__(self, name, values)
@@ -160,7 +230,7 @@ class MultiUserScene:
             raise SceneError(f"unknown approximation {self.approximation!r}; choose one of {', '.join(APPROXIMATIONS)}")
         if self.T.is_number and not self.T > 0:
             raise SceneError(f"the sampling period T must be positive, got {self.T}")
-        numbers = [*self.b, *self.K0, *self.B0, *self.z_a, *self.K, *self.B]
+        numbers = _distinct(self.b, self.K0, self.B0, self.z_a, self.K, self.B)
         if any(v.is_number and v < 0 for v in numbers):
             raise SceneError("dampings, stiffnesses and shortages of passivity must be non-negative")
 
@@ -272,7 +342,7 @@ class MultiUserScene:
     @property
     def parameters(self) -> set[sp.Symbol]:
         out: set[sp.Symbol] = set()
-        for v in (*self.b, *self.K0, *self.B0, *self.z_a, *self.K, *self.B, self.T):
+        for v in _distinct(self.b, self.K0, self.B0, self.z_a, self.K, self.B, (self.T,)):
             out |= sp.sympify(v).free_symbols
         return out
 
@@ -291,12 +361,15 @@ class MultiUserScene:
     @property
     def is_uniform(self) -> bool:
         """Equal per-user values and equal edge weights (the paper's worst-case reading)."""
-        same = lambda values: len({sp.sympify(v) for v in values}) <= 1  # noqa: E731
-        return all(same(v) for v in (self.b, self.K0, self.B0, self.z_a, self.K, self.B, self.delays))
+        memo = self._facts()
+        if "uniform" not in memo:
+            same = lambda values: len(_distinct(values)) <= 1  # noqa: E731 - the values are exact SymPy numbers
+            memo["uniform"] = all(same(v) for v in (self.b, self.K0, self.B0, self.z_a, self.K, self.B, self.delays))
+        return memo["uniform"]
 
     @property
     def is_complete(self) -> bool:
-        return set(self.edges) == set(complete_graph(self.users))
+        return self.edges is complete_graph(self.users) or set(self.edges) == set(complete_graph(self.users))
 
     @property
     def damped(self) -> bool:
@@ -316,7 +389,7 @@ class MultiUserScene:
             if symbol is None:
                 raise SceneError(f"unknown parameter {key!r}; the scene has {sorted(by_name)}")
             mapping[symbol] = as_parameter(str(key), value)
-        sub = lambda vals: tuple(sp.sympify(v).xreplace(mapping) for v in vals)  # noqa: E731
+        sub = lambda vals: map_values(lambda v: sp.sympify(v).xreplace(mapping), vals)  # noqa: E731
         return replace(self, b=sub(self.b), T=sp.sympify(self.T).xreplace(mapping), K0=sub(self.K0), B0=sub(self.B0),
                        K=sub(self.K), B=sub(self.B), z_a=sub(self.z_a))
 

@@ -162,7 +162,9 @@ class Scene:
     environment : str or expr, optional
         Single-user: the virtual environment ``H(z)`` (default: the wall ``K + B*(z-1)/(T*z)``),
         or ``H(s)`` with ``discretize``. Teleoperator: the slave's termination ``Z_e(s)``,
-        ``'free'`` or ``'clamped'`` (stability only).
+        ``'free'`` or ``'clamped'`` (stability only). A python-control or SymPy system is read
+        exactly (:mod:`hapticproof.systems.lti`; floats by their decimal text) and its ``dt`` is
+        ``T``; so for ``controller`` and ``operator``.
     controller : str or expr, optional
         Teleoperator: ``C(z)``, or ``C(s)`` with ``discretize``, or ``'pd'`` (eq. 33, default) /
         ``'filtered-pd'``. Single-user: a synonym of ``environment`` (the virtual environment is
@@ -237,6 +239,7 @@ class Scene:
             if key in params:
                 raise SceneError(f"parameter {key} given twice")
             params[key] = _param_value(key, value, where)
+        self._read_systems(params)
         system = self.system
         if system in ("single-user", "multi-user") and self.controller is not None:
             if self.environment is not None or system == "multi-user":
@@ -310,6 +313,25 @@ class Scene:
                 set_("ports", ports)
 
     # -- helpers of construction --------------------------------------------------------------
+    def _read_systems(self, params: dict[str, Any]) -> None:
+        """A python-control or SymPy system as environment, controller or operator becomes its
+        exact expression (:func:`hapticproof.systems.lti.expression_of`); a sampling period it
+        carries is the scene's ``T`` (given as well, they must agree)."""
+        from hapticproof.systems.lti import expression_of, is_lti_object
+
+        for name in ("environment", "controller", "operator"):
+            value = getattr(self, name)
+            if not is_lti_object(value):
+                continue
+            expr, dt = expression_of(value)
+            object.__setattr__(self, name, expr)
+            if dt is None:
+                continue
+            period = sp.Rational(dt.numerator, dt.denominator)
+            if "T" in params and params["T"] != period:
+                raise SceneError(f"{name}: the system's sampling period dt = {period} differs from T = {params['T']}")
+            params["T"] = period
+
     @staticmethod
     def _expr(value: Any, variable: str, name: str, assumptions: Mapping[str, str],
               words: tuple[str, ...] = ()) -> Any:
@@ -524,7 +546,7 @@ class Scene:
         return SingleUserScene(b=b, T=T, H=H, approximation=self.approximation, delay=delay, z_a=self._z_a(mapping))
 
     def _multi_user(self, mapping) -> Any:
-        from hapticproof.systems.multiuser import UNIFORM_SYMBOLS, MultiUserScene
+        from hapticproof.systems.multiuser import UNIFORM_SYMBOLS, MultiUserScene, map_values
 
         edges = _edges_of(self.graph, self.users)
         active = self.active or "z_a" in dict(self.params)
@@ -558,9 +580,9 @@ class Scene:
                 values[by_name[sym.name]] = value
         rename = {s: parameter_like(s, self) for s in scene.parameters}
         sub = lambda v: sp.sympify(v).xreplace(values).xreplace(rename)  # noqa: E731
-        return replace(scene, b=tuple(map(sub, scene.b)), T=sub(scene.T), K0=tuple(map(sub, scene.K0)),
-                       B0=tuple(map(sub, scene.B0)), K=tuple(map(sub, scene.K)), B=tuple(map(sub, scene.B)),
-                       z_a=tuple(map(sub, scene.z_a)))
+        each = lambda vals: map_values(sub, vals)  # noqa: E731 - a uniform scene repeats one value per edge
+        return replace(scene, b=each(scene.b), T=sub(scene.T), K0=each(scene.K0), B0=each(scene.B0), K=each(scene.K),
+                       B=each(scene.B), z_a=each(scene.z_a))
 
     def _teleoperator(self, mapping, sub) -> Any:
         from hapticproof.systems.teleoperator import TeleoperatorScene

@@ -102,27 +102,36 @@ class SingleUserScene:
     approximation: str = "forward"
     delay: sp.Expr = field(default=sp.Integer(0))
     z_a: sp.Expr = field(default=sp.Integer(0))
+    #: every parameter a number (set once on construction: the numeric route asks often)
+    _numeric: bool = field(default=False, init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         for name in ("b", "T", "z_a"):
             object.__setattr__(self, name, as_parameter(name, getattr(self, name)))
         object.__setattr__(self, "delay", as_delay(self.delay))
         from hapticproof.core.expr import normalise_variables
+        from hapticproof.exact.canonical import flint_fraction
 
-        H = normalise_variables(self.H, "z", "H(z)")
-        if not H.is_rational_function(Z_SYM):
-            raise SceneError(f"H(z) must be a rational function of z, got {H}")
+        H = sp.sympify(self.H)
+        # a rational function of the toolkit's z with rational coefficients (the numeric case, read
+        # without SymPy algebra) needs no normalisation; anything else is checked by SymPy
+        if flint_fraction(H, Z_SYM) is None:
+            H = normalise_variables(H, "z", "H(z)")
+            if not H.is_rational_function(Z_SYM):
+                raise SceneError(f"H(z) must be a rational function of z, got {H}")
         object.__setattr__(self, "H", H)
         if self.approximation not in APPROXIMATIONS:
             raise SceneError(
                 f"unknown approximation {self.approximation!r}; choose one of {', '.join(APPROXIMATIONS)}"
             )
-        if self.T.is_number and not self.T > 0:
+        if _negative(self.T, strict=False):
             raise SceneError(f"the sampling period T must be positive, got {self.T}")
-        if self.b.is_number and self.b < 0:
+        if _negative(self.b):
             raise SceneError(f"the device damping b must be non-negative, got {self.b}")
-        if self.z_a.is_number and self.z_a < 0:
+        if _negative(self.z_a):
             raise SceneError(f"the shortage of passivity z_a must be non-negative, got {self.z_a}")
+        object.__setattr__(self, "_numeric", all(v.is_Rational or not v.free_symbols for v in (self.b, self.T, self.delay, self.z_a))
+                           and not (self.H.free_symbols - {Z_SYM}))
 
     @classmethod
     def virtual_wall(
@@ -145,7 +154,7 @@ class SingleUserScene:
         B = SYMBOLS["B"] if B is None else as_parameter("B", B)
         b = SYMBOLS["b"] if b is None else b
         T = SYMBOLS["T"] if T is None else as_parameter("T", T)
-        if T.is_number and not T > 0:
+        if _negative(T, strict=False):
             raise SceneError(f"the sampling period T must be positive, got {T}")
         if t_d is not None:
             delay = delay_ratio(t_d, T)
@@ -162,7 +171,7 @@ class SingleUserScene:
     @property
     def is_numeric(self) -> bool:
         """True when every parameter (including the delay) is a number."""
-        return not self.parameters
+        return self._numeric
 
     @property
     def has_delay(self) -> bool:
@@ -192,6 +201,16 @@ class SingleUserScene:
             delay=as_delay(sp.sympify(self.delay).subs(mapping)),
             z_a=self.z_a.subs(mapping),
         )
+
+
+def _negative(value: sp.Expr, strict: bool = True) -> bool:
+    """``value < 0`` (``strict``) or ``value <= 0`` for a number; a rational is compared without
+    SymPy relationals (the numeric route's construction costs microseconds)."""
+    if value.is_Rational:
+        return value.p < 0 or (not strict and value.p == 0)
+    if not value.is_number:
+        return False
+    return bool(value < 0) if strict else not bool(value > 0)
 
 
 def delay_ratio(t_d: Any, T: Any) -> sp.Expr:
