@@ -23,7 +23,7 @@ import sys
 from hapticproof.analysis.borderlines import printed_borderline
 import json
 
-from hapticproof.cli.common import add_param_option
+from hapticproof.cli.common import add_param_option, add_role_option
 from hapticproof.cli.terminal import ProgressBar, progress_bar  # noqa: F401 - ProgressBar re-exported
 from hapticproof.core.errors import InputFormatError
 from hapticproof.analysis.maps import boundary_curve, grid, plot_curves
@@ -47,6 +47,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     )
     parser.add_argument("system", nargs="?", choices=SYSTEMS, help="the system (default: the scene file's)")
     parser.add_argument("--scene", metavar="FILE", help="read the scene from a scene file (TOML)")
+    add_role_option(parser)
     add_param_option(parser)
     parser.add_argument("--environment", "--H", dest="environment",
                         help="single-user: the virtual environment H(z) (or H(s) with --discretize; default "
@@ -88,12 +89,13 @@ def _search(text: str | None) -> tuple[float, float] | None:
 
 
 def _scene(args: argparse.Namespace):
-    from hapticproof.cli.common import param_items
+    from hapticproof.cli.common import param_items, role_items
     from hapticproof.systems.scene import Scene
     from hapticproof.systems.scene import read_scene
 
     fields: dict = {}
     params: dict = {}
+    roles: dict = {}
     system = args.system
     if args.scene:
         base = read_scene(args.scene)
@@ -103,6 +105,7 @@ def _scene(args: argparse.Namespace):
         fields = {k: getattr(base, k) for k in ("approximation", "environment", "controller", "discretize", "delay",
                                                  "users", "graph", "uniform", "active", "operator")}
         params = dict(base.params)
+        roles = dict(base.roles)
     if system is None:
         raise InputFormatError("name the system (single-user, multi-user, teleoperator) or give --scene FILE")
     if system not in SYSTEMS:
@@ -112,7 +115,8 @@ def _scene(args: argparse.Namespace):
         if value is not None:
             fields[name] = value
     params.update(param_items(args.param))
-    return Scene(system, **{k: v for k, v in fields.items() if v is not None}, params=params)
+    roles.update(role_items(args.role))
+    return Scene(system, **{k: v for k, v in fields.items() if v is not None}, params=params, roles=roles)
 
 
 def handler(args: argparse.Namespace) -> int:
@@ -189,5 +193,6 @@ def handler(args: argparse.Namespace) -> int:
         write_text(args.json, json.dumps(curve.to_json(), indent=1))
     if args.plot:
         title = f"{spec.system}: {vary}*({over_name})"
-        plot_curves([curve], args.plot, title=title, scale={"T": 1000} if over_name == "T" else None)
+        period = spec.role("period")
+        plot_curves([curve], args.plot, title=title, scale={period: 1000} if over_name == period else None)
     return 0

@@ -14,7 +14,7 @@ import sympy as sp
 from hapticproof.core.errors import InputFormatError
 from hapticproof.core.evidence import exact
 
-__all__ = ["parse_params", "param_items", "add_param_option", "write_text", "add_output_option", "check_output",
+__all__ = ["parse_params", "param_items", "add_param_option", "add_role_option", "role_items", "write_text", "add_output_option", "check_output",
            "write_output", "add_scene_options", "scene_from_args"]
 
 
@@ -29,6 +29,42 @@ def add_param_option(parser: argparse.ArgumentParser) -> None:
         "(M=positive, nonnegative, real...) that keeps it symbolic; repeat for several. Unset "
         "parameters stay symbolic.",
     )
+
+
+def add_role_option(parser: argparse.ArgumentParser, system: str | None = None) -> None:
+    """``--role ROLE=NAME``: the ``roles`` of the scene (a scene file's ``[roles]`` table)."""
+    from hapticproof.systems.roles import ROLES
+
+    systems = [system] if system else [s for s in ROLES if ROLES[s]]
+    fields = list(dict.fromkeys(f for s in systems for f in ROLES[s]))
+    defaults = {f: ROLES[s][f].default for s in systems for f in ROLES[s]}
+    parser.add_argument(
+        "--role",
+        action="append",
+        default=[],
+        metavar="ROLE=NAME",
+        help="name the parameter that plays a role of the system (default name in parentheses): "
+        + ", ".join(f"{f} ({defaults[f]})" for f in fields)
+        + "; e.g. --role period=Ts makes Ts the sampling period everywhere (--range, --delay-margin, "
+        "boundaries, maps)" + ("; m users: a group name or one name per user, NAME_1,...,NAME_m"
+                               if system in (None, "multi-user") else "") + "; repeat for several",
+    )
+
+
+def role_items(items: list[str]) -> dict[str, str | list[str]]:
+    """``["period=Ts", "device_damping=c_1,c_2"]`` -> ``{"period": "Ts", "device_damping": ["c_1", "c_2"]}``.
+
+    >>> role_items(["period=Ts", "device_damping = c_1, c_2"])
+    {'period': 'Ts', 'device_damping': ['c_1', 'c_2']}
+    """
+    out: dict[str, str | list[str]] = {}
+    for item in items:
+        field, sep, value = item.partition("=")
+        field = field.strip()
+        if not sep or not field or not value.strip():
+            raise InputFormatError(f"--role expects ROLE=NAME, got {item!r}")
+        out[field] = [v.strip() for v in value.split(",")] if "," in value else value.strip()
+    return out
 
 
 def param_items(items: list[str]) -> dict[str, str]:
@@ -174,6 +210,8 @@ def add_scene_options(parser: argparse.ArgumentParser, system: str, *, stability
     if system == "network":
         parser.add_argument("--matrix", metavar="FILE", help="impedance matrix file (text or .json)")
         parser.add_argument("--ports", metavar="SIZES", help="port sizes, e.g. 3,3 (default: scalar ports)")
+    else:
+        add_role_option(parser, system)
     add_param_option(parser)
 
 
@@ -189,12 +227,14 @@ def scene_from_args(args: argparse.Namespace, system: str) -> Any:
 
     fields: dict[str, Any] = {}
     params: dict[str, Any] = {}
+    roles: dict[str, Any] = {}
     if getattr(args, "scene", None):
         base = read_scene(args.scene)
         if base.system != system:
             raise InputFormatError(f"{args.scene} describes a {base.system} scene, not {system}")
         fields = {name: getattr(base, name) for name in _FIELDS}
         params = dict(base.params)
+        roles = dict(base.roles)
     for name in _FIELDS:
         value = getattr(args, name, None)
         if value is not None:
@@ -212,5 +252,6 @@ def scene_from_args(args: argparse.Namespace, system: str) -> Any:
     if system == "network" and fields.get("matrix") is None:
         raise InputFormatError("derive network needs --matrix FILE (or a scene file with a matrix)")
     params.update(param_items(getattr(args, "param", []) or []))
+    roles.update(role_items(getattr(args, "role", []) or []))
     fields = {k: v for k, v in fields.items() if v is not None}
-    return Scene(system, **fields, params=params)
+    return Scene(system, **fields, params=params, roles=roles)
