@@ -55,6 +55,7 @@ from hapticproof.core.evidence import exact
 from hapticproof.core.symbols import n as N_SYM
 from hapticproof.core.symbols import z as Z_SYM
 from hapticproof.systems.singleuser import APPROXIMATIONS, SingleUserScene, delay_ratio, virtual_wall
+from hapticproof.systems.values import check_declared, check_positive_roles, param_value
 import json
 import re
 import sys
@@ -104,50 +105,6 @@ def _assumption_of(symbol: sp.Symbol) -> str | None:
         if getattr(symbol, attr):
             return word
     return None
-
-
-def _param_value(name: str, value: Any, where: str) -> Any:
-    """A parameter value, normalised: an exact rational, an assumption word or an expression."""
-    from decimal import Decimal
-    from fractions import Fraction
-
-    from hapticproof.core.expr import ASSUMPTIONS, read_expression, read_number
-
-    if isinstance(value, bool):
-        raise SceneError(f"{where}{name}: {value!r} is not a number, an expression or an assumption")
-    if isinstance(value, (int, Fraction)):
-        return sp.Rational(value)
-    if isinstance(value, float):
-        # a Python float is read by its shortest decimal text: 0.001 is 1/1000, as typed
-        return read_number(repr(value), f"{where}{name}")
-    if isinstance(value, Decimal):
-        return read_number(str(value), f"{where}{name}")
-    if isinstance(value, sp.Basic):
-        if value.is_Rational:
-            return value
-        if value.is_Float:
-            return sp.Rational(value)
-        return value
-    if isinstance(value, str):
-        text = value.strip()
-        if text in ASSUMPTIONS:
-            return text
-        try:
-            return read_number(text)
-        except SceneError:
-            pass
-        except Exception:  # noqa: BLE001 - not a plain number: read it as an expression
-            pass
-        expr = read_expression(text, None, where=f"{where}{name}")
-        if expr.is_Symbol:
-            import difflib
-
-            close = difflib.get_close_matches(text, list(ASSUMPTIONS), n=1, cutoff=0.75)
-            if close:
-                raise SceneError(f"{where}{name}: {text!r} is not an assumption; did you mean {close[0]!r}?")
-        return expr if not expr.is_Rational else sp.Rational(expr)
-    raise SceneError(f"{where}{name}: cannot use {value!r} (a number, an expression or one of "
-                     f"{', '.join(ASSUMPTIONS)})")
 
 
 @dataclass(frozen=True, slots=True)
@@ -253,7 +210,7 @@ class Scene:
             parameter_symbol(key)                       # a valid name, not z or s
             if key in params:
                 raise SceneError(f"parameter {key} given twice")
-            params[key] = _param_value(key, value, where)
+            params[key] = param_value(key, value, where)
         system = self.system
         if system in ("single-user", "multi-user") and self.controller is not None:
             if self.environment is not None or system == "multi-user":
@@ -336,7 +293,7 @@ class Scene:
                 return value.strip().lower()
             return read_expression(value, variable, where=name, assumptions=assumptions)
         if isinstance(value, (int, float)) and not isinstance(value, bool):
-            return _param_value(name, value, "")
+            return param_value(name, value, "")
         if isinstance(value, sp.Basic):
             return normalise_variables(value, variable, name)
         raise SceneError(f"{name}: expected an expression, got {value!r}")
@@ -434,6 +391,14 @@ class Scene:
 
         return parameter_symbol(name, self.assumptions.get(name) or self._role_words().get(name))
 
+    def resolved_values(self) -> dict[str, Any]:
+        """Name -> value of every parameter with a value, expressions of others resolved.
+
+        >>> Scene("single-user", params={"Kw": 4, "K": "Kw/2"}).resolved_values()["K"]
+        2
+        """
+        return {sym.name: value for sym, value in self._substitution().items()}
+
     def with_params(self, values: Mapping[str, Any] | None = None, **named: Any) -> Scene:
         """The scene with more (or changed) parameters; a value ``None`` removes one.
 
@@ -468,11 +433,17 @@ class Scene:
                         mapping[sym] = new
                         changed = True
             if not changed:
-                return {k: (sp.cancel(v) if v.free_symbols else v) for k, v in mapping.items()}
+                out = {k: (sp.cancel(v) if v.free_symbols else v) for k, v in mapping.items()}
+                for sym, value in out.items():
+                    if value.has(sp.zoo, sp.nan, sp.oo, -sp.oo):
+                        given = dict(values).get(sym.name)
+                        raise SceneError(f"parameter {sym.name!r}: {sp.sstr(given)} divides by zero at the scene's values")
+                check_positive_roles(self, out)
+                return out
         raise SceneError("the parameter expressions refer to each other in a cycle")
 
-    def names(self) -> set[str]:
-        """Every parameter name the scene's model uses (before values are substituted)."""
+    def model_names(self) -> set[str]:
+        """The parameter names of the scene's model and expressions (before values are substituted)."""
         model = self._model(substitute=False)
         if self.system == "network":
             free = set().union(*(e.free_symbols for e in model))
@@ -481,7 +452,11 @@ class Scene:
         for value in (self.environment, self.controller, self.operator):
             if isinstance(value, sp.Basic):
                 free |= value.free_symbols
-        names = {s.name for s in free} - {"z", "s", "n"}
+        return {s.name for s in free} - {"z", "s", "n"}
+
+    def names(self) -> set[str]:
+        """Every parameter name the scene uses: its model's, and those of its parameters' values."""
+        names = self.model_names()
         for value in self.param_values.values():
             if isinstance(value, sp.Basic):
                 names |= {s.name for s in value.free_symbols}
@@ -497,10 +472,16 @@ class Scene:
         """
         from hapticproof.systems.roles import ROLES
 
+        model_names = self.model_names()
         names = self.names()
         known = names | set(self.reserved())
         if self.system == "multi-user":
             known |= {"K_0", "B_0", "K", "B", "z_a"}
+        # a value is a number or an expression of declared names: the model's, the parameters'
+        # (with a value or an assumption) and the roles'; anything else is a typo, not a new symbol
+        declared = (model_names | set(dict(self.params)) | set(self.reserved())
+                    | ({"K_0", "B_0", "K", "B", "z_a"} if self.system == "multi-user" else set()))
+        check_declared(self.param_values, declared, model_names | set(dict(self.params)))
         for name in dict(self.params):
             if name not in known:
                 shown = sorted(names - {name}) or ["no parameters"]
