@@ -402,11 +402,32 @@ class Endpoint:
     def text(self) -> str:
         return str(self.value) if self.value is not None else f"{self.approx(12)}..."
 
+    def short_interval(self) -> tuple[sp.Rational, sp.Rational]:
+        """The shortest decimal interval around ``[lo, hi]`` that still isolates the root (the
+        exact ``lo``, ``hi`` have 2^60-size denominators; these are for people to read).
+
+        >>> Endpoint.of(real_roots(flint.fmpq_poly([-2, 0, 1]), 0, 2)[0]).short_interval()
+        (1, 2)
+        """
+        if self.value is not None:
+            return self.value, self.value
+        poly = flint.fmpq_poly(self.polynomial)
+        lo, hi = Fraction(str(self.lo)), Fraction(str(self.hi))
+        for digits in range(0, 40):
+            scale = 10**digits
+            a = Fraction(math.floor(lo * scale), scale)
+            b = Fraction(math.ceil(hi * scale), scale)
+            if a < b and len(real_roots(poly, flint.fmpq(a.numerator, a.denominator),
+                                        flint.fmpq(b.numerator, b.denominator))) == 1:
+                return sp.Rational(a.numerator, a.denominator), sp.Rational(b.numerator, b.denominator)
+        return self.lo, self.hi
+
     def to_json(self) -> dict[str, Any]:
         if self.value is not None:
             return {"exact": str(self.value)}
+        short = self.short_interval()
         return {"root_of": [str(c) for c in self.polynomial.coeffs()], "interval": [str(self.lo), str(self.hi)],
-                "approx": self.approx(20)}
+                "isolating_interval": [str(short[0]), str(short[1])], "approx": self.approx(20)}
 
 
 @dataclass(frozen=True, slots=True)
@@ -455,10 +476,11 @@ class ParameterRange:
         text = f"passive range of {self.parameter} (others fixed): {body}   [{tag}; {len(self.cells)} cells decided]"
         algebraic = [e for i in self.intervals for e in (i[0], i[2]) if e is not None and e.value is None]
         for e in algebraic:
-            poly = str(flint.fmpz_poly(e.polynomial))
+            poly = _poly_text(e.polynomial, self.parameter)
             if len(poly) > 160:
                 poly = f"an irreducible polynomial of degree {e.polynomial.degree()} (in the JSON output)"
-            text += f"\n  {e.approx(12)}... is the root of {poly} in [{float(e.lo):.15g}, {float(e.hi):.15g}]"
+            lo, hi = e.short_interval()
+            text += f"\n  {e.approx(12)}... is the root of {poly} in [{_decimal(lo)}, {_decimal(hi)}]"
         return text
 
     def to_json(self) -> dict[str, Any]:
@@ -472,6 +494,33 @@ class ParameterRange:
             "cells": [{"sample": str(s), "decision": o.decision.value, "reason": o.reason} for s, o in self.cells],
             "undecided": [e.to_json() for e in self.undecided],
             "text": self.to_text(), "seconds": round(self.seconds, 4)})
+
+
+def _poly_text(poly: Any, name: str) -> str:
+    """An integer polynomial in ``name``, highest power first: ``961*K**4 - 32755*K**2 + 8``."""
+    terms = []
+    for k, c in reversed(list(enumerate(flint.fmpz_poly(poly).coeffs()))):
+        c = int(c)
+        if c == 0:
+            continue
+        power = "" if k == 0 else name if k == 1 else f"{name}**{k}"
+        body = str(abs(c)) if not power else power if abs(c) == 1 else f"{abs(c)}*{power}"
+        terms.append(("- " if c < 0 else "+ ") + body)
+    text = " ".join(terms) or "0"
+    return text[2:] if text.startswith("+ ") else "-" + text[2:]
+
+
+def _decimal(q: sp.Rational) -> str:
+    """A terminating decimal as written (``0.125``), else ``p/q``."""
+    p, d = int(q.p), int(q.q)
+    k = 0
+    while 10**k % d and k < 60:
+        k += 1
+    if 10**k % d:
+        return f"{p}/{d}"
+    digits = str(abs(p) * (10**k // d)).rjust(k + 1, "0")
+    text = digits if k == 0 else digits[:-k] + "." + digits[-k:]
+    return ("-" if p < 0 else "") + text
 
 
 # -- bivariate polynomials ---------------------------------------------------------------------

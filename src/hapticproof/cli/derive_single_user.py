@@ -54,21 +54,26 @@ def add_design_options(parser: argparse.ArgumentParser, margin: bool = True) -> 
                         "b: b_min); repeatable")
 
 
-def design_answers(scene, args: argparse.Namespace, margin_wanted: bool) -> tuple[dict, list[str]]:
-    """The designer's answers asked for on the command line, as JSON data and text lines."""
+def design_answers(scene, args: argparse.Namespace, margin_wanted: bool) -> tuple[dict, list[str], list[tuple[str, str]]]:
+    """The designer's answers asked for on the command line: JSON data, text lines and LaTeX
+    displays (``(label, display)``, :func:`hapticproof.report.answers.answer_items`)."""
     from hapticproof.analysis.design import delay_margin, passive_range
+    from hapticproof.report.answers import answer_items
 
     data: dict = {}
     lines: list[str] = []
+    margin = None
+    ranges = []
     if margin_wanted:
         margin = delay_margin(scene, max_delay=getattr(args, "max_delay", 2000))
         data["delay_margin"] = margin.to_json()
         lines.append(margin.to_text())
     for name in args.range:
         rng = passive_range(scene, name)
+        ranges.append(rng)
         data.setdefault("passive_ranges", {})[name] = rng.to_json()
         lines.append(rng.to_text())
-    return data, lines
+    return data, lines, answer_items(margin, ranges, scene.role("period"))
 
 
 def run(args: argparse.Namespace) -> int:
@@ -93,7 +98,7 @@ def run(args: argparse.Namespace) -> int:
                                       "H_z": sp.sstr(model.H)}, "verdict": None})
     numeric_but_delay = model.delay.is_Symbol and not (model.parameters - {model.delay})
     summary = summarize_single_user(model, with_profile=args.profile)
-    extra, lines = design_answers(scene, args, args.delay_margin or numeric_but_delay)
+    extra, lines, answers = design_answers(scene, args, args.delay_margin or numeric_but_delay)
     if args.format == "json":
         out = summary.to_json()
         if scene.discretize is not None:
@@ -102,9 +107,7 @@ def run(args: argparse.Namespace) -> int:
         out.update(extra)
         text = json.dumps(out, indent=2)
     elif args.format == "latex":
-        text = summary.dumps("latex", fragment=args.fragment)
-        if lines:
-            text += "\n" + "\n".join("% " + line for block in lines for line in block.splitlines())
+        text = summary.dumps("latex", fragment=args.fragment, answers=answers)
     else:
         text = "\n".join(head + [summary.to_text(verbose=args.verbose)] + lines)
     write_output(args.output, text)

@@ -70,7 +70,7 @@ def run(args: argparse.Namespace) -> int:
     bd, wc = bounds(scene), worst_case(scene)
     decision = passivity(scene)
     conds = passivity_conditions(scene)
-    extra, lines = design_answers(spec, args, False)
+    extra, lines, answers = design_answers(spec, args, False)
     if args.format == "json":
         out = {"controller": sp.sstr(scene.C), "alpha": sp.sstr(scene.alpha), "bound_master": sp.sstr(bd.master),
                "bound_slave": sp.sstr(bd.slave), "sup_master": to_jsonable(wc.sup_master),
@@ -94,6 +94,7 @@ def run(args: argparse.Namespace) -> int:
         if wc.condition is not None:
             items.append(("worst case over frequency", tex.to_latex(wc.condition)))
         items.append(("error-coordinate damping (less conservative)", r"b_e = " + tex.to_latex(error_coordinate_damping(scene))))
+        items += answers
         if args.fragment:
             write_output(args.output, tex.derivation_fragment(items))
             return 0
