@@ -89,6 +89,15 @@ DERIVE = {
     "multi-user-uniform": ["derive", "multi-user", "--users", "3", "--uniform", "--delay", "2"],
     "teleoperator": ["derive", "teleoperator", "--controller", "filtered-pd", "--param", "a=1/2"],
     "network": ["derive", "network", "--matrix", "{matrix}"],
+    # the designer's answers as displays (issue 21): margins, ranges with rational and algebraic ends
+    "single-user-answers": ["derive", "single-user", "--environment", "K + B*(1-a)*(z-1)/(T*(z-a))", "--param",
+                            "B=0.005", "--param", "a=0.5", "--param", "T=0.001", "--param", "b=0.02", "--param",
+                            "K=2", "--delay", "2", "--range", "K", "--range", "b", "--delay-margin"],
+    "multi-user-answers": ["derive", "multi-user", "--users", "2", "--uniform", "--param", "b=0.02", "--param",
+                           "K_0=10", "--param", "K=5", "--param", "B_0=0", "--param", "B=0", "--param", "T=0.001",
+                           "--delay-margin", "--range", "K"],
+    "teleoperator-answers": ["derive", "teleoperator", "--param", "K=20", "--param", "B=0.01", "--param", "T=0.001",
+                             "--param", "b_s=0.05", "--range", "b_m"],
 }
 
 
@@ -110,8 +119,9 @@ def test_derive_latex_is_a_document_that_typesets(name, tmp_path, capsys, artefa
 
 @needs_tex
 def test_derive_fragments_compile_in_an_amsmath_paper(tmp_path, capsys):
-    body = "\n".join(_derive(DERIVE[name], tmp_path, capsys, "--fragment") for name in ("single-user", "teleoperator",
-                                                                                        "network", "multi-user"))
+    body = "\n".join(_derive(DERIVE[name], tmp_path, capsys, "--fragment")
+                     for name in ("single-user", "teleoperator", "network", "multi-user", "single-user-answers",
+                                  "multi-user-answers", "teleoperator-answers"))
     assert "\\documentclass" not in body
     paper = "\\documentclass{article}\n\\usepackage{amsmath,amssymb}\n\\begin{document}\n" + body + "\n\\end{document}\n"
     typeset(paper, "fragments", tmp_path)

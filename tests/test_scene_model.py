@@ -214,7 +214,7 @@ def test_delay_n_with_numbers_gives_the_margin(capsys):
 
 
 def test_passive_ranges_match_the_closed_forms():
-    from hapticproof.analysis.design import passive_range
+    from hapticproof.analysis.passiverange import passive_range
 
     wall = Scene("single-user", params={"b": "0.02", "B": "0.001", "T": "0.001", "K": 2})
     assert passive_range(wall.with_params(K=None), "K").maximum().value == R(38)            # 2(b - B)/T
@@ -230,7 +230,7 @@ def test_passive_ranges_match_the_closed_forms():
 def test_passive_range_against_a_frequency_grid():
     """An algebraic K_max (virtual mass on the wall): sampled inside and outside, checked by direct
     complex evaluation on a dense grid (far enough from the boundary for floating point)."""
-    from hapticproof.analysis.design import passive_range
+    from hapticproof.analysis.passiverange import passive_range
 
     scene = Scene("single-user", environment="K + B*(z-1)/(T*z) + M*(z-1)**2/(T**2*z**2)",
                   params={"K": 2, "B": "0.01", "T": "0.001", "b": "0.9"})

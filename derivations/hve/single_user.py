@@ -18,6 +18,7 @@ from hapticproof.analysis.positivereal import hermitian, residues, poles
 from hapticproof.exact.realroots import minimise_rational
 from hapticproof.systems.singleuser import SingleUserScene, virtual_wall
 from hapticproof.core.symbols import c as C
+from hapticproof.core.symbols import helper_definitions
 from hapticproof.exact.unitcircle import canonical_theta, omega_to_c
 from hapticproof.derivations.hve.paper import ASSUME, B, F_h, G_INV, K, PAPER, S_EXPR, T, V_h, X_h, b, exact_worst, in_c, k_idx, n, omega, pointwise_exact, scene, t_d, verify_pointwise, verify_worst_case, x_h, xdot_h
 
@@ -409,7 +410,8 @@ def eq23(ctx: AuditContext) -> Finding:
         return Finding(
             Verdict.WRONG,
             f"not the real part of (22): at n = 1 the printed expression is not a function of cos(omega T) alone "
-            f"({err}), which Re G^-1 is; it differs by {sp.sstr(as_intended)} in the canonical variables",
+            f"({err}), which Re G^-1 is; it differs by {sp.sstr(as_intended)} in the canonical variables"
+            f"{helper_definitions(as_intended)}",
             Evidence(Method.CANONICAL_FORM, facts=facts),
             derived=sp.Gt(derived.expr(omega * T).subs(n, t_d / T), 0),
             corrected=r"b + B\cos(\omega (t_d + T)) - \frac{KT}{2}\cos(\omega t_d) - KTS > 0",
@@ -427,7 +429,8 @@ def eq23(ctx: AuditContext) -> Finding:
     verdict = Verdict.WRONG if witness.verdict == Verdict.WRONG else (Verdict.TYPO if corrected_ok else witness.verdict)
     return Finding(
         verdict,
-        f"not the real part of (22) ({condition.op} 0): {slip}differs by {sp.sstr(as_intended)} in the canonical variables; {at_n1}",
+        f"not the real part of (22) ({condition.op} 0): {slip}differs by {sp.sstr(as_intended)} in the canonical variables"
+        f"{helper_definitions(as_intended)}; {at_n1}",
         Evidence(Method.COUNTEREXAMPLE, witness=witness.evidence.witness, facts=facts),
         derived=sp.Gt(derived.expr(omega * T).subs(n, t_d / T), 0),
         corrected=r"b + B\cos(\omega (t_d + T)) - \frac{KT}{2}\cos(\omega t_d) - KTS > 0",

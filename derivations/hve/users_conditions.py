@@ -129,12 +129,13 @@ def worst_choice_claim(ctx: AuditContext, m: int, condition_id: str, scene: Mult
             listing += f"; no choice printed for {', '.join(unchosen)} (the derived one is used)"
         if holds and not_pr(scene):
             return Finding(Verdict.WRONG,
-                           f"with the printed choices ({listing}) ({condition_id}) holds at the witness ({sp.sstr(at)}) while "
+                           f"with the printed choices ({listing}) ({condition_id}) holds at the witness while "
                            "the exact decision shows G^-1 is not PR (M(c) decreases in the Loewner order as the couplings "
                            "grow and increases with b)",
                            Evidence(Method.COUNTEREXAMPLE, witness=witness_json(scene), facts=facts), corrected=corrected)
         return Finding(Verdict.WRONG, f"the printed choices are not the worst case ({listing}); the witness scene does not "
-                       f"separate them ({condition_id} at the witness: {sp.sstr(at)})",
+                       f"separate them ({condition_id} "
+                       f"{'holds' if holds else 'fails' if holds is not None else 'reads ' + sp.sstr(at)} at the witness)",
                        Evidence(Method.STRUCTURAL, facts=facts), corrected=corrected)
     return Finding(Verdict.CONFIRMED, f"the printed choices {printed_choices} are the worst case at c = {c_star} "
                    "(Loewner order of M(c))", Evidence(Method.STRUCTURAL, facts=facts))

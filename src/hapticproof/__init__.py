@@ -46,7 +46,7 @@ _PUBLIC = {
     "inverse_transfer_system": "hapticproof.systems.lti",
     "hermitian_system": "hapticproof.systems.lti",
     "delay_margin": "hapticproof.analysis.design",
-    "passive_range": "hapticproof.analysis.design",
+    "passive_range": "hapticproof.analysis.passiverange",
     "check_certificate": "hapticproof.exact.checker",
     "check_report": "hapticproof.exact.checker",
     "audit_paper": "hapticproof.audit.runner",

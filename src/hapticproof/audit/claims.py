@@ -27,7 +27,7 @@ when only sampling agrees.
     a closed form; for a virtual-wall-like path ``R/(z-1) + F_0`` and any delay ``n`` (also
     symbolic) the Dirichlet-kernel bounds ``a >= R(n + 1/2) - F_0(1)`` (necessary) and ``a >=
     R(n + 1/2) + max|F_0|`` (sufficient), exact when ``F_0 = 0``; otherwise exact decisions on
-    numeric instances (exact passive ranges, :func:`hapticproof.analysis.design.passive_range`).
+    numeric instances (exact passive ranges, :func:`hapticproof.analysis.passiverange.passive_range`).
     Compared as bounds on one parameter (:func:`hapticproof.audit.compare.compare_bounds`: equal is
     ``confirmed``, a provably larger bound ``conservative``, a smaller one ``wrong`` with a
     witness re-checked by the exact decision). ``assumption = "B = 0"``: a condition that fails

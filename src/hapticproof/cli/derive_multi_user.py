@@ -23,7 +23,8 @@ from typing import Any
 import sympy as sp
 
 from hapticproof.report import latex as tex
-from hapticproof.cli.common import add_output_option, add_scene_options, check_output, scene_from_args, write_output
+from hapticproof.report.readable import tidy
+from hapticproof.cli.common import add_output_option, build_model, add_scene_options, check_output, scene_from_args, write_output
 from hapticproof.cli.derive_single_user import add_design_options, design_answers
 from hapticproof.core.errors import InputFormatError
 from hapticproof.core.evidence import to_jsonable
@@ -31,6 +32,8 @@ from hapticproof.core.evidence import to_jsonable
 __all__ = ["register", "build_scene", "derive"]
 
 COS = r"\cos(\omega T)"
+#: ``sin(omega T)`` in the imaginary parts of M(c) (unequal delays), defined where it is printed.
+SIN_THETA = sp.Symbol("s_theta", real=True)
 GROUPS = {"b": "b", "K_0": "K0", "B_0": "B0", "z_a": "z_a", "K": "K", "B": "B"}
 
 
@@ -83,7 +86,7 @@ def derive(scene: Any, minors: str = "auto", full: bool = False) -> dict[str, An
 
     if by_modes(scene) and not full:
         return derive_by_modes(scene, minors)
-    G = inverse_transfer_matrix(scene)
+    G = inverse_transfer_matrix(scene).applyfunc(tidy)
     (res,) = [r for r in residues(scene) if r.pole == 1] or [None]
     H = hermitian(scene)
     show_minors = minors == "all" or (minors == "auto" and scene.users <= 3)
@@ -96,10 +99,11 @@ def derive(scene: Any, minors: str = "auto", full: bool = False) -> dict[str, An
         "G_inverse": G,
         "residue_at_1": res.matrix if res is not None else None,
         "residue_condition": res.outcome.reason if res is not None else "no pole on |z| = 1",
-        "hermitian_part": H.matrix(sp.Symbol("s_theta")),
+        "hermitian_part": H.matrix(SIN_THETA).applyfunc(tidy),
         "hermitian_is_real": H.is_symmetric,
         "worst_case_method": wc.method,
         "worst_case_condition": wc.condition,
+        "worst_case_reason": wc.outcome.reason,
         "worst_c": wc.minimiser,
         "conditions": conditions(scene),
         "verdict": positive_real(scene).decision.value,
@@ -155,7 +159,7 @@ def derive_by_modes(scene: Any, minors: str = "auto") -> dict[str, Any]:
 
 
 def _modes_text(data: dict[str, Any], verbose: bool = False) -> str:
-    from hapticproof.report.readable import brief
+    from hapticproof.report.readable import brief, witness_text
 
     graph = {"complete": "complete graph", "path": "path", "ring": "ring (circulant)", "star": "star"}.get(data["graph"], "graph")
     lines = [f"system:            {data['users']}-user HVE ({data['approximation']} difference, delay {data['delays'][0]}, "
@@ -168,14 +172,13 @@ def _modes_text(data: dict[str, Any], verbose: bool = False) -> str:
         lines.append(f"mode lambda = {sp.sstr(md['eigenvalue'])}: g(z) = {brief(md['g'], verbose=verbose)}")
     lines.append("Re g_lambda and the residues T(K_0 + lambda K) are affine in lambda: the modes lambda = 0 and "
                  "lambda_max decide")
-    lines.append(f"worst case ({data['worst_case_method']}): {sp.sstr(data['worst_case_condition'])}"
-                 + (f"   at c = {data['worst_c']}" if data["worst_c"] is not None else ""))
+    lines.append(_worst_case_text(data, verbose))
     lines.append("conditions:")
     width = max(len(c.name) for c in data["conditions"])
     lines += [f"  {c.name.ljust(width)}  {c.decision.value:<9}  {c.outcome.reason}" for c in data["conditions"]]
     lines.append(f"verdict:           {data['verdict']}  ({data['reason']})")
     if data["witness"] and data["verdict"] == "disproved":
-        lines.append("witness:           " + ", ".join(f"{k} = {v}" for k, v in data["witness"].items()))
+        lines.append("witness:           " + witness_text(data["witness"]))
     lines += [f"not computed:      {why} [{how} computes it]" for why, how in data["skipped"].values()]
     return "\n".join(lines)
 
@@ -188,8 +191,35 @@ def _modes_latex_items(data: dict[str, Any]) -> list[tuple[str, str]]:
     return items
 
 
-def _text(data: dict[str, Any], verbose: bool = False) -> str:
+def _worst_case_text(data: dict[str, Any], verbose: bool) -> str:
+    """The worst case over frequency in words: a condition on the parameters, or (numbers) whether
+    M(c) is PSD for every c -- never a bare True/False/None."""
     from hapticproof.report.readable import brief
+
+    condition = data["worst_case_condition"]
+    where = f" (worst at c = {data['worst_c']})" if data["worst_c"] is not None else ""
+    if condition is sp.true or condition is True:
+        text = "M(c) is PSD for every c in [-1, 1]" + where
+    elif condition is sp.false or condition is False:
+        text = "M(c) is not PSD for every c" + (f": fails at c = {data['worst_c']}" if data["worst_c"] is not None else "")
+    elif condition is None:
+        text = f"no closed form ({data.get('worst_case_reason', 'see the conditions')}); the conditions below decide"
+    else:
+        text = f"M(c) is PSD for every c iff {brief(condition, verbose=verbose)}" + where
+    method = "" if data["worst_case_method"] in (None, "none") else f" ({data['worst_case_method']})"
+    return f"worst case{method}: {text}"
+
+
+def _rows(label: str, matrix: Any, verbose: bool) -> list[str]:
+    from hapticproof.report.readable import brief
+
+    if matrix is None:
+        return [f"{label} none"]
+    return [label] + [f"  row {i + 1}: {brief(list(row), verbose=verbose)}" for i, row in enumerate(matrix.tolist())]
+
+
+def _text(data: dict[str, Any], verbose: bool = False) -> str:
+    from hapticproof.report.readable import brief, witness_text
 
     if data.get("by_modes"):
         return _modes_text(data, verbose)
@@ -197,17 +227,15 @@ def _text(data: dict[str, Any], verbose: bool = False) -> str:
     lines = [
         f"system:            {data['users']}-user HVE ({data['approximation']} difference, delays {data['delays']}, "
         f"edges {data['edges']})",
-        "G^-1(z):",
-        *(f"  row {i + 1}: {brief(list(row), verbose=verbose)}" for i, row in enumerate(data["G_inverse"].tolist())),
-        f"residue at z = 1:  {sp.sstr(data['residue_at_1'])}  [{data['residue_condition']}]",
-        f"M(c) = G^-1 + G^-H on |z| = 1 (c = cos wT{'' if data['hermitian_is_real'] else ', s_theta = sin wT'}):",
+        *_rows("G^-1(z):", data["G_inverse"], verbose),
+        *_rows(f"residue matrix at z = 1 [{data['residue_condition']}]:", data["residue_at_1"], verbose),
+        f"M(c) = G^-1 + G^-H on |z| = 1 (c = cos wT{'' if data['hermitian_is_real'] else '; s_theta = sin wT'}):",
         *(f"  row {i + 1}: {brief(list(row), verbose=verbose)}" for i, row in enumerate(data["hermitian_part"].tolist())),
     ]
     if "principal_minors" in data:
         lines.append("principal minors (all of them):")
         lines += [f"  {k}: {brief(v, verbose=verbose)}" for k, v in data["principal_minors"].items()]
-    lines.append(f"worst case ({data['worst_case_method']}): {sp.sstr(data['worst_case_condition'])}"
-                 + (f"   at c = {data['worst_c']}" if data["worst_c"] is not None else ""))
+    lines.append(_worst_case_text(data, verbose))
     if "sufficient_condition" in data:
         lines.append(f"sufficient (any graph, Loewner): {sp.sstr(data['sufficient_condition'])}")
     lines.append("conditions:")
@@ -215,18 +243,20 @@ def _text(data: dict[str, Any], verbose: bool = False) -> str:
     lines += [f"  {c.name.ljust(width)}  {c.decision.value:<9}  {c.outcome.reason}" for c in data["conditions"]]
     lines.append(f"verdict:           {data['verdict']}  ({data['reason']})")
     if data["witness"] and data["verdict"] == "disproved":
-        lines.append("witness:           " + ", ".join(f"{k} = {v}" for k, v in data["witness"].items()))
+        lines.append("witness:           " + witness_text(data["witness"]))
     return "\n".join(lines)
 
 
 def _matrix_items(label: str, name: str, matrix: sp.Matrix, cos_name: str | None = None) -> list[tuple[str, str]]:
     """A matrix as one display, or entry by entry (upper triangle when symmetric) when it
     is too long to read as one."""
-    whole = tex.to_latex(matrix, cos_name=cos_name)
+    names = {SIN_THETA: r"\sin(\omega T)"}
+    whole = tex.to_latex(matrix, names=names, cos_name=cos_name)
     if len(whole) <= 600:
         return [(label, f"{name} = " + whole)]
     symmetric = matrix.is_symmetric()
-    return [(f"{label}, entry ({i + 1}, {j + 1})", f"{name}_{{{i + 1}{j + 1}}} = " + tex.to_latex(matrix[i, j], cos_name=cos_name))
+    return [(f"{label}, entry ({i + 1}, {j + 1})", f"{name}_{{{i + 1}{j + 1}}} = " + tex.to_latex(matrix[i, j], names=names,
+                                                                                                cos_name=cos_name))
             for i in range(matrix.rows) for j in range(matrix.cols) if not symmetric or j >= i]
 
 
@@ -237,19 +267,28 @@ def _latex_items(data: dict[str, Any]) -> list[tuple[str, str]]:
     items = _matrix_items("inverse transfer matrix", r"G^{-1}(z)", data["G_inverse"])
     if data["residue_at_1"] is not None:
         items += _matrix_items("residue matrix at z = 1", "R_0", data["residue_at_1"])
-    items += _matrix_items("Hermitian part on the unit circle", "M", data["hermitian_part"], COS)
+    items += _matrix_items("Hermitian part on the unit circle" + ("" if data["hermitian_is_real"] else
+                                                                  " (s_theta = sin(omega T))"),
+                           "M", data["hermitian_part"], COS)
     for k, v in data.get("principal_minors", {}).items():
         items.append((f"principal minor {k}", r"\Delta_{" + "".join(map(str, k)) + "} = " + tex.to_latex(v, cos_name=COS)))
-    if data["worst_case_condition"] not in (None, sp.true, sp.false):
-        items.append((f"worst case over frequency ({data['worst_case_method']})", tex.to_latex(data["worst_case_condition"])))
+    condition = data["worst_case_condition"]
+    if condition not in (None, sp.true, sp.false, True, False):
+        items.append((f"worst case over frequency ({data['worst_case_method']})", tex.to_latex(condition)))
+    elif condition in (sp.true, True, sp.false, False):
+        at = (r" \ \text{at } c = " + tex.to_latex(sp.sympify(data["worst_c"]))) if data["worst_c"] is not None else ""
+        shown = (r"M(c) \succeq 0 \text{ for every } c \in [-1, 1]" if condition in (sp.true, True)
+                 else r"M(c) \not\succeq 0") + at
+        items.append((f"worst case over frequency ({data['worst_case_method']})", shown))
     if "sufficient_condition" in data:
         items.append(("sufficient condition (any graph, Loewner order)", tex.to_latex(data["sufficient_condition"])))
     return items
 
 
-def _latex(data: dict[str, Any], fragment: bool = False) -> str:
-    """A complete document (or, with ``fragment``, the amsmath displays alone)."""
-    items = _latex_items(data)
+def _latex(data: dict[str, Any], fragment: bool = False, answers: list[tuple[str, str]] = ()) -> str:
+    """A complete document (or, with ``fragment``, the amsmath displays alone); ``answers`` are
+    the displays of the delay margin and passive ranges asked for."""
+    items = _latex_items(data) + list(answers)
     if fragment:
         return tex.derivation_fragment(items)
     if data.get("by_modes"):
@@ -262,7 +301,9 @@ def _latex(data: dict[str, Any], fragment: bool = False) -> str:
                                 f"edges {data['edges']}.")
         notes = [("verdict", f"{data['verdict']} ({data['reason']})"), ("residue condition", str(data["residue_condition"]))]
     if data["witness"]:
-        notes.append(("witness", ", ".join(f"{k} = {v}" for k, v in to_jsonable(data["witness"]).items())))
+        from hapticproof.report.readable import witness_text
+
+        notes.append(("witness", witness_text(data["witness"])))
     return tex.derivation_document(f"hapticproof derive multi-user ({data['users']} users)", items, notes, intro=intro)
 
 
@@ -274,9 +315,9 @@ def run(args: argparse.Namespace) -> int:
     if args.max_delay < 0 or not args.deadline > 0:
         raise InputFormatError("--max-delay must be >= 0 and --deadline a positive number of seconds")
     spec = scene_from_args(args, "multi-user")
-    scene = spec.build()
+    scene = build_model(spec, args)
     data = derive(scene, args.minors, full=args.full)
-    extra, lines = design_answers(spec, args, args.delay_margin)
+    extra, lines, answers = design_answers(spec, args, args.delay_margin)
     if fmt == "json":
         shown = {k: ([c.to_json() for c in v] if k == "conditions" else v) for k, v in data.items()}
         if "skipped" in shown:
@@ -285,7 +326,7 @@ def run(args: argparse.Namespace) -> int:
         out.update(extra)
         text = json.dumps(out, indent=2)
     elif fmt == "latex":
-        text = _latex(data, args.fragment)
+        text = _latex(data, args.fragment, answers)
     else:
         text = "\n".join([_text(data, args.verbose)] + lines)
     write_output(args.output, text)

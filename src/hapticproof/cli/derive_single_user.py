@@ -15,7 +15,7 @@ import json
 
 import sympy as sp
 
-from hapticproof.cli.common import add_output_option, add_scene_options, check_output, scene_from_args, write_output
+from hapticproof.cli.common import add_output_option, build_model, add_scene_options, check_output, refuse, scene_from_args, write_output
 from hapticproof.core.errors import InputFormatError
 
 __all__ = ["register", "run", "add_design_options", "design_answers"]
@@ -60,12 +60,17 @@ def add_design_options(parser: argparse.ArgumentParser, margin: bool = True) -> 
                         "b: b_min); repeatable")
 
 
-def design_answers(scene, args: argparse.Namespace, margin_wanted: bool) -> tuple[dict, list[str]]:
-    """The designer's answers asked for on the command line, as JSON data and text lines."""
-    from hapticproof.analysis.design import delay_margin, passive_range
+def design_answers(scene, args: argparse.Namespace, margin_wanted: bool) -> tuple[dict, list[str], list[tuple[str, str]]]:
+    """The designer's answers asked for on the command line: JSON data, text lines and LaTeX
+    displays (``(label, display)``, :func:`hapticproof.report.answers.answer_items`)."""
+    from hapticproof.analysis.design import delay_margin
+    from hapticproof.analysis.passiverange import passive_range
+    from hapticproof.report.answers import answer_items
 
     data: dict = {}
     lines: list[str] = []
+    margin = None
+    ranges = []
     if margin_wanted:
         import sys
 
@@ -80,9 +85,10 @@ def design_answers(scene, args: argparse.Namespace, margin_wanted: bool) -> tupl
         lines.append(margin.to_text())
     for name in args.range:
         rng = passive_range(scene, name)
+        ranges.append(rng)
         data.setdefault("passive_ranges", {})[name] = rng.to_json()
         lines.append(rng.to_text())
-    return data, lines
+    return data, lines, answer_items(margin, ranges, scene.role("period"))
 
 
 def run(args: argparse.Namespace) -> int:
@@ -97,19 +103,19 @@ def run(args: argparse.Namespace) -> int:
     if not getattr(args, "deadline", 1.0) > 0:
         raise InputFormatError("--deadline must be a positive number of seconds")
     scene = scene_from_args(args, "single-user")
-    model = scene.build()
+    model = build_model(scene, args)
     head: list[str] = []
     if scene.discretize is not None:
         head.append(f"H(s) = {sp.sstr(scene.environment)}  ->  {scene.discretize}: H(z) = {sp.sstr(model.H)}")
     if not is_rational(model.H):
-        head.append("H(z) has transcendental coefficients (e^{pT} of the exact " + str(scene.discretize) +
-                    " map): an exact decision needs rational coefficients; use forward, backward or tustin, or "
-                    "give the discrete H(z) with rounded poles")
-        write_output(args.output, "\n".join(head))
-        return 0
+        refuse(args, f"{scene.discretize}: H(z) = {sp.sstr(model.H)} has transcendental coefficients (e^(pT) of the "
+               "exact map): an exact decision needs rational coefficients; use forward, backward or tustin, or give "
+               "the discrete H(z) with rounded poles",
+               {"continuous_design": {"H_s": sp.sstr(scene.environment), "discretize": scene.discretize,
+                                      "H_z": sp.sstr(model.H)}, "verdict": None})
     numeric_but_delay = model.delay.is_Symbol and not (model.parameters - {model.delay})
     summary = summarize_single_user(model, with_profile=args.profile, full=args.full)
-    extra, lines = design_answers(scene, args, args.delay_margin or numeric_but_delay)
+    extra, lines, answers = design_answers(scene, args, args.delay_margin or numeric_but_delay)
     if args.format == "json":
         out = summary.to_json()
         if scene.discretize is not None:
@@ -118,9 +124,7 @@ def run(args: argparse.Namespace) -> int:
         out.update(extra)
         text = json.dumps(out, indent=2)
     elif args.format == "latex":
-        text = summary.dumps("latex", fragment=args.fragment)
-        if lines:
-            text += "\n" + "\n".join("% " + line for block in lines for line in block.splitlines())
+        text = summary.dumps("latex", fragment=args.fragment, answers=answers)
     else:
         text = "\n".join(head + [summary.to_text(verbose=args.verbose)] + lines)
     write_output(args.output, text)

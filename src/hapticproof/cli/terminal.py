@@ -106,4 +106,4 @@ def summary_line(counts: Mapping[str, int], colour: bool = False, papers: int | 
             parts.append(f"{word} {counts[verdict]}")
     where = f" in {papers} paper{'s' if papers != 1 else ''}" if papers is not None else ""
     took = f" ({seconds:.1f} s)" if seconds is not None else ""
-    return f"{total} equations{where}{took}: " + ", ".join(parts)
+    return f"{total} equation{'s' if total != 1 else ''}{where}{took}: " + ", ".join(parts)

@@ -71,6 +71,8 @@ def to_latex(
     if isinstance(obj, str):
         return obj
     obj = sp.sympify(obj)
+    if obj is sp.true or obj is sp.false:       # a condition that holds identically (or never): words, not True
+        return r"\text{holds for every value}" if obj is sp.true else r"\text{holds for no value}"
     symbol_map: dict[sp.Symbol, str] = {}
     for symbol in obj.free_symbols if hasattr(obj, "free_symbols") else ():
         if isinstance(symbol, sp.Symbol):

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import sympy as sp
 
-__all__ = ["z", "s", "c", "x", "omega", "theta", "n", "j", "sin_theta", "cos_n", "sin_n"]
+__all__ = ["z", "s", "c", "x", "omega", "theta", "n", "j", "sin_theta", "cos_n", "sin_n", "HELPERS", "helper_definitions"]
 
 #: Complex frequency variable of discrete-time transfer functions.
 z = sp.Symbol("z")
@@ -36,3 +36,18 @@ sin_theta = sp.Symbol("s_theta", real=True)
 #: ``cos(n*theta)`` and ``sin(n*theta)`` for a symbolic delay ``n`` (theta-forms).
 cos_n = sp.Symbol("C_n", real=True)
 sin_n = sp.Symbol("S_n", real=True)
+
+#: What each helper symbol of the canonical forms stands for (text output defines those it uses).
+HELPERS: dict[str, str] = {"c": "cos wT", "s_theta": "sin wT", "C_n": "cos(n wT)", "S_n": "sin(n wT)", "theta": "wT"}
+
+
+def helper_definitions(expr) -> str:
+    """`` (s_theta = sin wT, S_n = sin(n wT))``: the helper symbols ``expr`` uses, defined (empty
+    when it uses none), to follow a printed expression.
+
+    >>> helper_definitions(2*sin_n*sin_theta + c)
+    ' (c = cos wT, s_theta = sin wT, S_n = sin(n wT))'
+    """
+    names = {s.name for s in getattr(sp.sympify(expr), "free_symbols", ())}
+    used = [f"{name} = {meaning}" for name, meaning in HELPERS.items() if name in names]
+    return f" ({', '.join(used)})" if used else ""

@@ -396,7 +396,8 @@ def report_fragment(reports: Iterable[Any], timings: bool = True, title: str | N
     chips = "".join(f'<a class="hp-badge hp-{v.value}" href="#verdict-{v.value}">{v.value} <b>{len(items)}</b></a>'
                     for v, items in counts.items() if items)
     out = [f'<div class="hp-report">{_STYLE}<header class="hp-top"><h1>{escape(title)}</h1>',
-           f'<p class="hp-meta">{total} equations in {len(reports)} paper{"s" if len(reports) != 1 else ""} '
+           f'<p class="hp-meta">{total} equation{"s" if total != 1 else ""} in {len(reports)} '
+           f'paper{"s" if len(reports) != 1 else ""} '
            f"&middot; hapticproof {escape(VERSION)}</p>",
            f'<nav class="hp-summary" aria-label="counts per verdict">{chips}</nav></header>',
            '<section class="hp-index"><h2>Index by verdict</h2>']

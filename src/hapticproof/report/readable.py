@@ -14,6 +14,7 @@ print as numbers: exact rationals as ``p/q``, certified balls as decimals, ``oo`
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 import flint
@@ -21,7 +22,7 @@ import sympy as sp
 
 from hapticproof.exact.unitcircle import CRational
 
-__all__ = ["brief", "number", "full_text", "poly_text", "LIMIT"]
+__all__ = ["brief", "number", "full_text", "poly_text", "tidy", "plural", "witness_text", "LIMIT"]
 
 #: Characters up to which an expression is printed in full in text output.
 LIMIT = 400
@@ -98,9 +99,75 @@ def _summary(expr: Any, text: str | None) -> str:
             "[full text: --verbose or --format json]")
 
 
+def plural(count: int, word: str, many: str | None = None) -> str:
+    """``1 equation``, ``2 equations``.
+
+    >>> plural(1, "equation"), plural(3, "equation"), plural(2, "matrix", "matrices")
+    ('1 equation', '3 equations', '2 matrices')
+    """
+    return f"{count} {word if count == 1 else (many or word + 's')}"
+
+
+def tidy(expr: Any) -> Any:
+    """An exact expression in a readable normal form: a polynomial expanded with its rationals
+    reduced (no common power-of-two scale left over from the exact arithmetic), the imaginary
+    part collected behind ``I``, a rational function as one fraction.
+
+    >>> s_theta, B, c = sp.symbols("s_theta B c")
+    >>> tidy(2*B*c + sp.I*s_theta*(8192*B*c - 4096*B)/4096)
+    2*B*c + I*s_theta*(2*B*c - B)
+    """
+    expr = sp.sympify(expr)
+    if not isinstance(expr, sp.Expr) or not expr.free_symbols:
+        return expr
+    expanded = sp.expand(expr)
+    real, imag = expanded.as_independent(sp.I, as_Add=True)
+    imag = sp.expand(imag / sp.I) if imag != 0 else sp.Integer(0)
+
+    def one(part: sp.Expr) -> sp.Expr:
+        num, den = sp.fraction(sp.cancel(sp.together(part)))
+        if not den.free_symbols:
+            return sp.expand(part)
+        return sp.Mul(sp.expand(num), sp.Pow(sp.expand(den), -1), evaluate=False)
+
+    real = one(real)
+    if imag == 0:
+        return real
+    helpers = sorted((s for s in imag.free_symbols if s.name in ("s_theta", "S_n")), key=str)
+    imag = sp.collect(one(imag), helpers) if helpers else one(imag)
+    return real + sp.I * imag
+
+
+def witness_text(witness: Any) -> str:
+    """A witness as ``name = value`` pairs: a point ``z`` as ``x + j*y``, numbers by :func:`number`.
+
+    >>> witness_text({"c": "-3/5", "z": ["-3/5", "4/5"], "omega_T": "2*atan(2)"})
+    'c = -3/5, z = -3/5 + j*4/5, omega_T = 2*atan(2)'
+    """
+    out = []
+    for key, value in dict(witness).items():
+        if isinstance(value, (list, tuple)) and len(value) == 2:
+            re, im = (str(v) for v in value)
+            shown = f"{re} - j*{im[1:]}" if im.startswith("-") else f"{re} + j*{im}"
+        elif isinstance(value, (list, tuple)):
+            shown = "(" + ", ".join(str(v) for v in value) + ")"
+        else:
+            try:
+                shown = number(sp.Rational(str(value))) if "/" in str(value) or str(value).lstrip("-").isdigit() else str(value)
+            except (TypeError, ValueError):
+                shown = str(value)
+        out.append(f"{key} = {shown}")
+    return ", ".join(out)
+
+
 def number(value: Any, digits: int = 15) -> str:
-    """A number for text output: exact rationals exactly, other exact numbers with a decimal,
-    arb balls as decimals, infinity in words."""
+    """A number for text output: exact rationals exactly (a huge power-of-two denominator from a
+    certified enclosure as a decimal, with the exact value after it), other exact numbers with a
+    decimal, arb balls as decimals, infinity in words.
+
+    >>> number(sp.Rational(805306367, 2**30))
+    '0.749999999068677 (exactly 805306367/2**30)'
+    """
     if value is None:
         return "none"
     if isinstance(value, flint.arb):
@@ -113,6 +180,9 @@ def number(value: Any, digits: int = 15) -> str:
     if value == -sp.oo:
         return "-oo"
     if value.is_Rational:
+        q = int(value.q)
+        if q >= 2**20 and q & (q - 1) == 0:
+            return f"{sp.N(value, digits)} (exactly {value.p}/2**{q.bit_length() - 1})"
         return str(value)
     if value.is_number:
         return f"{sp.sstr(value)} ~ {sp.N(value, digits)}"
@@ -122,19 +192,52 @@ def number(value: Any, digits: int = 15) -> str:
 
 
 def full_text(value: Any) -> str:
-    """Full text of an expression; a numeric c-form is written from its flint coefficients."""
+    """Full text of an expression; a numeric c-form is written from its flint coefficients, as
+    one polynomial when its denominator is a constant (``c/1000 + 19/1000``) and otherwise as a
+    ratio of integer polynomials with no common content (``(3*c + 1)/(2*c - 2)``).
+
+    >>> from hapticproof.exact.unitcircle import CRational
+    >>> full_text(CRational(flint.fmpq_poly([flint.fmpq(19, 500), flint.fmpq(1, 500)]), flint.fmpq_poly([2])))
+    'c/1000 + 19/1000'
+    """
     if isinstance(value, CRational) and value.is_numeric:
-        num = poly_text(value.num, str(value.var))
-        return num if value.den.degree() == 0 and value.den.coeffs()[0] == 1 else f"({num})/({poly_text(value.den, str(value.var))})"
+        var = str(value.var)
+        num, den = flint.fmpq_poly(value.num), flint.fmpq_poly(value.den)
+        if den.degree() <= 0:
+            return poly_text(num / den.coeffs()[0], var)
+        scale = 1
+        for a in num.coeffs() + den.coeffs():
+            scale = scale * int(a.q) // math.gcd(scale, int(a.q))
+        num, den = num * scale, den * scale
+        content = 0
+        for a in num.coeffs() + den.coeffs():
+            content = math.gcd(content, int(a.p))
+        sign = -1 if den.coeffs()[-1] < 0 else 1
+        num, den = num * flint.fmpq(sign, content or 1), den * flint.fmpq(sign, content or 1)
+        return f"({poly_text(num, var)})/({poly_text(den, var)})"
     return sp.sstr(value)
 
 
 def poly_text(p: Any, var: str) -> str:
-    """A flint polynomial as text in ``var``, highest power first (``3*c**2 - 1/2*c + 1``)."""
+    """A flint polynomial as text in ``var``, highest power first, in SymPy's style
+    (``3*c**2 - c/2 + 1``).
+
+    >>> poly_text(flint.fmpq_poly([1, flint.fmpq(-1, 2), 3]), "c")
+    '3*c**2 - c/2 + 1'
+    """
     terms = []
     for k, a in enumerate(p.coeffs()):
         if a == 0:
             continue
-        coeff = str(a.p) if a.q == 1 else f"{a.p}/{a.q}"
-        terms.append(coeff if k == 0 else f"{coeff}*{var}" + (f"**{k}" if k > 1 else ""))
-    return " + ".join(reversed(terms)).replace("+ -", "- ") or "0"
+        num, den = abs(int(a.p)), int(a.q)
+        power = "" if k == 0 else var if k == 1 else f"{var}**{k}"
+        if not power:
+            body = str(num) if den == 1 else f"{num}/{den}"
+        else:
+            body = (power if num == 1 else f"{num}*{power}") + ("" if den == 1 else f"/{den}")
+        terms.append(("-" if a < 0 else "+", body))
+    if not terms:
+        return "0"
+    terms.reverse()
+    text = ("-" if terms[0][0] == "-" else "") + terms[0][1]
+    return text + "".join(f" {sign} {body}" for sign, body in terms[1:])

@@ -13,6 +13,7 @@
 from __future__ import annotations
 
 import json
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -22,7 +23,7 @@ from hapticproof.report import latex as tex
 from hapticproof.core.evidence import Decision, to_jsonable
 from hapticproof.core.lazy import profile
 from hapticproof.core.notation import shorten_numbers
-from hapticproof.report.readable import brief, full_text
+from hapticproof.report.readable import brief, full_text, witness_text
 from hapticproof.systems.models import inverse_transfer
 from hapticproof.exact.conditions import Condition
 from hapticproof.analysis.positivereal import (SYMBOLIC_CFORM_LIMIT, conditions, hermitian, poles, positive_real, residues,
@@ -81,10 +82,14 @@ class SceneSummary:
         return to_jsonable(out)
 
     def to_text(self, verbose: bool = False) -> str:
+        theta = isinstance(self.hermitian_part, sp.Basic) and any(s.name == "theta" for s in self.hermitian_part.free_symbols)
         lines = [
-            f"system:          {self.system} ({self.approximation} difference, delay n = {self.delay})",
+            f"system:          {self.system} ({self.approximation} difference, "
+            + ("symbolic delay n = t_d/T" if isinstance(self.delay, sp.Symbol) else f"delay n = {self.delay}") + ")",
             f"G^-1(z)          = {brief(self.G_inverse, verbose=verbose)}",
-            f"Re G^-1 (c = cos wT) = {brief(self.hermitian_part, verbose=verbose) if self.hermitian_part is not None else _skipped_text(self, 'hermitian_part')}",
+            ("Re G^-1 (theta = wT, for every integer n) = " if theta else "Re G^-1 (c = cos wT) = ")
+            + (brief(self.hermitian_part, verbose=verbose) if self.hermitian_part is not None
+               else _skipped_text(self, "hermitian_part")),
             "poles:           " + ", ".join(f"z = {p.value} ({p.location}{'' if p.multiplicity == 1 else f', x{p.multiplicity}' if p.multiplicity > 0 else ', multiplicity n+...'})" for p in self.poles),
             "residues:        " + (", ".join(f"Res(z = {r.pole}) = {sp.sstr(r.residue)} [{r.outcome.reason}]" for r in self.residues) or "none on |z| = 1"),
             f"worst case:      {brief(self.worst_case, verbose=verbose) if self.worst_case not in (None, sp.true, sp.false) else _minimum_text(self)}",
@@ -95,7 +100,7 @@ class SceneSummary:
             lines.append(f"  {cond.name.ljust(width)}  {cond.decision.value:<9}  {shorten_numbers(cond.outcome.reason, verbose=verbose)}")
         lines.append(f"verdict:         {self.verdict}  ({shorten_numbers(self.reason, verbose=verbose)})")
         if self.witness:
-            lines.append("witness:         " + ", ".join(f"{k} = {_show(v)}" for k, v in self.witness.items()))
+            lines.append("witness:         " + witness_text(self.witness))
         if self.stages:
             lines.append("stages (s):      " + ", ".join(f"{k} {v:.4f}" for k, v in self.stages.items()))
         return "\n".join(lines)
@@ -119,9 +124,11 @@ class SceneSummary:
         rows = [lhs + " &" + (rhs if rhs.startswith("=") else " " + rhs) for _, lhs, rhs in self.latex_rows()]
         return "\\begin{aligned}\n" + " \\\\\n".join(rows) + "\n\\end{aligned}"
 
-    def latex_document(self) -> str:
-        """A complete LaTeX document: the scene, the labelled derived displays, the decision."""
+    def latex_document(self, answers: Sequence[tuple[str, str]] = ()) -> str:
+        """A complete LaTeX document: the scene, the labelled derived displays, the answers asked
+        for (``(label, display)``: the delay margin, passive ranges), the decision."""
         items = [(label, lhs + (" " if rhs.startswith("=") else " ") + rhs) for label, lhs, rhs in self.latex_rows()]
+        items += list(answers)
         notes = [("verdict", f"{self.verdict} ({self.reason})")]
         notes += [(f"not computed: {name.replace('_', ' ')}", f"{why} ({how} computes it)") for name, (why, how) in self.skipped.items()]
         if self.witness is not None:
@@ -137,12 +144,16 @@ class SceneSummary:
     def __repr__(self) -> str:  # short and free of timings (notebooks compare it)
         return f"SceneSummary({self.system}, {self.approximation}, delay {self.delay}: {self.verdict})"
 
-    def dumps(self, fmt: str, fragment: bool = False, verbose: bool = False) -> str:
-        """``json``, ``latex`` (a complete document; ``fragment``: one amsmath display) or text."""
+    def dumps(self, fmt: str, fragment: bool = False, verbose: bool = False,
+              answers: Sequence[tuple[str, str]] = ()) -> str:
+        """``json``, ``latex`` (a complete document; ``fragment``: one amsmath display and one per
+        answer) or text; ``answers`` are ``(label, display)`` of the answers asked for."""
         if fmt == "json":
             return json.dumps(self.to_json(), indent=2)
         if fmt == "latex":
-            return tex.display(self.to_latex()) if fragment else self.latex_document()
+            if fragment:
+                return "\n".join([tex.display(self.to_latex())] + ([tex.derivation_fragment(answers)] if answers else []))
+            return self.latex_document(answers)
         return self.to_text(verbose=verbose)
 
 
@@ -156,12 +167,6 @@ def _readable(expr: sp.Expr) -> sp.Expr:
     if not den.free_symbols:
         return sp.expand(expr)
     return sp.Mul(sp.expand(num), sp.Pow(sp.expand(den), -1), evaluate=False)
-
-
-def _show(value: Any) -> str:
-    if isinstance(value, (list, tuple)):
-        return " + j*".join(str(v) for v in value) if len(value) == 2 else str(list(value))
-    return str(value)
 
 
 def _skipped_text(summary: SceneSummary, name: str) -> str:

@@ -9,6 +9,7 @@ from collections.abc import Callable
 
 from hapticproof.audit.runner import AuditReport
 from hapticproof.core.evidence import Verdict
+from hapticproof.report.readable import plural
 
 __all__ = ["audit_table", "audit_markdown"]
 
@@ -28,7 +29,7 @@ def audit_table(report: AuditReport, width: int = 120, wide: bool = False,
         verdict = r.verdict.value.ljust(v_w)
         lines.append(f"{r.id.ljust(id_w)}  {style(verdict) if style else verdict}  {detail}")
     summary = ", ".join(f"{k}: {v}" for k, v in sorted(report.counts().items()))
-    lines += ["", f"{len(report.results)} equations ({summary})"]
+    lines += ["", f"{plural(len(report.results), 'equation')} ({summary})"]
     return "\n".join(lines)
 
 
