@@ -86,10 +86,14 @@ def run(args: argparse.Namespace) -> int:
     if scene.discretize is not None:
         head.append(f"H(s) = {sp.sstr(scene.environment)}  ->  {scene.discretize}: H(z) = {sp.sstr(model.H)}")
     if not is_rational(model.H):
-        head.append("H(z) has transcendental coefficients (e^{pT} of the exact " + str(scene.discretize) +
-                    " map): an exact decision needs rational coefficients; use forward, backward or tustin, or "
-                    "give the discrete H(z) with rounded poles")
-        write_output(args.output, "\n".join(head))
+        reason = ("H(z) has transcendental coefficients (e^{pT} of the exact " + str(scene.discretize) +
+                  " map): an exact decision needs rational coefficients; use forward, backward or tustin, or "
+                  "give the discrete H(z) with rounded poles")
+        if args.format == "json":        # the same answer as a JSON document: undecided, with the reason
+            write_output(args.output, json.dumps({"verdict": "undecided", "reason": reason, "continuous_design": {
+                "H_s": sp.sstr(scene.environment), "discretize": scene.discretize, "H_z": sp.sstr(model.H)}}, indent=2))
+            return 0
+        write_output(args.output, "\n".join(head + [reason]))
         return 0
     numeric_but_delay = model.delay.is_Symbol and not (model.parameters - {model.delay})
     summary = summarize_single_user(model, with_profile=args.profile)

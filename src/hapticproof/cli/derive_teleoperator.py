@@ -68,8 +68,14 @@ def run(args: argparse.Namespace) -> int:
     spec = scene_from_args(args, "teleoperator")
     scene = spec.build()
     if not is_rational(scene.C):
-        write_output(args.output, f"C(z) = {sp.sstr(scene.C)}\nC(z) has transcendental coefficients (e^(pT) of the exact "
-                     f"{spec.discretize} map): an exact decision needs rational coefficients")
+        reason = (f"C(z) has transcendental coefficients (e^(pT) of the exact {spec.discretize} map): an exact decision "
+                  "needs rational coefficients")
+        if args.format == "json":
+            write_output(args.output, json.dumps({"verdict": "undecided", "reason": reason, "controller": sp.sstr(scene.C),
+                                                  "continuous_design": {"C_s": sp.sstr(spec.controller),
+                                                                        "discretize": spec.discretize}}, indent=2))
+            return 0
+        write_output(args.output, f"C(z) = {sp.sstr(scene.C)}\n{reason}")
         return 0
     bd, wc = bounds(scene), worst_case(scene)
     decision = passivity(scene)

@@ -438,9 +438,12 @@ def _short(value: Any) -> str:
         return text
     q = Fraction(int(value.p), int(value.q)) if hasattr(value, "p") else Fraction(value)
     sign, q = ("-" if q < 0 else ""), abs(q)
-    # scientific notation from the exact integer parts (floats overflow past 1e308)
-    exponent = len(str(q.numerator)) - len(str(q.denominator))
-    if q < Fraction(10) ** exponent:
+    # scientific notation from the exact integer parts (floats overflow past 1e308; the bit
+    # lengths, not decimal strings, which Python refuses past 4300 digits)
+    exponent = int((q.numerator.bit_length() - q.denominator.bit_length()) * 0.30102999566398120)
+    while q >= Fraction(10) ** (exponent + 1):
+        exponent += 1
+    while q < Fraction(10) ** exponent:
         exponent -= 1
     mantissa = float(q / Fraction(10) ** exponent)
     return f"{sign}{mantissa:.6g}e{exponent:+d} (exact value in the certificate)"
@@ -708,6 +711,15 @@ class RootCertificate:
         }
 
 
+def _approximate(root: flint.fmpq) -> complex:
+    """A rational root as a complex float for display, clamped to the float range (a pole at
+    1e400 is shown as 1.8e308, the certificate's counts are exact)."""
+    try:
+        return complex(float(root))
+    except OverflowError:
+        return complex(1.7976931348623157e308 if root > 0 else -1.7976931348623157e308)
+
+
 def _reciprocal(f: flint.fmpz_poly) -> flint.fmpz_poly:
     return flint.fmpz_poly(f.coeffs()[::-1])
 
@@ -812,7 +824,7 @@ def locate_roots(p: Any, domain: str = "disk") -> RootCertificate:
                     inside += mult
                 else:
                     outside += mult
-                    points.append(complex(float(root)))
+                    points.append(_approximate(root))
             else:
                 if root == 0:
                     boundary.append(BoundaryRoot(mult, sp.Integer(0), f))
@@ -820,7 +832,7 @@ def locate_roots(p: Any, domain: str = "disk") -> RootCertificate:
                     inside += mult
                 else:
                     outside += mult
-                    points.append(complex(float(root)))
+                    points.append(_approximate(root))
             continue
         on_roots: list[BoundaryRoot] = []
         if domain == "disk":
