@@ -13,7 +13,10 @@ as analyticity and ``Re G >= 0`` on ``|z| > 1`` *including* ``z = oo`` (or ``Re 
 simple with a positive residue), with an exact witness for every ``no``. A ``proved`` the oracle
 refutes, a ``disproved`` it proves, a range point on the wrong side, a delay margin off by one,
 a traceback or an output that is not JSON fails the test; ``uncertain`` oracle answers are
-counted, not judged.
+counted, not judged. Where the sampling oracle says ``yes`` and the toolkit disproves, the
+toolkit's witness is evaluated exactly with the oracle's own model (``Re G^-1(z0) < 0`` at a
+point of the closed exterior, ``Re(v^H Z(s) v) < 0`` in the right half-plane, ``b - w L(c) < 0``
+for (32)): a valid one is an ``oracle-miss`` (counted), an invalid one fails.
 
 Size knob: ``HAPTICPROOF_DIFF_EXAMPLES`` (default 10; each family uses 0.3 of it, about a minute in all;
 the oracle gets 20 s a case, beyond which the case counts as uncertain),
@@ -41,7 +44,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from oracles import generators as gen  # noqa: E402
 from oracles.definitions import NO, YES, Rat, ReadError, continuous_pr, discrete_pr, discrete_pr_matrix, read  # noqa: E402
-from oracles.exactpoly import real_part_exact  # noqa: E402
+from oracles.exactpoly import complex_div, peval_complex, pmul, real_part_exact  # noqa: E402
 from oracles.harness import examples  # noqa: E402
 from oracles.models import discretize, hve_inverse, integrator, shortage_of_passivity, teleoperator_criterion  # noqa: E402
 
@@ -137,6 +140,59 @@ def multi_inverse(case: dict, params: dict) -> list[list[Rat]]:
     return G
 
 
+def _form_at(Z: list[list[Rat]], x: Fraction, y: Fraction, v: list[tuple[Fraction, Fraction]]) -> Fraction | None:
+    """``Re(v^H Z(x + jy) v)`` exactly (``None`` at a pole)."""
+    total = Fraction(0)
+    for i, row in enumerate(Z):
+        for j, e in enumerate(row):
+            if not e.num:
+                continue
+            d = peval_complex(e.den, x, y)
+            if d == (0, 0):
+                return None
+            val = complex_div(peval_complex(e.num, x, y), d)
+            vi, vj = v[i], v[j]
+            a = (vi[0] * val[0] + vi[1] * val[1], vi[0] * val[1] - vi[1] * val[0])     # conj(v_i) Z_ij
+            total += a[0] * vj[0] - a[1] * vj[1]
+    return total
+
+
+def _network_witness_is_valid(Z: list[list[Rat]], witness: dict | None) -> bool | None:
+    """A network disproof's point re-evaluated with the oracle's own ``Z``: ``s`` with ``Re s > 0``
+    (and a vector), or ``s = j omega`` on the axis for a Hermitian-part failure (1-ports)."""
+    if not witness:
+        return None
+    if "s" in witness:
+        x, y = (Fraction(str(v)) for v in witness["s"])
+        if not x > 0:
+            return False
+    elif "omega" in witness and len(Z) == 1:
+        x, y = Fraction(0), Fraction(str(witness["omega"]))
+    else:
+        return None
+    v = [(Fraction(str(a)), Fraction(str(b))) for a, b in witness.get("vector", [["1", "0"]] * len(Z))]
+    value = _form_at(Z, x, y, v)
+    return value is not None and value < 0
+
+
+def _criterion_witness_is_valid(C: Rat, data: dict, params: dict) -> bool | None:
+    """A disproof of (32) re-evaluated from its printed form with the oracle's ``C``: at the
+    certificate's point ``z0`` of the circle, ``b - w L < 0`` with ``L = -T Re{C(z0)/(z0 - 1)}``."""
+    T, alpha = _F(params, "T"), _F(params, "alpha", 1)
+    for cond in data["criterion_32"]["conditions"]:
+        cert = (cond.get("evidence") or {}).get("facts", {}).get("certificate") or {}
+        if cond["decision"] != "disproved" or "witness_point" not in cert:
+            continue
+        x, y = (Fraction(str(v)) for v in cert["witness_point"])
+        if x * x + y * y != 1 or (x, y) == (1, 0):
+            return False
+        L = -T * real_part_exact(C.num, pmul(C.den, (Fraction(-1), Fraction(1))), x, y)    # C/(z - 1)
+        master = "master" in cond["name"]
+        b, w = (_F(params, "b_m"), alpha * (alpha + 1)) if master else (_F(params, "b_s"), alpha + 1)
+        return b - w * L < 0
+    return None
+
+
 def _witness_is_valid(G: Rat, witness: dict | None) -> bool | None:
     """A toolkit disproof's point checked by the oracle's own arithmetic: ``|z| > 1`` (pole at
     infinity) or on the circle, and ``Re G^-1(z) < 0`` exactly. ``None``: no point to check."""
@@ -201,9 +257,11 @@ def _judge_output(case: dict, data: dict) -> tuple[str, str]:
         ans = discrete_pr(G)
         if verdict == "proved" and ans.verdict == NO:
             return "false-proof", f"{ans.reason}: {ans.witness}"
+        valid = _witness_is_valid(G, data.get("witness")) if verdict == "disproved" else None
         if verdict == "disproved" and ans.verdict == YES:
-            return "false-disproof", data.get("reason", "")
-        if verdict == "disproved" and _witness_is_valid(G, data.get("witness")) is False:
+            # the oracle samples; an exact point where Re G^-1 < 0 settles it against the oracle
+            return ("oracle-miss" if valid else "false-disproof"), data.get("reason", "")
+        if valid is False:
             return "bad-witness", f"{data.get('witness')}"
         return ("agree" if ans.verdict in (YES, NO) else "uncertain"), ans.reason
     if fam == "su-range":
@@ -229,7 +287,8 @@ def _judge_output(case: dict, data: dict) -> tuple[str, str]:
         if verdict == "proved" and ans.verdict == NO:
             return "false-proof", ans.reason
         if verdict == "disproved" and ans.verdict == YES:
-            return "false-disproof", (data.get("positive_real") or {}).get("reason", "")
+            valid = _network_witness_is_valid(Z, (data.get("positive_real") or {}).get("witness"))
+            return ("oracle-miss" if valid else "false-disproof"), (data.get("positive_real") or {}).get("reason", "")
         return ("agree" if ans.verdict in (YES, NO) else "uncertain"), ans.reason
     if fam == "tele":
         # the exact verdict is judged against the energy in test_differential_teleoperator; here the
@@ -242,10 +301,15 @@ def _judge_output(case: dict, data: dict) -> tuple[str, str]:
             return "uncertain", f"criterion {crit}"
         ans = teleoperator_criterion(C, T=_F(params, "T"), alpha=_F(params, "alpha", 1), b_m=_F(params, "b_m"),
                                      b_s=_F(params, "b_s"))
+        if "pole outside" in ans.reason:
+            # the oracle folds the controller's stability into (32); the printed (32) is only the
+            # bounds (the exact verdict has (P1) for that)
+            return "uncertain", f"(32) oracle: {ans.reason}"
         if crit == "proved" and ans.verdict == NO:
             return "false-proof", f"(32): {ans.reason}"
         if crit == "disproved" and ans.verdict == YES:
-            return "false-disproof", f"(32): {ans.reason}"
+            valid = _criterion_witness_is_valid(C, data, params)
+            return ("oracle-miss" if valid else "false-disproof"), f"(32): {ans.reason}"
         return ("agree" if ans.verdict in (YES, NO) else "uncertain"), ans.reason
     raise AssertionError(f"unknown family {fam}")       # pragma: no cover
 
@@ -346,7 +410,7 @@ def judge_margin(case: dict, data: dict, params: dict) -> tuple[str, str]:
 # the families
 # ---------------------------------------------------------------------------------------------
 
-FAILURES = ("false-proof", "false-disproof", "bad-witness", "crash", "timeout", "no-json")
+FAILURES = ("false-proof", "false-disproof", "bad-witness", "crash", "timeout", "no-json")    # "oracle-miss" is counted
 FAMILIES = ["su-env", "su-design", "su-range", "su-margin", "multi", "net", "tele"]
 
 

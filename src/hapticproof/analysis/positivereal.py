@@ -31,6 +31,7 @@ from hapticproof.exact.kernel import decide_rational_sign, locate_roots, transfe
 from hapticproof.core.lazy import stage
 from hapticproof.systems.models import environment_path, inverse_transfer
 from hapticproof.exact.realroots import flint_precision, minimise_rational, real_roots
+from hapticproof.exact.rootcount import approximate_outside
 from hapticproof.systems.singleuser import SingleUserScene
 from hapticproof.core.symbols import c as C_SYM
 from hapticproof.core.symbols import z as Z_SYM
@@ -317,12 +318,20 @@ def _numeric_poles(Q: flint.fmpq_poly) -> list[Pole]:
             location = "on" if cert.boundary else "outside" if cert.outside else "inside"
             out.append(Pole(value, mult, location))
             continue
-        with flint_precision(64):
-            for r, _ in f.complex_roots():
-                gap = r.real * r.real + r.imag * r.imag - 1
-                location = "inside" if gap < 0 else "outside" if gap > 0 else "on"
-                value = sp.Float(float(r.real.mid()), 12) + sp.I * sp.Float(float(r.imag.mid()), 12)
-                out.append(Pole(value, mult, location))
+        if cert.boundary or max(abs(int(c)).bit_length() for c in f.coeffs()) <= 256:
+            with flint_precision(64):
+                for r, _ in f.complex_roots():
+                    gap = r.real * r.real + r.imag * r.imag - 1
+                    location = "inside" if gap < 0 else "outside" if gap > 0 else "on"
+                    value = sp.Float(float(r.real.mid()), 12) + sp.I * sp.Float(float(r.imag.mid()), 12)
+                    out.append(Pole(value, mult, location))
+            continue
+        # huge coefficients (1e-300 scales): the locations are the certificate's exact counts,
+        # the values only approximate (ball isolation of such clusters costs minutes)
+        points = approximate_outside(f, f.degree(), "disk")
+        for k, w in enumerate(points or [complex("nan")] * f.degree()):
+            location = "outside" if k < cert.outside else "inside"
+            out.append(Pole(sp.Float(w.real, 12) + sp.I * sp.Float(w.imag, 12), mult, location))
     return sorted(out, key=lambda p: (sp.default_sort_key(p.value)))
 
 

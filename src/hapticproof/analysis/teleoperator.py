@@ -537,7 +537,12 @@ def exact_condition(scene: TeleoperatorScene) -> sp.Basic | None:
 def criterion_conditions(scene: TeleoperatorScene) -> list[Condition]:
     """The paper's criterion (32) (eq. 29 at ``alpha = 1``) decided exactly as printed: each
     robot's damping above its bound at every frequency. A sufficient condition for ``alpha > 0``
-    under (P1)-(P4) only; ``disproved`` here is never a disproof of passivity."""
+    under (P1)-(P4) only; ``disproved`` here is never a disproof of passivity.
+
+    >>> sc = TeleoperatorScene.pd(K=2, B=0, T=sp.Rational(1, 3), b_m=10, b_s=sp.Rational(3, 7))
+    >>> [(c.name, c.decision.value) for c in criterion_conditions(sc)]      # the slave needs b_s >= 2L = 2/3
+    [('(32) master: b_m >= bound(c) for all w', 'proved'), ('(32) slave: b_s >= bound(c) for all w', 'disproved')]
+    """
     from hapticproof.exact.kernel import decide_rational_sign, transfer_json
     from hapticproof.exact.unitcircle import circle_real_part
 

@@ -92,7 +92,7 @@ def pole_conditions(P: flint.fmpq_poly, Q: flint.fmpq_poly) -> list[Condition]:
     >>> [c.decision.value for c in pole_conditions(z + 1, z - 1)]          # 1 + 2/(z - 1)
     ['proved', 'proved', 'proved']
     >>> pole_conditions(z * z + z - 1, z - 1)[0].outcome.reason           # 1 + z^2/(z - 1): improper
-    'improper: pole at infinity (order 1): G^-1 ~ (1) z; Re G^-1(-10) = -89/11 < 0'
+    'improper: pole at infinity (order 1): G^-1 ~ z; Re G^-1(-10) = -89/11 < 0'
     """
     roots = locate_roots(Q, "disk")
     infinity = decide_infinity((P, Q), "disk", "G^-1")

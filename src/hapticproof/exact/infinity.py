@@ -383,7 +383,9 @@ def decide_infinity(F: Any, domain: str = "disk", what: str | None = None) -> Ou
         facts["residue"] = psd_outcome.evidence.facts.get("certificate")
     if domain == "disk":
         power = var if order == 1 else f"{var}^{order}"
-        lead = f"{what} ~ ({_text(A[0][0])}) {power}" if scalar else f"entries grow like {power}"
+        a = A[0][0]
+        coefficient = "" if a == 1 else "-" if a == -1 else f"({_text(a)}) "
+        lead = f"{what} ~ {coefficient}{power}" if scalar else f"entries grow like {power}"
         head = f"improper: pole at infinity (order {order}): {lead}"
     elif order > 1:
         head = f"pole at s = oo of order {order} > 1 (only a simple one is allowed)"
