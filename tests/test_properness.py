@@ -30,7 +30,7 @@ from hapticproof.analysis.nport import positive_real as nport_positive_real  # n
 from hapticproof.analysis.positivereal import conditions, positive_real  # noqa: E402
 from hapticproof.audit.paperfile import loads  # noqa: E402
 from hapticproof.audit.runner import audit_paper  # noqa: E402
-from hapticproof.core.symbols import s, z  # noqa: E402
+from hapticproof.core.symbols import s  # noqa: E402
 from hapticproof.exact.checker import check_certificate  # noqa: E402
 from hapticproof.exact.infinity import decide_infinity  # noqa: E402
 from hapticproof.systems.scene import Scene  # noqa: E402

@@ -439,7 +439,7 @@ def _symbolic_conditions(scene: TeleoperatorScene) -> list[Condition]:
         p2 = Outcome(Decision.PROVED if not unknown else Decision.UNDECIDED, Evidence(Method.CANONICAL_FORM),
                      "no pole of C at z = 1" if not unknown else "the poles of C depend on the parameters")
         out += [Condition(_name("P2"), p2), Condition(_name("P3"), _sign(C.subs(Z_SYM, 1), "C(1)"))]
-    others = [p for p in poles if p.location == "on" and not sp.simplify(p.value - 1) == 0]
+    others = [p for p in poles if p.location == "on" and sp.simplify(p.value - 1) != 0]
     if any(p.multiplicity > 1 for p in others):
         p4 = Outcome(Decision.DISPROVED, Evidence(Method.CANONICAL_FORM), "a unit-circle pole of C is not simple")
     elif others:

@@ -209,7 +209,7 @@ def _candidate_vectors(A: list[list[Fraction]]) -> list[tuple[Gaussian, ...]]:
 
         sym = np.array([[float(A[i][j] + A[j][i]) / 2 for j in range(m)] for i in range(m)])
         if np.all(np.isfinite(sym)):
-            values, vectors = np.linalg.eigh(sym)
+            _, vectors = np.linalg.eigh(sym)
             vec = vectors[:, 0] / max(abs(vectors[:, 0]).max(), 1e-300)
             out.append(tuple((Fraction(float(x)).limit_denominator(1000), Fraction(0)) for x in vec))
     return out
