@@ -480,7 +480,8 @@ def _symbolic_leak(scene: TeleoperatorScene) -> Outcome:
         decision = Decision.PROVED if cond is sp.true else Decision.DISPROVED
         return Outcome(decision, Evidence(Method.ENDPOINT_ANALYSIS, facts={"condition": cond}), f"h >= sup L = {sp.sstr(sup)} is {cond}")
     return Outcome(Decision.SYMBOLIC, Evidence(Method.ENDPOINT_ANALYSIS, facts={"condition": cond, "supremum": sup}),
-                   f"{sp.sstr(cond)} (sup of L = {sp.sstr(leak)}: {wc.outcome.reason})")
+                   f"{sp.sstr(cond)} (L(c) = {sp.sstr(leak)} is largest at c = {sp.sstr(wc.minimiser)})"
+                   if wc.minimiser is not None else f"{sp.sstr(cond)} (sup of L(c) = {sp.sstr(leak)}: {wc.outcome.reason})")
 
 
 @stage("teleoperator_conditions")
