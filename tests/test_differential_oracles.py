@@ -29,7 +29,7 @@ from oracles.search import check_termination, find_destabilizing_termination, ro
 
 ORACLES = Path(__file__).resolve().parent / "oracles"
 ALLOWED = {"numpy", "mpmath", "scipy", "sympy", "__future__", "dataclasses", "fractions", "functools", "itertools",
-           "json", "math", "os", "time", "typing"}
+           "json", "math", "os", "random", "re", "tempfile", "time", "typing"}
 R = sp.Rational
 z, s = Z, S
 

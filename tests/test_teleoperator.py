@@ -109,8 +109,9 @@ def test_error_coordinate_damping_is_less_conservative():
 # ---------------------------------------------------------------------------------------------
 
 EXPECTED = {
-    "5": "typo", "7": "typo", "13": "typo", "18": "typo", "28-less": "typo", "29": "confirmed", "32": "confirmed",
-    "33": "confirmed", "33-bilinear": "wrong", "34": "confirmed", "35": "confirmed", "35-colgate": "inconsistent",
+    "5": "typo", "7": "typo", "13": "typo", "18": "typo", "28-less": "typo", "29": "needs-assumption",
+    "32": "needs-assumption", "33": "confirmed", "33-bilinear": "wrong", "34": "confirmed", "35": "conservative",
+    "35-colgate": "inconsistent",
     "intro-routh": "needs-assumption", "lemma1": "needs-assumption", "16": "confirmed", "38": "typo",
     "table1-stable": "confirmed",
 }
@@ -126,6 +127,17 @@ def test_selected_verdicts(paper):
     assert {r.id: r.verdict.value for r in report.results} == EXPECTED
     five = next(r for r in report.results if r.id == "5")
     assert five.corrected and r"\frac{1 - e^{-sT}}{s}" in five.corrected
+    # (29)/(32): sufficient only under (P1)-(P4) -- a negative spring passes them yet is not passive
+    # (exact decision), and they are not necessary with unequal dampers; (35): sufficient, exact for
+    # equal robots only
+    for eq in ("29", "32"):
+        facts = next(r for r in report.results if r.id == eq).evidence.facts
+        assert facts["exact_decisions"] == {"negative spring C = -1: (29)/(32) holds": "proved",
+                                            "negative spring C = -1: passive": "disproved",
+                                            "unequal robots: (29)/(32) holds": "disproved", "unequal robots: passive": "proved"}
+        assert facts["harmonic_mean_identity"] is True
+    thirty_five = next(r for r in report.results if r.id == "35")
+    assert thirty_five.evidence.witness == {"K": "2", "B": "0", "T": "1/3", "b_m": "10", "b_s": "3/7"}
 
 
 def test_every_numbered_display_is_registered(paper):

@@ -31,8 +31,11 @@ def _controller_instances() -> list[tuple[str, sp.Expr]]:
     return [("PD (33)", telemodel.pd_controller()), ("PD with filtered derivative (a = 1/2)", telemodel.filtered_pd_controller(a=a))]
 
 
-def bound_check(ctx: AuditContext, alpha_value: sp.Expr | None) -> Finding:
-    """(29) (alpha_value = 1) or (32) (symbolic alpha): generic controller, then instances."""
+def bound_check(ctx: AuditContext, alpha_value: sp.Expr | None, sufficient: bool = True) -> Finding:
+    """(29) (alpha_value = 1) or (32) (symbolic alpha): generic controller, then instances; then,
+    with ``sufficient``, the printed bounds as the passivity criterion the paper claims
+    (:func:`sufficiency`). Without it the derivation alone (Lemma 5's (40) bounds (39), an
+    integral inequality, not passivity)."""
     relations = ctx.statement.relations()
     lines = line_pairs(ctx.statement)
     al = alpha if alpha_value is None else alpha_value
@@ -73,13 +76,58 @@ def bound_check(ctx: AuditContext, alpha_value: sp.Expr | None) -> Finding:
     reduction = ""
     if alpha_value is None:
         reduction = "; at alpha = 1 it is (29)"
+    derivation = ("derived for a general C(z): the sampled spring on e = alpha x_m - x_s leaks at most L(c)|alpha V_m - V_s|^2 "
+                  "(kernel (14), alias weight T^2/(2(1 - c))), and |alpha a - b|^2 <= (alpha + 1)(alpha|a|^2 + |b|^2) gives "
+                  f"b_m >= (alpha + 1) L_(C_m), b_s >= (alpha + 1) L_(C_s){reduction}; exact in c for PD and filtered PD")
+    derived = sp.And(*[sp.Ge(d, v) for d, v in zip((b_m, b_s), list(instances.values())[:2])])
+    if not sufficient:
+        return Finding(Verdict.CONFIRMED, derivation, Evidence(Method.CANONICAL_FORM, instances=len(instances),
+                                                                facts={"bounds_in_c": instances}), derived=derived)
+    return sufficiency(derivation, instances, derived, sp.Integer(1) if alpha_value is not None else sp.Integer(2))
+
+
+#: the assumptions (P1)-(P4) of the exact theorem (hapticproof.analysis.teleoperator) that the
+#: paper does not state for a general controller
+UNSTATED = ("C has no pole in |z| > 1 (P1) nor at z = 1 (P2), C(1) >= 0 (P3), and its other unit-circle poles are simple "
+            "with Res(C,z0)/(z0(z0-1)) > 0 (P4)")
+
+
+def sufficiency(derivation: str, instances: dict, derived: sp.Basic, al: sp.Expr) -> Finding:
+    """(29)/(32) as the sufficient condition the paper claims, against the exact decision: not
+    sufficient without (P1)-(P4) (a negative spring passes it), sufficient with them (``h`` is a
+    weighted harmonic mean of the per-robot shares, hence above their minimum), not necessary
+    when ``b_m != alpha b_s``. Every instance is decided exactly; none is assumed."""
+    from hapticproof.exact.canonical import is_identically_zero as zero
+
+    third, tenth = sp.Rational(1, 3), sp.Rational(1, 100)
+    spring = telemodel.TeleoperatorScene(1, 1, tenth, tenth, tenth, sp.Integer(-1), al)
+    # h = 30/73 (alpha = 1) or 5/12 (alpha = 2) >= L = KT/2 = 1/3 while b_s < (alpha + 1) L
+    split = telemodel.TeleoperatorScene.pd(K=2, B=0, T=third, alpha=al, b_m=10, b_s=sp.Rational(3, 7) if al == 1 else sp.Rational(1, 2))
+    h = b_m * b_s / (b_m + alpha**2 * b_s)
+    p, q = b_m / (alpha * (alpha + 1)), b_s / (alpha + 1)
+    identity = zero(sp.cancel(1 / h - (1 / (alpha + 1)) / q - (alpha / (alpha + 1)) / p))
+    checks = {"negative spring C = -1: (29)/(32) holds": tele.criterion(spring).decision.value,
+              "negative spring C = -1: passive": tele.passivity(spring).decision.value,
+              "unequal robots: (29)/(32) holds": tele.criterion(split).decision.value,
+              "unequal robots: passive": tele.passivity(split).decision.value}
+    expected = ["proved", "disproved", "disproved", "proved"]
+    facts = {"bounds_in_c": instances, "exact_decisions": checks, "unstated_assumption": UNSTATED,
+             "harmonic_mean_identity": identity, "counterexample": tele.passivity(spring).to_json(),
+             "not_necessary": tele.passivity(split).to_json()}
+    if list(checks.values()) != expected or not identity:
+        return Finding(Verdict.UNDECIDED, f"{derivation}; the sufficiency audit did not go as the theorem says: {checks}",
+                       Evidence(Method.INSTANCES, facts=facts), derived=derived)
+    witness = {"C": "-1", "T": sp.sstr(tenth), "b_m": sp.sstr(tenth), "b_s": sp.sstr(tenth), "alpha": sp.sstr(al)}
     return Finding(
-        Verdict.CONFIRMED,
-        "derived for a general C(z): the sampled spring on e = alpha x_m - x_s leaks at most L(c)|alpha V_m - V_s|^2 "
-        "(kernel (14), alias weight T^2/(2(1 - c))), and |alpha a - b|^2 <= (alpha + 1)(alpha|a|^2 + |b|^2) gives "
-        f"b_m >= (alpha + 1) L_(C_m), b_s >= (alpha + 1) L_(C_s){reduction}; exact in c for PD and filtered PD",
-        Evidence(Method.CANONICAL_FORM, instances=len(instances), facts={"bounds_in_c": instances}),
-        derived=sp.And(*[sp.Ge(d, v) for d, v in zip((b_m, b_s), list(instances.values())[:2])]),
+        Verdict.NEEDS_ASSUMPTION,
+        f"sufficient only under (P1)-(P4), which the paper does not state for a general C: C = -1 (T = b_m = b_s = 1/100, "
+        f"alpha = {al}) satisfies it at every frequency but is not passive ((P3) C(1) < 0, exact decision); under them it "
+        "implies the exact h = b_m b_s/(b_m + alpha^2 b_s) >= L(c) (h is a weighted harmonic mean of the robots' shares, "
+        f"alpha > 0), with equality iff b_m = alpha b_s (C = 2, T = 1/3, b_m = 10, b_s = {sp.sstr(split.b_s)}: passive, yet it "
+        "fails); the bound itself is derived for a general C(z)",
+        Evidence(Method.COUNTEREXAMPLE, witness=witness, instances=len(instances) + 2,
+                 facts={**facts, "derivation": derivation}),
+        derived=derived,
     )
 
 
@@ -234,9 +282,31 @@ def min_claim(ctx: AuditContext) -> Finding:
 @PAPER.equation("35", kind="condition", printed=PRINTED["35"], section="III-B", assumptions=ASSUME,
                 derivation="exact worst case over c of (34): endpoint c = -1 for B >= 0")
 def eq35(ctx: AuditContext) -> Finding:
+    """(35) against the exact PD condition ``K >= 0`` and ``h = b_m b_s/(b_m + b_s) >= KT/2 + |B|``
+    (:func:`hapticproof.analysis.teleoperator.exact_condition`): for equal robots ``b_m = b_s = b``
+    that is ``b >= KT + 2B`` (``K > 0``, ``B >= 0``); with ``b = min(b_m, b_s)`` (the text after
+    (34)) the printed condition is sufficient (``h >= min/2``) but not necessary."""
     wc = tele.worst_case(telemodel.TeleoperatorScene.pd())
-    return compare_bounds(ctx.relation(), sp.Ge(b, wc.sup_master), b, what="the PD worst case",
-                          note=f"maximiser c = {wc.maximiser}; for B < 0 it would be KT + 2|B|")
+    equal = tele.exact_condition(telemodel.TeleoperatorScene.pd(b_m=b, b_s=b))
+    first = compare_bounds(ctx.relation(), equal, b, what="the PD worst case for equal robots (b_m = b_s = b)",
+                           note=f"maximiser c = {wc.maximiser}; for B < 0 it would be KT + 2|B|")
+    if first.verdict != Verdict.CONFIRMED:
+        return first
+    third = sp.Rational(1, 3)
+    split = telemodel.TeleoperatorScene.pd(K=2, B=0, T=third, b_m=10, b_s=sp.Rational(3, 7))
+    smaller = min(split.b_m, split.b_s)
+    printed_holds = bool(ctx.relation().subs({b: smaller, K: 2, B: 0, T: third}))
+    passive = tele.passivity(split)
+    if printed_holds or passive.decision.value != "proved":        # pragma: no cover - the theorem says otherwise
+        return first
+    return Finding(
+        Verdict.CONSERVATIVE,
+        f"{first.detail}; with b = min(b_m, b_s) as the text says it is sufficient (the exact condition is h = b_m b_s/"
+        "(b_m + b_s) >= KT/2 + B with K >= 0, and h >= min(b_m, b_s)/2) but not necessary: K = 2, B = 0, T = 1/3, "
+        "b_m = 10, b_s = 3/7 is passive (h = 30/73 >= 1/3, exact decision) while min(b_m, b_s) = 3/7 < KT + 2B = 2/3",
+        Evidence(Method.COUNTEREXAMPLE, witness={"K": "2", "B": "0", "T": "1/3", "b_m": "10", "b_s": "3/7"},
+                 facts={**first.evidence.facts, "passive": passive.to_json()}),
+        derived=first.derived)
 
 
 @PAPER.equation("35-colgate", kind="claim", after="35", section="III-B",

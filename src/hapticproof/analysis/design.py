@@ -310,6 +310,13 @@ def _single_margin(ns: Any, max_delay: int, clock: _Clock) -> DelayMargin:
             return DelayMargin(Decision.PROVED, -1, T, "exact", "not passive without delay", decided=(0,),
                                failing=first, proof=proof, seconds=clock.elapsed())
     limit = to_rational(a + F01 - R * (fail + flint.fmpq(1, 2)))
+    if fail - low > 1 and low + 1 > max_delay:
+        # the bound proves every n <= low and disproves n = fail, and the delays between are beyond
+        # what one-by-one exact decisions reach (a degree-n polynomial each): say so
+        return DelayMargin(Decision.UNDECIDED, None, T, "bound", f"passive for every n <= {low} (bound Re G^-1 >= a - "
+                           f"R(n + 1/2) - M_0 >= 0), not passive from n = {fail} on; the {fail - low - 1} delays between "
+                           f"are beyond --max-delay {max_delay}", lower=low, upper=fail - 1, proved_up_to=low,
+                           decided=tuple(decided), proof=proof, seconds=clock.elapsed())
     at_fail = Outcome(Decision.DISPROVED,
                       Evidence(Method.ENDPOINT_ANALYSIS, witness={"c": "-> 1", "limit": limit},
                                facts={"limit": f"a + F_0(1) - R(n + 1/2) at n = {fail}"}),

@@ -66,6 +66,7 @@ import sympy as sp
 from hapticproof.core.errors import DerivationError, SceneError
 from hapticproof.core.evidence import Decision, Evidence, Method, Outcome
 from hapticproof.exact.kernel import decide_constant_psd, locate_roots, poly_json
+from hapticproof.exact.infinity import decide_infinity
 from hapticproof.core.lazy import stage
 from hapticproof.systems.models import integrator
 from hapticproof.exact.conditions import Condition, combine
@@ -146,6 +147,10 @@ def transfer_entries(scene: MultiUserScene) -> dict[str, Any]:
             row.append({"num": poly_json(num / lead), "den": poly_json(den / lead)})
         rows.append(row)
     return {"variable": "z", "entries": rows}
+
+
+def _poly(coeffs: list[str]) -> flint.fmpq_poly:
+    return flint.fmpq_poly([_fmpq(v) for v in coeffs])
 
 
 def _fmpq(value: Any) -> flint.fmpq:
@@ -584,11 +589,26 @@ def conditions(scene: MultiUserScene) -> list[Condition]:
             dens = dens * den / dens.gcd(den)
     roots = locate_roots(dens, "disk")
     facts = {"certificate": roots, "kernel_denominator": str(dens)}
-    poles_ok = Outcome(Decision.PROVED if roots.outside == 0 else Decision.DISPROVED,
-                       Evidence(Method.ROOT_ISOLATION, facts=facts),
-                       "the poles of G^-1 are among those of its kernels: "
-                       + (f"none outside the unit circle ({sum(r.multiplicity for r in roots.boundary)} on it)"
-                          if roots.outside == 0 else f"{roots.outside} outside the unit circle"))
+    # z = oo: G^-1 = diag(b - z_a) + T Kmat k_K + Bmat k_B is proper when its kernels are (they
+    # are, for every approximation: k_B = z^-n I (z - 1)/(Tz)); a numeric scene is checked entry by
+    # entry in case a kernel ever is not
+    kernel_ends = [decide_infinity(k, "disk", "the kernel") for n in sorted(set(scene.delays))
+                   for k in _kernel_polynomials(scene.approximation, n)]
+    infinity = next((o for o in kernel_ends if o.decision != Decision.PROVED), kernel_ends[0])
+    if infinity.decision != Decision.PROVED and scene.is_numeric:
+        entries = [[(_poly(e["num"]), _poly(e["den"])) for e in row] for row in transfer_entries(scene)["entries"]]
+        infinity = decide_infinity(entries, "disk", "G^-1")
+    facts["infinity"] = infinity.evidence.facts["certificate"]
+    if infinity.decision == Decision.DISPROVED:
+        poles_ok = Outcome(Decision.DISPROVED, Evidence(infinity.evidence.method, witness=infinity.witness, facts=facts),
+                           infinity.reason)
+    else:
+        poles_ok = Outcome(Decision.PROVED if roots.outside == 0 else Decision.DISPROVED,
+                           Evidence(Method.ROOT_ISOLATION, facts=facts),
+                           "the poles of G^-1 are among those of its kernels: "
+                           + (f"none outside the unit circle ({sum(r.multiplicity for r in roots.boundary)} on it)"
+                              if roots.outside == 0 else f"{roots.outside} outside the unit circle")
+                           + ", none at z = oo (proper kernels)")
     simple_ok = Outcome(Decision.PROVED if roots.boundary_simple else Decision.DISPROVED,
                         Evidence(Method.ROOT_ISOLATION, facts=facts),
                         "every unit-circle pole of the kernels is simple" if roots.boundary_simple

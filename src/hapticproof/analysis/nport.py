@@ -135,9 +135,17 @@ def matrix_pole_conditions(report: PoleReport, subject: str = "Z") -> list[Condi
     if multiple:
         label, order = multiple[0]
         where = next((_pole_frequency(p) for p, m in report.axis if m > 1), math.inf)
-        simple = Outcome(Decision.DISPROVED, Evidence(Method.ROOT_ISOLATION, witness={"pole": label, "order": order,
-                                                                                      "pole_frequency": where}, facts=facts),
-                         f"the imaginary-axis pole {label} has order {order} > 1")
+        infinity = report.infinity
+        if label == "s = oo" and infinity is not None and infinity.decision == Decision.DISPROVED:
+            # the kernel's decision at s = oo: an exact point Re s > 0 where Re(v^H Z v) < 0
+            simple = Outcome(Decision.DISPROVED, Evidence(infinity.evidence.method,
+                                                          witness={**(infinity.witness or {}), "pole_frequency": math.inf},
+                                                          facts={**facts, "infinity": infinity.evidence.facts["certificate"]}),
+                             f"improper: {infinity.reason}")
+        else:
+            simple = Outcome(Decision.DISPROVED, Evidence(Method.ROOT_ISOLATION, witness={"pole": label, "order": order,
+                                                                                          "pole_frequency": where}, facts=facts),
+                             f"the imaginary-axis pole {label} has order {order} > 1")
     else:
         simple = Outcome(Decision.PROVED, Evidence(Method.ROOT_ISOLATION, facts={**facts, "axis_poles": axis}),
                          f"simple poles at {', '.join(axis)}" if axis else "no imaginary-axis poles, proper")
@@ -210,7 +218,9 @@ def residue_matrix_outcome(Z: RationalMatrix, report: PoleReport, signs: Sequenc
     items = [p for p, m in report.axis if m == 1] + ([AxisPole("infinity")] if report.improper == 1 else [])
     for pole in items:
         where = f"the residue matrix of {subject} at {pole.label()}"
-        if pole.kind in ("zero", "infinity"):
+        if pole.kind == "infinity" and signs is None and report.infinity is not None:
+            out = report.infinity                   # the kernel: residue Hermitian PSD, else a witness point
+        elif pole.kind in ("zero", "infinity"):
             R = residue_matrix(Z, pole.kind)
             if signs is not None:
                 cross = [(i, j) for i in range(R.rows) for j in range(R.cols) if signs[i] != signs[j] and R[i, j] != 0]

@@ -280,6 +280,14 @@ def _pole_candidates(P: Any, Q: Any, ctx: Any) -> list[flint.fmpq_poly]:
     from hapticproof.exact.unitcircle import symmetric_to_c
 
     out: list[flint.fmpq_poly] = [_leading_in_first(Q)]
+    # properness: the coefficients of z^k, k > deg Q, of P (the pole at z = oo comes and goes
+    # where they vanish; the excess does not depend on a cancellation)
+    above: dict[int, dict[int, flint.fmpq]] = {}
+    for (i, j), cf in (P.to_dict().items() if not P.is_zero() else ()):
+        if i > _deg_first(Q):
+            above.setdefault(i, {})[j] = cf
+    for coeffs in above.values():
+        out.append(flint.fmpq_poly([coeffs.get(k, 0) for k in range(max(coeffs) + 1)]))
     if _deg_first(Q) == 0:
         return out
     if not P.is_zero() and _deg_first(P) > 0:
@@ -356,7 +364,7 @@ def _system_parts(scene: Any, name: str) -> tuple[list[Any], list[flint.fmpq_pol
     from hapticproof.core.symbols import c as C_SYM
     from hapticproof.core.symbols import z as Z_SYM
 
-    model = scene_model(scene.with_params({name: None}))
+    model = scene_model(scene.with_params({name: scene.assumptions.get(name)}))   # keep an assumption (K = "real")
     p = scene.symbol(name)
     free = set(model.parameters) - {p}
     free -= {s for s in free if s.name == "n"}
@@ -394,14 +402,19 @@ def _system_parts(scene: Any, name: str) -> tuple[list[Any], list[flint.fmpq_pol
                  for cf in coefficients if cf.has(p)]
         return polys, poles, cctx
     if scene.system == "teleoperator":
-        from hapticproof.analysis.teleoperator import bounds
+        # the exact conditions (hapticproof.analysis.teleoperator): (P5) h - L(c) >= 0, (P3)
+        # C(1) >= 0, (D) b_m, b_s >= 0 (and b_m + alpha^2 b_s, the denominator of h), and the
+        # poles of C (P1, P2, P4)
+        from hapticproof.analysis.teleoperator import bounds, error_coordinate_damping
 
-        bd = bounds(model)
+        leak = bounds(model).leak
         cctx = _ctx("c")
         polys = []
-        for damping, bound in ((model.b_m, bd.master), (model.b_s, bd.slave)):
-            num, den = sp.fraction(sp.cancel(sp.together(damping - bound)))
-            polys.append(_to_mpoly(sp.expand(num * den), C_SYM, p, cctx))
+        for expr in (error_coordinate_damping(model) - leak, sp.cancel(sp.together(model.C)).subs(Z_SYM, 1),
+                     model.b_m, model.b_s, model.b_m + model.alpha**2 * model.b_s):
+            num, den = sp.fraction(sp.cancel(sp.together(expr)))
+            if (num * den).has(p):
+                polys.append(_to_mpoly(sp.expand(num * den), C_SYM, p, cctx))
         cnum, cden = canonical_fraction(model.C)
         P, Q = _to_mpoly(cnum, Z_SYM, p, zctx), _to_mpoly(cden, Z_SYM, p, zctx)
         return polys, _pole_candidates(P, Q, zctx), cctx

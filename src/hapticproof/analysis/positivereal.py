@@ -31,11 +31,12 @@ from hapticproof.exact.kernel import decide_rational_sign, locate_roots, transfe
 from hapticproof.core.lazy import stage
 from hapticproof.systems.models import environment_path, inverse_transfer
 from hapticproof.exact.realroots import flint_precision, minimise_rational, real_roots
+from hapticproof.exact.rootcount import approximate_outside
 from hapticproof.systems.singleuser import SingleUserScene
 from hapticproof.core.symbols import c as C_SYM
 from hapticproof.core.symbols import z as Z_SYM
 from hapticproof.exact.unitcircle import CRational, ThetaForm, circle_real_part, hermitian_part_rational, numerator_denominator, theta_form
-from hapticproof.exact.conditions import HERMITIAN, RESIDUES, Condition, POLES_IN_DISK, POLES_SIMPLE, combine, pole_conditions
+from hapticproof.exact.conditions import HERMITIAN, RESIDUES, Condition, POLES_IN_DISK, POLES_SIMPLE, combine, pole_conditions, properness_condition
 
 __all__ = ["conditions", "transfer_polynomials", "numeric_scene", "Pole", "Residue", "WorstCase", "poles_of", "unit_circle_residues", "hermitian_of", "decide_hermitian", "symbolic_minimum", "symbolic_c_degree", "SYMBOLIC_CFORM_LIMIT", "poles", "residues", "hermitian", "worst_case", "positive_real"]
 
@@ -317,12 +318,20 @@ def _numeric_poles(Q: flint.fmpq_poly) -> list[Pole]:
             location = "on" if cert.boundary else "outside" if cert.outside else "inside"
             out.append(Pole(value, mult, location))
             continue
-        with flint_precision(64):
-            for r, _ in f.complex_roots():
-                gap = r.real * r.real + r.imag * r.imag - 1
-                location = "inside" if gap < 0 else "outside" if gap > 0 else "on"
-                value = sp.Float(float(r.real.mid()), 12) + sp.I * sp.Float(float(r.imag.mid()), 12)
-                out.append(Pole(value, mult, location))
+        if cert.boundary or max(abs(int(c)).bit_length() for c in f.coeffs()) <= 256:
+            with flint_precision(64):
+                for r, _ in f.complex_roots():
+                    gap = r.real * r.real + r.imag * r.imag - 1
+                    location = "inside" if gap < 0 else "outside" if gap > 0 else "on"
+                    value = sp.Float(float(r.real.mid()), 12) + sp.I * sp.Float(float(r.imag.mid()), 12)
+                    out.append(Pole(value, mult, location))
+            continue
+        # huge coefficients (1e-300 scales): the locations are the certificate's exact counts,
+        # the values only approximate (ball isolation of such clusters costs minutes)
+        points = approximate_outside(f, f.degree(), "disk")
+        for k, w in enumerate(points or [complex("nan")] * f.degree()):
+            location = "outside" if k < cert.outside else "inside"
+            out.append(Pole(sp.Float(w.real, 12) + sp.I * sp.Float(w.imag, 12), mult, location))
     return sorted(out, key=lambda p: (sp.default_sort_key(p.value)))
 
 
@@ -471,6 +480,7 @@ def _symbolic_conditions(scene: SingleUserScene) -> list[Condition]:
     else:
         pole_out = Outcome(Decision.PROVED, Evidence(Method.CANONICAL_FORM, facts={"poles": [str(p.value) for p in pole_list]}),
                            "every pole lies in |z| <= 1 for all parameter values")
+    pole_out = _with_properness(pole_out, _properness(scene))
     multiple = [p for p in pole_list if p.location == "on" and p.multiplicity > 1]
     if multiple:
         simple = Outcome(Decision.DISPROVED, Evidence(Method.CANONICAL_FORM, witness={"pole": multiple[0].value}),
@@ -497,6 +507,35 @@ def _symbolic_conditions(scene: SingleUserScene) -> list[Condition]:
                        minimiser=herm.minimiser, minimum=herm.minimum)
     return [Condition(POLES_IN_DISK, pole_out), Condition(POLES_SIMPLE, simple), Condition(RESIDUES, residue),
             Condition(HERMITIAN, herm)]
+
+
+def _properness(scene: SingleUserScene) -> Outcome:
+    """The condition at ``z = oo`` for symbolic coefficients (:func:`hapticproof.exact.conditions.properness_condition`):
+    ``G^{-1}`` itself for an integer delay, ``z^{-n}`` times the environment path for a symbolic
+    one (the constant ``b - z_a`` is proper)."""
+    if scene.delay.is_Symbol:
+        P, Q = numerator_denominator(environment_path(scene))
+        return properness_condition(P, Q, scene.delay)
+    P, Q = numerator_denominator(inverse_transfer(scene))
+    return properness_condition(P, Q)
+
+
+def _with_properness(poles_out: Outcome, proper: Outcome) -> Outcome:
+    """One condition "poles in |z| <= 1" for the finite poles and the one at ``z = oo``: the
+    worse of the two decides (disproved, undecided, symbolic, proved), the other is kept in the
+    facts."""
+    order = {Decision.DISPROVED: 0, Decision.UNDECIDED: 1, Decision.SYMBOLIC: 2, Decision.PROVED: 3}
+    if proper.decision == Decision.PROVED:
+        if poles_out.decision == Decision.PROVED:
+            return Outcome(Decision.PROVED, poles_out.evidence, poles_out.reason + "; " + proper.reason)
+        return poles_out
+    first, second = (proper, poles_out) if order[proper.decision] <= order[poles_out.decision] else (poles_out, proper)
+    facts = dict(first.evidence.facts or {})
+    if second.decision == Decision.SYMBOLIC and first.decision == Decision.SYMBOLIC:
+        facts["condition"] = sp.And(facts["condition"], second.evidence.facts["condition"])
+    facts["other"] = second.reason
+    reason = first.reason if second.decision == Decision.PROVED else f"{first.reason}; {second.reason}"
+    return Outcome(first.decision, Evidence(first.evidence.method, witness=first.evidence.witness, facts=facts), reason)
 
 
 @stage("positive_real")

@@ -112,12 +112,13 @@ def _derive_exact(state: State) -> dict[str, Any]:
         if wc.condition is None or _placeholder(wc.condition) or wc.condition.has(sp.Function("PSD")):
             return {}
         return {"condition": wc.condition, "method": f"worst case of the Hermitian part ({wc.method})"}
-    from hapticproof.analysis.teleoperator import worst_case
+    from hapticproof.analysis.teleoperator import exact_condition
 
-    wc = worst_case(model)
-    if _placeholder(wc.condition):
+    condition = exact_condition(model)
+    if condition is None or _placeholder(condition):
         return {}
-    return {"condition": wc.condition, "method": "worst case of the teleoperator bounds over frequency (endpoint analysis)"}
+    return {"condition": condition, "method": "the exact passivity conditions (D), (P1)-(P5) of the teleoperator "
+                                              "(error-coordinate damping h >= sup L, C(1) >= 0, the poles of C)"}
 
 
 def _tele_symbolic(model: Any) -> bool:

@@ -1,8 +1,10 @@
-"""``hapticproof derive teleoperator``: passivity bounds of the sampled-data PEB teleoperator.
+"""``hapticproof derive teleoperator``: passivity of the sampled-data PEB teleoperator.
 
-Prints the per-robot damping bounds of the teleoperator paper's (32) (``(29)`` at ``alpha = 1``)
-as exact functions of ``c = cos(wT)`` for the chosen controller, their worst case over
-frequency, and, when every parameter is a number, the exact passivity decision.
+Prints the exact passivity decision condition by condition -- (D) non-negative dampings, (P1)-(P4)
+the poles of ``C`` and its DC stiffness, (P5) ``h >= L(c)`` with the error-coordinate damping
+``h = b_m b_s/(b_m + alpha^2 b_s)`` (:mod:`hapticproof.analysis.teleoperator`) -- and, apart, the
+per-robot bounds of the paper's (32) (``(29)`` at ``alpha = 1``) as exact functions of
+``c = cos(wT)`` with their worst case: a sufficient condition only, never a disproof.
 
 Examples::
 
@@ -26,6 +28,8 @@ from hapticproof.cli.common import add_output_option, build_model, add_scene_opt
 from hapticproof.cli.derive_single_user import add_design_options, design_answers
 from hapticproof.core.errors import InputFormatError
 from hapticproof.core.evidence import to_jsonable
+from hapticproof.analysis.teleoperator import (bounds, criterion, criterion_conditions, error_coordinate_damping, passivity,
+                                               passivity_conditions, worst_case)
 
 __all__ = ["register", "run"]
 
@@ -33,11 +37,14 @@ def register(systems: argparse._SubParsersAction) -> None:
     parser = systems.add_parser(
         "teleoperator",
         help="sampled-data position-error-based teleoperator (teleoperator paper, Fig. 2)",
-        description="Per-robot damping bounds of eq. (32) (eq. (29) at alpha = 1) as exact functions of "
-        "c = cos(wT), their worst case over w, and the exact passivity decision when the controller, T, "
-        "alpha, b_m and b_s are numbers (the masses m_m, m_s do not enter the bound: they are needed only "
-        "for the stability boundary). Controllers: 'pd' (eq. 33, default), 'filtered-pd' (derivative "
-        "low-pass with pole a), any rational C(z), or C(s) with --discretize; any parameter names.",
+        description="The exact passivity decision, condition by condition: (D) b_m, b_s >= 0; (P1) no pole of C "
+        "in |z| > 1; (P2) none at z = 1; (P3) C(1) >= 0; (P4) other unit-circle poles simple with positive "
+        "Res(C,z0)/(z0(z0-1)); (P5) h >= L(c) for all c = cos(wT), h = b_m b_s/(b_m + alpha^2 b_s) (exact when "
+        "the controller, T, alpha, b_m and b_s are numbers, conditions on the parameters otherwise; the masses "
+        "m_m, m_s do not enter it: they are needed only for the stability boundary). The per-robot bounds of the "
+        "paper's (32) (eq. (29) at alpha = 1) are printed apart: a sufficient condition only. Controllers: 'pd' "
+        "(eq. 33, default), 'filtered-pd' (derivative low-pass with pole a), any rational C(z), or C(s) with "
+        "--discretize; any parameter names.",
     )
     add_scene_options(parser, "teleoperator")
     add_design_options(parser, margin=False)
@@ -51,7 +58,6 @@ def register(systems: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from hapticproof.analysis.teleoperator import bounds, error_coordinate_damping, passivity, passivity_conditions, worst_case
     from hapticproof.systems.discretize import is_rational
     from hapticproof.core.notation import shorten_numbers
     from hapticproof.report.readable import brief, number
@@ -70,6 +76,8 @@ def run(args: argparse.Namespace) -> int:
     bd, wc = bounds(scene), worst_case(scene)
     decision = passivity(scene)
     conds = passivity_conditions(scene)
+    paper = criterion(scene)
+    paper_conds = criterion_conditions(scene)
     extra, lines, answers = design_answers(spec, args, False)
     if args.format == "json":
         out = {"controller": sp.sstr(scene.C), "alpha": sp.sstr(scene.alpha), "bound_master": sp.sstr(bd.master),
@@ -79,7 +87,10 @@ def run(args: argparse.Namespace) -> int:
                "error_coordinate_damping": sp.sstr(error_coordinate_damping(scene)),
                "conditions": [c.to_json() for c in conds],
                "verdict": decision.decision.value, "reason": decision.reason,
-               "decision": decision.to_json()}
+               "decision": decision.to_json(),
+               "criterion_32": {"note": "the paper's (32): a sufficient condition for alpha > 0 under (P1)-(P4), "
+                                        "never a disproof", "decision": paper.decision.value, "reason": paper.reason,
+                                "conditions": [c.to_json() for c in paper_conds]}}
         if spec.discretize is not None:
             out["continuous_design"] = {"C_s": sp.sstr(spec.controller), "discretize": spec.discretize}
         out = to_jsonable(out)
@@ -93,7 +104,7 @@ def run(args: argparse.Namespace) -> int:
                  ("slave damping bound", r"b_s > " + tex.to_latex(bd.slave, cos_name=cos))]
         if wc.condition is not None:
             items.append(("worst case over frequency", tex.to_latex(wc.condition)))
-        items.append(("error-coordinate damping (less conservative)", r"b_e = " + tex.to_latex(error_coordinate_damping(scene))))
+        items.append(("error-coordinate damping", r"h = " + tex.to_latex(error_coordinate_damping(scene))))
         items += answers
         if args.fragment:
             write_output(args.output, tex.derivation_fragment(items))
@@ -104,6 +115,7 @@ def run(args: argparse.Namespace) -> int:
                           f"{number(wc.sup_slave)} (slave)"
                           + (f" at c = {number(wc.maximiser)}" if wc.maximiser is not None else "")))
         notes.append(("decision", f"{decision.decision.value} ({decision.reason})"))
+        notes.append(("the paper's (32)", f"{paper.decision.value} (a sufficient condition only)"))
         write_output(args.output, tex.derivation_document("hapticproof derive teleoperator", items, notes,
                                                           intro=tex.escape_text(f"PEB teleoperator, alpha = {scene.alpha}.")))
         return 0
@@ -112,26 +124,34 @@ def run(args: argparse.Namespace) -> int:
     if spec.discretize is not None:
         out_lines.append(f"C(s) = {sp.sstr(spec.controller)}  ->  {spec.discretize}")
     out_lines += [f"controller C(z) = {brief(scene.C, verbose=v)}, alpha = {scene.alpha}",
-                  f"b_m > {brief(sp.factor(bd.master), verbose=v)}    (c = cos wT)",
-                  f"b_s > {brief(sp.factor(bd.slave), verbose=v)}"]
-    where = f" at c = {number(wc.maximiser) if not hasattr(wc.maximiser, 'approx') else wc.maximiser.approx(12)}" \
-        if wc.maximiser is not None else ""
-    if wc.sup_master is sp.oo or wc.sup_master == sp.oo:
-        out_lines.append("worst case: the bounds are unbounded (C(z) has a pole on the unit circle): no finite damping "
-                         "makes the teleoperator passive")
-    else:
-        out_lines.append(f"worst case: sup over c of the bounds = {number(wc.sup_master)} (master), "
-                         f"{number(wc.sup_slave)} (slave){where}")
-    if wc.condition is not None and decision.decision.value == "symbolic":
-        out_lines.append(f"passive if {brief(wc.condition, verbose=v)}")
-    out_lines.append(f"error-coordinate damping (less conservative): {sp.sstr(error_coordinate_damping(scene))}")
-    out_lines.append("conditions:")
-    width = max(len(c.name) for c in conds)
+                  f"leak L(c) = {brief(sp.factor(bd.leak), verbose=v)}    (c = cos wT)",
+                  f"error-coordinate damping h = b_m b_s/(b_m + alpha^2 b_s) = {_damping_text(scene)}",
+                  "conditions (exact: passive iff all hold):"]
+    width = max(len(c.name) for c in conds + paper_conds)
     for cond in conds:
         out_lines.append(f"  {cond.name.ljust(width)}  {cond.decision.value:<9}  {shorten_numbers(cond.outcome.reason, verbose=v)}")
     out_lines.append(f"verdict: {decision.decision.value} ({shorten_numbers(decision.reason, verbose=v)})")
+    out_lines.append("the paper's (32), a sufficient condition only (alpha > 0, under (P1)-(P4)):")
+    out_lines += [f"  b_m > {brief(sp.factor(bd.master), verbose=v)}", f"  b_s > {brief(sp.factor(bd.slave), verbose=v)}"]
+    where = f" at c = {number(wc.maximiser) if not hasattr(wc.maximiser, 'approx') else wc.maximiser.approx(12)}" \
+        if wc.maximiser is not None else ""
+    if wc.sup_master is sp.oo or wc.sup_master == sp.oo:
+        out_lines.append("  worst case: the bounds are unbounded (C(z) has a pole on the unit circle)")
+    else:
+        out_lines.append(f"  worst case: sup over c of the bounds = {number(wc.sup_master)} (master), "
+                         f"{number(wc.sup_slave)} (slave){where}")
+    for cond in paper_conds:
+        out_lines.append(f"  {cond.name.ljust(width)}  {cond.decision.value:<9}  {shorten_numbers(cond.outcome.reason, verbose=v)}")
     write_output(args.output, "\n".join(out_lines + lines))
     return 0
+
+
+def _damping_text(scene) -> str:
+    """``h``, or why it is not defined (a negative damping: condition (D) decides)."""
+    negative = [name for name in ("b_m", "b_s") if getattr(scene, name).is_number and getattr(scene, name) < 0]
+    if negative:
+        return f"not defined ({', '.join(negative)} < 0: condition (D) fails)"
+    return sp.sstr(error_coordinate_damping(scene))
 
 
 def _number(value) -> str:

@@ -92,8 +92,22 @@ def is_psd(matrix: Any, search_minor: bool = True) -> PsdTest:
                     break
             if minor:
                 break
-    eig = float(np.min(np.linalg.eigvalsh(np.array(M.evalf(30).tolist(), dtype=complex)))) if M.rows else 0.0
-    return PsdTest(failing is None, tuple(sp.Rational(int(e.p), int(e.q)) for e in coeffs), failing, minor, eig)
+    return PsdTest(failing is None, tuple(sp.Rational(int(e.p), int(e.q)) for e in coeffs), failing, minor,
+                   _least_eigenvalue(M))
+
+
+def _least_eigenvalue(M: sp.Matrix) -> float | None:
+    """A float diagnostic (the decision above is exact): ``None`` when the entries leave the
+    float range (1e300 couplings) or LAPACK does not converge."""
+    if not M.rows:
+        return 0.0
+    values = np.array(M.evalf(30).tolist(), dtype=complex)
+    if not np.all(np.isfinite(values)):
+        return None
+    try:
+        return float(np.min(np.linalg.eigvalsh(values)))
+    except np.linalg.LinAlgError:
+        return None
 
 
 def _integer_charpoly(rows: list[list[flint.fmpq]]) -> list[flint.fmpq]:

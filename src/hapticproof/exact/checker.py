@@ -17,6 +17,10 @@ from its JSON alone, importing nothing of the kernel, with other methods:
 * **roots** certificates -- the bilinear map ``z = (1 + s)/(1 - s)`` and a **Routh-Hurwitz**
   array (after removing the imaginary-axis roots found as real roots of
   ``gcd(Re R(jw), Im R(jw))``), instead of complex root isolation;
+* **infinity** certificates (properness) -- the pole order at ``z = oo`` / ``s = oo`` recounted
+  from the raw degrees of the original transfer function (and, at ``s = oo``, the residue's
+  characteristic coefficients); a disproof's point re-evaluated exactly, ``Re(v^H F(w) v) < 0``
+  with ``|w| > 1`` or ``Re w > 0``;
 * **determinant** certificates (destabilizing terminations of an n-port) -- ``det(Z + T)``
   against its claimed numerator/denominator by exact evaluation at more points than the degree
   of the identity, then the numerator's roots certificate (a zero in ``Re s > 0``).
@@ -585,6 +589,78 @@ def _check_constant_psd(cert: dict) -> list[str]:
 
 
 
+def _degree(coeffs: list) -> int | None:
+    """Degree of a JSON polynomial (lowest first), trailing zeros ignored; ``None`` for zero."""
+    values = [_q(v) for v in coeffs]
+    while values and values[-1] == 0:
+        values.pop()
+    return len(values) - 1 if values else None
+
+
+def _check_infinity(cert: dict) -> list[str]:
+    """Properness: the pole order at infinity recounted from the raw degrees of the original
+    transfer function; a disproof's witness re-evaluated there (``Re(v^H F(w) v) < 0`` with
+    ``|w| > 1`` or ``Re w > 0``), independently of the order's claim."""
+    transfer = cert["transfer"]
+    cells = transfer["entries"] if "entries" in transfer else [[{"num": transfer["num"], "den": transfer["den"]}]]
+    m = len(cells)
+    if any(len(row) != m for row in cells):
+        raise _Fail("the transfer matrix is not square")
+    orders, lead = [], [[Fraction(0)] * m for _ in range(m)]
+    for row in cells:
+        for cell in row:
+            dn, dd = _degree(cell["num"]), _degree(cell["den"])
+            if dd is None:
+                raise _Fail("an entry has a zero denominator")
+            if dn is not None:
+                orders.append(dn - dd)
+    order = max(orders, default=-1)
+    if order != cert["order"]:
+        raise _Fail(f"the pole order at infinity is {order}, the certificate says {cert['order']}")
+    for i, row in enumerate(cells):
+        for j, cell in enumerate(row):
+            dn, dd = _degree(cell["num"]), _degree(cell["den"])
+            if dn is not None and dn - dd == order:
+                lead[i][j] = _q(cell["num"][dn]) / _q(cell["den"][dd])
+    disk = cert["domain"] == "disk"
+    if disk:
+        holds = order <= 0
+        how = "no pole at z = oo" if holds else f"a pole of order {order} at z = oo"
+    elif order <= 0:
+        holds, how = True, "no pole at s = oo"
+    elif order > 1:
+        holds, how = False, f"a pole of order {order} > 1 at s = oo"
+    else:
+        M = [[_G(lead[i][j]) for j in range(m)] for i in range(m)]
+        hermitian = all(lead[i][j] == lead[j][i] for i in range(m) for j in range(m))
+        holds = hermitian and all(e >= 0 for e in _charpoly_coefficients(M))
+        how = "a simple pole at s = oo, residue " + ("PSD" if holds else "not Hermitian PSD")
+    if holds != cert["holds"]:
+        raise _Fail(f"{how}, the certificate says it {'holds' if cert['holds'] else 'fails'}")
+    notes = [f"{how} (degrees recounted)"]
+    if "witness" in cert:
+        w = _G(_q(cert["witness"][0]), _q(cert["witness"][1]))
+        if disk and not w.re * w.re + w.im * w.im > 1:
+            raise _Fail("the witness is not outside the unit circle")
+        if not disk and not w.re > 0:
+            raise _Fail("the witness is not in the open right half-plane")
+        v = [_G(_q(a), _q(b)) for a, b in cert["vector"]]
+        total = _G(Fraction(0))
+        for i in range(m):
+            for j in range(m):
+                if v[i].is_zero() or v[j].is_zero():
+                    continue
+                total = total + v[i].conj() * _eval_transfer(cells[i][j], w) * v[j]
+        if total.re != _q(cert["re_value"]):
+            raise _Fail(f"Re(v^H F(w) v) = {total.re}, the certificate says {cert['re_value']}")
+        if not total.re < 0:
+            raise _Fail("the witness value is not negative")
+        notes.append("Re(v^H F(w) v) < 0 at the witness (exact)")
+    elif not holds:
+        notes.append("no witness point recorded (the degree count alone decides)")
+    return notes
+
+
 def _chebyshev_monomial(coeffs: list) -> flint.fmpq_poly:
     """``sum_k a_k T_k(c)`` in the monomial basis (the recurrence ``T_{k+1} = 2c T_k - T_{k-1}``)."""
     c = flint.fmpq_poly([0, 1])
@@ -669,7 +745,8 @@ def _check_determinant(cert: dict) -> list[str]:
 
 
 _CHECKS = {"sign": _check_sign, "psd": _check_psd, "roots": _check_roots, "residue": _check_residue,
-           "constant-psd": _check_constant_psd, "chebyshev-sign": _check_chebyshev, "determinant": _check_determinant}
+           "constant-psd": _check_constant_psd, "chebyshev-sign": _check_chebyshev, "determinant": _check_determinant,
+           "infinity": _check_infinity}
 
 
 def check_certificate(cert: dict) -> CheckResult:

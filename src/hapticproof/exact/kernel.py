@@ -45,6 +45,7 @@ import sympy as sp
 
 from hapticproof.core.evidence import Decision, Evidence, Method, Outcome
 from hapticproof.exact.realroots import as_fmpq, flint_precision, real_roots, to_rational
+from hapticproof.exact.rootcount import approximate_outside, exact_split
 
 __all__ = [
     "SignCertificate",
@@ -438,9 +439,12 @@ def _short(value: Any) -> str:
         return text
     q = Fraction(int(value.p), int(value.q)) if hasattr(value, "p") else Fraction(value)
     sign, q = ("-" if q < 0 else ""), abs(q)
-    # scientific notation from the exact integer parts (floats overflow past 1e308)
-    exponent = len(str(q.numerator)) - len(str(q.denominator))
-    if q < Fraction(10) ** exponent:
+    # scientific notation from the exact integer parts (floats overflow past 1e308; the bit
+    # lengths, not decimal strings, which Python refuses past 4300 digits)
+    exponent = int((q.numerator.bit_length() - q.denominator.bit_length()) * 0.30102999566398120)
+    while q >= Fraction(10) ** (exponent + 1):
+        exponent += 1
+    while q < Fraction(10) ** exponent:
         exponent -= 1
     mantissa = float(q / Fraction(10) ** exponent)
     return f"{sign}{mantissa:.6g}e{exponent:+d} (exact value in the certificate)"
@@ -708,6 +712,15 @@ class RootCertificate:
         }
 
 
+def _approximate(root: flint.fmpq) -> complex:
+    """A rational root as a complex float for display, clamped to the float range (a pole at
+    1e400 is shown as 1.8e308, the certificate's counts are exact)."""
+    try:
+        return complex(float(root))
+    except OverflowError:
+        return complex(1.7976931348623157e308 if root > 0 else -1.7976931348623157e308)
+
+
 def _reciprocal(f: flint.fmpz_poly) -> flint.fmpz_poly:
     return flint.fmpz_poly(f.coeffs()[::-1])
 
@@ -724,18 +737,25 @@ def _c_image(f: flint.fmpz_poly) -> flint.fmpq_poly:
     return out
 
 
-def _moduli(f: flint.fmpz_poly, known_on: int) -> tuple[int, int, list[complex]]:
-    """Numbers of roots of ``f`` strictly inside / outside the unit circle, given that exactly
-    ``known_on`` of its roots are on it (certified: every other root's ball separates from 1)."""
+def _located(f: flint.fmpz_poly, known_on: int, domain: str) -> tuple[int, int, list[complex]]:
+    """Numbers of roots of ``f`` strictly inside / outside the unit circle (``disk``) or left /
+    right of the imaginary axis (``halfplane``), given that exactly ``known_on`` of its roots
+    are on the boundary: certified balls at moderate precision, else exact counts
+    (:func:`hapticproof.exact.rootcount.exact_split`: a pole at ``1 + 1e-300`` needs no 2000-bit
+    arithmetic), else balls at higher precision."""
+    huge = max(abs(int(c)).bit_length() for c in f.coeffs()) > 256
+    if huge or f.degree() <= 2:
+        # exact first: big coefficients (1e-300 scales) make ball isolation slow at any precision
+        exact = exact_split(f, known_on, domain)
+        if exact is not None:
+            return exact[0], exact[1], approximate_outside(f, exact[1], domain)
     precision = 64
     while precision <= 1 << 16:
         with flint_precision(precision):
-            roots = f.complex_roots()
-            inside = outside = 0
+            inside = outside = undecided = 0
             points = []
-            undecided = 0
-            for r, mult in roots:
-                gap = r.real * r.real + r.imag * r.imag - 1
+            for r, mult in f.complex_roots():
+                gap = r.real * r.real + r.imag * r.imag - 1 if domain == "disk" else r.real
                 if gap < 0:
                     inside += mult
                 elif gap > 0:
@@ -745,29 +765,23 @@ def _moduli(f: flint.fmpz_poly, known_on: int) -> tuple[int, int, list[complex]]
                     undecided += mult
             if undecided == known_on:
                 return inside, outside, points
+        if precision == 1024:
+            exact = exact_split(f, known_on, domain)
+            if exact is not None:
+                return exact[0], exact[1], approximate_outside(f, exact[1], domain)
         precision *= 4
-    raise ArithmeticError("could not separate the roots from the unit circle")  # pragma: no cover
+    where = "the unit circle" if domain == "disk" else "the imaginary axis"
+    raise ArithmeticError(f"could not separate the roots from {where}")  # pragma: no cover
+
+
+def _moduli(f: flint.fmpz_poly, known_on: int) -> tuple[int, int, list[complex]]:
+    """Roots of ``f`` strictly inside / outside the unit circle (see :func:`_located`)."""
+    return _located(f, known_on, "disk")
 
 
 def _halfplane(f: flint.fmpz_poly, known_on: int) -> tuple[int, int, list[complex]]:
-    precision = 64
-    while precision <= 1 << 16:
-        with flint_precision(precision):
-            roots = f.complex_roots()
-            left = right = undecided = 0
-            points = []
-            for r, mult in roots:
-                if r.real < 0:
-                    left += mult
-                elif r.real > 0:
-                    right += mult
-                    points.append(complex(float(r.real.mid()), float(r.imag.mid())))
-                else:
-                    undecided += mult
-            if undecided == known_on:
-                return left, right, points
-        precision *= 4
-    raise ArithmeticError("could not separate the roots from the imaginary axis")  # pragma: no cover
+    """Roots of ``f`` left / right of the imaginary axis (see :func:`_located`)."""
+    return _located(f, known_on, "halfplane")
 
 
 def _even_odd(f: flint.fmpz_poly) -> tuple[flint.fmpz_poly, flint.fmpz_poly]:
@@ -812,7 +826,7 @@ def locate_roots(p: Any, domain: str = "disk") -> RootCertificate:
                     inside += mult
                 else:
                     outside += mult
-                    points.append(complex(float(root)))
+                    points.append(_approximate(root))
             else:
                 if root == 0:
                     boundary.append(BoundaryRoot(mult, sp.Integer(0), f))
@@ -820,7 +834,7 @@ def locate_roots(p: Any, domain: str = "disk") -> RootCertificate:
                     inside += mult
                 else:
                     outside += mult
-                    points.append(complex(float(root)))
+                    points.append(_approximate(root))
             continue
         on_roots: list[BoundaryRoot] = []
         if domain == "disk":

@@ -746,6 +746,9 @@ class PoleReport:
     axis: tuple[tuple[AxisPole, int], ...]
     improper: int
     certificate: RootCertificate | None = None
+    #: the kernel's decision at ``s = oo`` (:func:`hapticproof.exact.infinity.decide_infinity`):
+    #: at most a simple pole with a Hermitian PSD residue, with an exact witness when not
+    infinity: Any = None
 
     @property
     def stable(self) -> bool:
@@ -767,11 +770,14 @@ def pole_report(Z: RationalMatrix) -> PoleReport:
     >>> [(p.label(), m) for p, m in rep.axis], rep.improper, rep.stable
     ([('s = 0', 1), ('s = +-j*sqrt(4)', 1)], 1, True)
     """
+    from hapticproof.exact.infinity import decide_infinity
+
     n, m = Z.shape
     improper = max((e.num.degree() - e.den.degree() for row in Z.rows for e in row if not e.is_zero()), default=0)
+    infinity = decide_infinity([[(e.num, e.den) for e in row] for row in Z.rows], "halfplane", "Z") if n == m else None
     L = Z.denominator_lcm()
     if L.degree() <= 0:
-        return PoleReport((), (), max(improper, 0), None)
+        return PoleReport((), (), max(improper, 0), None, infinity)
     cert = locate_roots(L, "halfplane")
     rhp: list[tuple[tuple[int, int], complex]] = []
     if cert.outside:
@@ -790,7 +796,7 @@ def pole_report(Z: RationalMatrix) -> PoleReport:
         pole = _axis_pole(r)
         if pole.label() not in axis or axis[pole.label()][1] < r.multiplicity:
             axis[pole.label()] = (pole, r.multiplicity)
-    return PoleReport(tuple(rhp), tuple(axis.values()), max(improper, 0), cert)
+    return PoleReport(tuple(rhp), tuple(axis.values()), max(improper, 0), cert, infinity)
 
 
 # ---------------------------------------------------------------------------------------------

@@ -201,7 +201,11 @@ def is_rational(expr: Any, variable: sp.Symbol = Z_SYM) -> bool:
 
     >>> is_rational(sp.exp(-sp.Rational(1, 2)) / Z_SYM), is_rational(1 / (Z_SYM - sp.Rational(1, 2)))
     (False, True)
+    >>> is_rational(sp.sin(sp.Rational(1, 10**9)) * (Z_SYM - 1) / (Z_SYM**2 + 1))        # ZOH of a resonator
+    False
     """
     expr = sp.sympify(expr)
-    return not expr.has(sp.exp) and not expr.has(sp.Float) and expr.is_rational_function(variable) and \
+    # no e^{pT}, nor the sin/cos of a ZOH of resonant poles, no pi, E or j among the coefficients
+    return not expr.has(sp.exp) and not expr.has(sp.Float) and not expr.atoms(sp.Function) and \
+        not expr.atoms(sp.NumberSymbol) and not expr.has(sp.I) and expr.is_rational_function(variable) and \
         all(a.is_Rational for a in expr.atoms(sp.Number))

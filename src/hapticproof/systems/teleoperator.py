@@ -109,15 +109,15 @@ class TeleoperatorScene:
     Parameters
     ----------
     m_m, m_s, b_m, b_s : expr
-        Masses and dampings (positive when numeric). The masses do not enter the passivity
-        bounds (they store energy losslessly) and may be ``None``; the stability checks
-        (:meth:`to_sampled`) need them.
+        Masses (positive) and dampings (any sign: a negative damping is decided, not refused).
+        The masses do not enter the passivity decision (they store energy losslessly) and may
+        be ``None``; the stability checks (:meth:`to_sampled`) need them.
     T : expr
         Sampling period.
     C : expr
         ``C(z) = C_s(z)``, any real-rational function of ``z``; ``C_m = alpha C`` (eq. 30).
     alpha : expr
-        Position scaling (eq. 31); ``1`` gives equal controllers (eq. 17).
+        Position scaling (eq. 31), any real number; ``1`` gives equal controllers (eq. 17).
     """
 
     m_m: Any
@@ -137,14 +137,20 @@ class TeleoperatorScene:
                 continue                      # masses are optional: they do not enter the bounds
             value = value if isinstance(value, sp.Basic) and not value.is_number else exact(value)
             object.__setattr__(self, name, value)
-            if value.is_number and not value > 0:
+            if value.is_number and not value.is_real:
+                raise SceneError(f"{name} must be a real number, got {value}")
+            # dampings of any sign and any scaling alpha are decided (condition (D); only alpha^2
+            # enters the error-coordinate damping); masses and the period are physical
+            if name in ("m_m", "m_s", "T") and value.is_number and not value > 0:
                 raise SceneError(f"{name} must be positive, got {value}")
         C = normalise_variables(self.C, "z", "C(z)")
         if not C.is_rational_function(Z_SYM):
             raise SceneError(f"C(z) must be a rational function of z, got {C}")
         num, den = sp.fraction(sp.cancel(sp.together(C)))
         if sp.Poly(num, Z_SYM).degree() > sp.Poly(den, Z_SYM).degree():
-            raise SceneError("C(z) must be proper (causal)")
+            raise SceneError(f"C(z) = {sp.sstr(sp.cancel(C))} is improper (non-causal: y_k would need later samples of the "
+                             "error), so the sampled-data teleoperator is not defined; give a proper C(z) (a backward "
+                             "difference or a filtered derivative)")
         object.__setattr__(self, "C", C)
 
     @classmethod
