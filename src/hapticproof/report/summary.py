@@ -6,8 +6,8 @@
 ('proved', None)
 >>> [c.decision.value for c in summary.conditions]
 ['proved', 'proved', 'proved', 'proved']
->>> sorted(summary.to_json())[:4]
-['G_inverse', 'approximation', 'conditions', 'delay']
+>>> sorted(summary.to_json())[:5]             # 'definition': G^-1 itself, for the judge of 'check'
+['G_inverse', 'approximation', 'conditions', 'definition', 'delay']
 """
 
 from __future__ import annotations
@@ -53,6 +53,8 @@ class SceneSummary:
     minimum: Any = None
     stages: dict = field(default_factory=dict)
     conditions: tuple[Condition, ...] = ()
+    #: the original ``G^{-1}(z)`` and the decision, for the definition-level judge of ``check``
+    definition: dict | None = None
 
     def to_json(self) -> dict[str, Any]:
         out = {
@@ -71,6 +73,8 @@ class SceneSummary:
             "minimiser": self.minimiser,
             "minimum": self.minimum,
         }
+        if self.definition is not None:
+            out["definition"] = self.definition
         if self.stages:
             out["stages_seconds"] = self.stages
         return to_jsonable(out)
@@ -184,6 +188,16 @@ def summarize_single_user(scene: SingleUserScene, with_profile: bool = False) ->
     wc = worst_case(scene)
     verdict = positive_real(scene)
     witness = dict(verdict.witness) if (verdict.witness and verdict.decision == Decision.DISPROVED) else None
+    definition = _definition(scene, verdict.decision.value, witness)
+    decision, reason = verdict.decision.value, verdict.reason
+    if definition is not None:
+        from hapticproof.exact.judge import judge
+
+        judged = judge(definition)
+        definition["judged"] = {"ok": judged.ok, "reason": judged.reason}
+        if not judged.ok:   # the decision and the definition disagree: neither is reported as established
+            decision, witness = Decision.UNDECIDED.value, None
+            reason = f"the definition-level judge disagrees with '{verdict.decision.value}' ({judged.reason}); the decision said: {verdict.reason}"
     return SceneSummary(
         system="single-user",
         approximation=scene.approximation,
@@ -193,11 +207,27 @@ def summarize_single_user(scene: SingleUserScene, with_profile: bool = False) ->
         poles=poles(scene),
         residues=residues(scene),
         worst_case=wc.condition,
-        verdict=verdict.decision.value,
+        verdict=decision,
         witness=witness,
-        reason=verdict.reason,
+        reason=reason,
         minimiser=wc.minimiser,
         minimum=wc.minimum,
         stages=profile(scene) if with_profile else {},
         conditions=tuple(conditions(scene)),
+        definition=definition,
     )
+
+
+def _definition(scene: SingleUserScene, decision: str, witness: Any) -> dict | None:
+    """The judge object of a numeric scene's decision: ``G^{-1}(z)`` itself (numerator and
+    denominator), so that ``hapticproof check`` tests positive realness from the definition."""
+    if not scene.is_numeric or decision not in ("proved", "disproved"):
+        return None
+    from hapticproof.analysis.positivereal import transfer_polynomials
+    from hapticproof.exact.kernel import transfer_json
+
+    P, Q = transfer_polynomials(scene)
+    out = {"judge": "positive-real", "domain": "disk", "decision": decision, "transfer": transfer_json(P, Q)}
+    if witness:
+        out["witness"] = witness
+    return out
