@@ -45,7 +45,7 @@ import scipy.optimize
 from hapticproof.core.errors import SceneError
 from hapticproof.systems.impedance import CLAMPED, Impedance, IDENTIFIER, to_fraction
 from hapticproof.systems.loops import MultiUser, Scene, SingleUser, Teleoperator
-from hapticproof.analysis.sampled import DECIDE_BITS, certified_radius, spectral_radii, spectral_radius, trusted_radii, trusted_radius
+from hapticproof.analysis.sampled import DECIDE_BITS, TRUSTED_MARGIN, certified_stability, spectral_radii, spectral_radius, trusted_radii, trusted_radius
 
 __all__ = [
     "SceneFamily",
@@ -345,24 +345,13 @@ class Boundary:
         }
 
 
-def _signed(ball: Any) -> float:
-    """``rho - 1`` of a certified radius ball as a float whose sign is the certified one
-    (``0.0`` when the ball holds 1); ``rho - 1`` below the float range keeps its sign."""
-    value = float((ball - 1).mid())
-    if ball < 1:
-        return value if value < 0 else -5e-324
-    if ball > 1:
-        return value if value > 0 else 5e-324
-    return 0.0
-
-
 class _Criterion:
     """``p -> signed distance to instability`` (negative: stable) for one method.
 
     The spectral method uses the float64 radius where it can be trusted
-    (:func:`hapticproof.analysis.sampled.trusted_radius`) and the certified ball radius
-    everywhere else (overflow, extreme scales, a radius within 1e-7 of 1), so the sign it
-    returns is never a rounding artefact."""
+    (:func:`hapticproof.analysis.sampled.trusted_radius`) and the certified sign everywhere else
+    (overflow, extreme scales, a radius within 1e-7 of 1: ball arithmetic on the exact loop),
+    so the sign it returns is never a rounding artefact."""
 
     def __init__(self, family: SceneFamily, vary: str, at: Mapping[str, Any], method: Method,
                  steps: int | None):
@@ -374,21 +363,25 @@ class _Criterion:
         return self.family.scene(**self.at, **{self.vary: float(value)})
 
     def certified(self, value: float) -> float:
-        """``rho - 1`` from the certified radius (sign certified; 0.0 when undecided, and the
-        value is recorded in ``undecided``)."""
-        try:
-            out = _signed(certified_radius(self.scene(value), decide=True, max_bits=DECIDE_BITS))
-        except ArithmeticError:
-            out = 0.0
-        if out == 0.0:
+        """The certified sign of ``rho - 1`` (:func:`hapticproof.analysis.sampled.certified_stability`)
+        as ``-/+ 5e-324``; ``0.0`` when undecided (the value is recorded in ``undecided``)."""
+        stable = certified_stability(self.scene(value), max_bits=DECIDE_BITS)
+        if stable is None:
             self.undecided.append(float(value))
-        return out
+            return 0.0
+        return -5e-324 if stable else 5e-324
 
     def __call__(self, value: float) -> float:
         self.evaluations += 1
         if self.method == "spectral":
-            rho = trusted_radius(self.scene(value))
-            return rho - 1.0 if rho is not None else self.certified(value)
+            rho = trusted_radius(self.scene(value), margin=0.0)
+            if rho is None:
+                return self.certified(value)
+            if abs(rho - 1) >= TRUSTED_MARGIN:
+                return rho - 1.0
+            # near 1 the sign is the certified one; the float keeps its magnitude when it agrees
+            sign = self.certified(value)
+            return rho - 1.0 if sign != 0 and (rho - 1.0) * sign > 0 else sign
         from hapticproof.analysis.simulate import growth_rate
 
         steps = self.steps or (2**52 if self.method == "doubling" else 10_000)

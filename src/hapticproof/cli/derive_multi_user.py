@@ -98,6 +98,20 @@ def derive(scene: MultiUserScene, minors: str = "auto") -> dict[str, Any]:
         "reason": positive_real(scene).reason,
         "witness": positive_real(scene).evidence.witness,
     }
+    if scene.is_numeric:
+        # the original G^-1(z) matrix for the definition-level judge (and 'check')
+        from hapticproof.analysis.multiuser import transfer_entries
+        from hapticproof.core.evidence import to_jsonable
+        from hapticproof.exact.judge import judged_definition
+
+        definition = judged_definition("disk", out["verdict"], transfer_entries(scene),
+                                       to_jsonable(out["witness"]) if out["verdict"] == "disproved" else None)
+        if definition is not None:
+            out["definition"] = definition
+            if not definition["judged"]["ok"]:   # the decision and the definition disagree
+                out["reason"] = (f"the definition-level judge disagrees with '{out['verdict']}' "
+                                 f"({definition['judged']['reason']}); the decision said: {out['reason']}")
+                out["verdict"], out["witness"] = "undecided", None
     if show_minors:
         out["principal_minors"] = {tuple(i + 1 for i in k): mn.expr() for k, mn in principal_minors(scene).items()}
     if scene.equal_delays and not scene.is_numeric:

@@ -61,8 +61,8 @@ from hapticproof.exact.checkarith import (
     json_poly,
 )
 
-__all__ = ["Judgement", "judge", "judges", "evaluate_tree", "consistent_witness", "derive_display", "finding_display",
-           "JUDGE_BITS"]
+__all__ = ["Judgement", "judge", "judges", "judged_definition", "evaluate_tree", "consistent_witness", "derive_display",
+           "finding_display", "JUDGE_BITS"]
 
 #: Working precision of the ball evaluations (bits); doubled once when a ball is too wide.
 JUDGE_BITS = 256
@@ -646,6 +646,26 @@ def judge(obj: Mapping[str, Any]) -> Judgement:
         return Judgement(False, f"FAILED: malformed judge object ({type(err).__name__}: {err})")
 
 
+def judged_definition(domain: str, decision: str, transfer: Mapping[str, Any],
+                      witness: Mapping[str, Any] | None = None) -> dict[str, Any] | None:
+    """The ``positive-real`` judge object of a decision, judged now: its ``judged`` field holds
+    the answer (a report that shows the decision carries both; ``None`` for a decision that is
+    neither proved nor disproved).
+
+    >>> obj = judged_definition("disk", "proved", {"variable": "z", "num": ["1", "-1", "1"], "den": ["-1", "1"]})
+    >>> obj["judged"]["ok"]
+    False
+    """
+    if decision not in ("proved", "disproved"):
+        return None
+    obj: dict[str, Any] = {"judge": "positive-real", "domain": domain, "decision": decision, "transfer": dict(transfer)}
+    if witness:
+        obj["witness"] = {k: (list(v) if isinstance(v, tuple) else v) for k, v in witness.items()}
+    answer = judge(obj)
+    obj["judged"] = {"ok": answer.ok, "reason": answer.reason}
+    return obj
+
+
 def judges(node: Any) -> Iterator[dict]:
     """Every judge object inside a JSON value (a dict with a string ``judge`` kind)."""
     if isinstance(node, dict):
@@ -672,9 +692,8 @@ _VERDICTS = {
     ("condition", "holds-passive"): ("confirmed", "conservative"),
 }
 
-#: The names of a positive-realness decision's conditions (the JSON of ``derive``).
-_POLES, _SIMPLE, _RESIDUES, _HERMITIAN = ("poles in |z| <= 1", "unit-circle poles simple",
-                                          "Res/z0 >= 0 at unit-circle poles", "Re G^-1 >= 0 for all w")
+#: The names of a positive-realness decision's pole conditions (the JSON of ``derive``).
+_POLES, _SIMPLE, _RESIDUES = ("poles in |z| <= 1", "unit-circle poles simple", "Res/z0 >= 0 at unit-circle poles")
 
 
 def _certificates_in(node: Any) -> Iterator[dict]:
@@ -705,17 +724,22 @@ def _condition_display(cond: Mapping[str, Any]) -> list[str]:
     evidence = cond.get("evidence", {})
     certs = list(_certificates_in(evidence))
     problems = []
-    if name == _HERMITIAN:
-        for cert in certs:
-            if cert["certificate"] in ("sign", "chebyshev-sign"):
-                if cert["holds"] != (decision == "proved") and decision in ("proved", "disproved"):
-                    problems.append(f"{name}: the decision says {decision}, its sign certificate says holds = {cert['holds']}")
-                witness = evidence.get("witness")
-                if not cert["holds"] and witness:
-                    if "c" in witness and cert.get("variable") == "c" and not _same(witness["c"], cert["witness"]):
-                        problems.append(f"{name}: the displayed c = {witness['c']} is not the certificate's {cert['witness']}")
-                    if "z" in witness and "witness_point" in cert and not _same(witness["z"], cert["witness_point"]):
-                        problems.append(f"{name}: the displayed z = {witness['z']} is not the certificate's {cert['witness_point']}")
+    if name not in (_POLES, _SIMPLE, _RESIDUES):
+        # a sign condition (Re G^-1 >= 0, a Hermitian part PSD): its certificates decide it
+        signs = [c for c in certs if c["certificate"] in ("sign", "chebyshev-sign", "psd", "constant-psd")]
+        if signs and decision in ("proved", "disproved") and all(c["holds"] for c in signs) != (decision == "proved"):
+            problems.append(f"{name}: the decision says {decision}, its certificates say "
+                            f"{'it holds' if decision == 'disproved' else 'it fails'}")
+        witness = evidence.get("witness")
+        for cert in signs:
+            if cert["holds"] or not witness:
+                continue
+            own = cert["witness"] if isinstance(cert.get("witness"), dict) else \
+                {"c": cert.get("witness"), "z": cert.get("witness_point")}
+            for key in ("c", "z"):
+                if key in witness and own.get(key) is not None and not _same(witness[key], own[key]):
+                    problems.append(f"{name}: the displayed {key} = {witness[key]} is not the certificate's {own[key]}")
+            break
     elif name == _POLES:
         for cert in certs:
             if cert["certificate"] == "roots" and decision in ("proved", "disproved") and \
@@ -762,7 +786,7 @@ def derive_display(report: Mapping[str, Any]) -> list[str]:
         problems.append(f"the verdict shown is {report['verdict']!r}, its conditions give {expected!r}")
     first = next((c for c in conditions if c.get("decision") == "disproved"), None)
     shown = report.get("witness")
-    if first is not None:
+    if first is not None and shown is not None:       # (a report that shows no witness shows none wrongly)
         own = first.get("evidence", {}).get("witness")
         if not _same(shown, own):
             problems.append(f"the witness shown {shown} is not the failing condition's ({first.get('name')}: {own})")

@@ -190,14 +190,11 @@ def summarize_single_user(scene: SingleUserScene, with_profile: bool = False) ->
     witness = dict(verdict.witness) if (verdict.witness and verdict.decision == Decision.DISPROVED) else None
     definition = _definition(scene, verdict.decision.value, witness)
     decision, reason = verdict.decision.value, verdict.reason
-    if definition is not None:
-        from hapticproof.exact.judge import judge
-
-        judged = judge(definition)
-        definition["judged"] = {"ok": judged.ok, "reason": judged.reason}
-        if not judged.ok:   # the decision and the definition disagree: neither is reported as established
-            decision, witness = Decision.UNDECIDED.value, None
-            reason = f"the definition-level judge disagrees with '{verdict.decision.value}' ({judged.reason}); the decision said: {verdict.reason}"
+    if definition is not None and not definition["judged"]["ok"]:
+        # the decision and the definition disagree: neither is reported as established
+        decision, witness = Decision.UNDECIDED.value, None
+        reason = (f"the definition-level judge disagrees with '{verdict.decision.value}' ({definition['judged']['reason']}); "
+                  f"the decision said: {verdict.reason}")
     return SceneSummary(
         system="single-user",
         approximation=scene.approximation,
@@ -224,10 +221,8 @@ def _definition(scene: SingleUserScene, decision: str, witness: Any) -> dict | N
     if not scene.is_numeric or decision not in ("proved", "disproved"):
         return None
     from hapticproof.analysis.positivereal import transfer_polynomials
+    from hapticproof.exact.judge import judged_definition
     from hapticproof.exact.kernel import transfer_json
 
     P, Q = transfer_polynomials(scene)
-    out = {"judge": "positive-real", "domain": "disk", "decision": decision, "transfer": transfer_json(P, Q)}
-    if witness:
-        out["witness"] = witness
-    return out
+    return judged_definition("disk", decision, transfer_json(P, Q), to_jsonable(witness) if witness else None)
