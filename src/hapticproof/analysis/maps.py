@@ -45,7 +45,7 @@ import scipy.optimize
 from hapticproof.core.errors import SceneError
 from hapticproof.systems.impedance import CLAMPED, Impedance, IDENTIFIER, to_fraction
 from hapticproof.systems.loops import MultiUser, Scene, SingleUser, Teleoperator
-from hapticproof.analysis.sampled import DECIDE_BITS, TRUSTED_MARGIN, certified_stability, spectral_radii, spectral_radius, trusted_radii, trusted_radius
+from hapticproof.analysis.sampled import DECIDE_BITS, TRUSTED_MARGIN, certified_stability, loop_json, spectral_radii, spectral_radius, trusted_radii, trusted_radius
 
 __all__ = [
     "SceneFamily",
@@ -277,6 +277,8 @@ class Crossing:
     direction: str  # "destabilising" or "stabilising"
     tolerance: float
     certified: bool = True
+    #: the exact loops at ``value -/+ tolerance`` (for the judge of ``hapticproof check``)
+    sides: tuple = ()
 
 
 @dataclass(frozen=True, slots=True)
@@ -337,6 +339,8 @@ class Boundary:
                 for c in self.crossings
             ],
             "search": list(self.search),
+            **({"judge": {"judge": "stability", "parameter": self.parameter, "sides": list(self.crossings[0].sides)}}
+               if self.crossings and self.crossings[0].sides else {}),
             "scan_points": self.scan_points,
             "stable_at_start": None if self.outcome == "undecided" and not self.crossings else self.stable_at_start,
             "method": self.method,
@@ -560,7 +564,9 @@ def _refine(crit: _Criterion, a: float, b: float, fa: float, rtol: float, method
         left, right = crit.certified(x - tol), crit.certified(x + tol)
         crit.evaluations += 2
         if left != 0 and right != 0 and (left < 0) == (fa < 0) and (right < 0) != (fa < 0):
-            return Crossing(float(x), direction, float(tol))
+            sides = tuple({"value": v, "stable": st, "loop": loop_json(crit.scene(v))}
+                          for v, st in ((x - tol, left < 0), (x + tol, right < 0)))
+            return Crossing(float(x), direction, float(tol), sides=sides)
         if tol >= min(x - a, b - x):
             break
         tol *= 4

@@ -65,7 +65,7 @@ from hapticproof.systems.impedance import Precision, as_float, as_mp
 from hapticproof.systems.loops import Loop, Scene
 
 __all__ = ["TRUSTED_MARGIN", "discretize", "closed_loop_matrix", "closed_loop_matrices", "spectral_radius", "spectral_radii", "is_stable",
-           "free_device_boundary", "certified_radius", "certified_stability", "trusted_radius", "trusted_radii", "MAX_BITS", "DECIDE_BITS"]
+           "free_device_boundary", "certified_radius", "certified_stability", "trusted_radius", "trusted_radii", "loop_json", "MAX_BITS", "DECIDE_BITS"]
 
 #: The certified route doubles its working precision up to this many bits (an ``expm`` of a
 #: generator of norm 1e300 squares some 1000 times and needs about as many bits).
@@ -524,3 +524,21 @@ def trusted_radii(scenes: Sequence[Scene]) -> np.ndarray:
         if math.isfinite(rho) and abs(rho - 1) >= _TRUSTED_MARGIN:
             out[i] = rho
     return out
+
+
+def loop_json(scene: Scene) -> dict[str, Any]:
+    """The exact loop of a scene as JSON (exact fractions as strings), for the judge of
+    :mod:`hapticproof.exact.judge`: ``dx/dt = a x + bu u`` held over ``T``, sampled ``y = c x``,
+    the discrete controller ``(A, B, C, D)`` from ``y`` to ``u``, and whether a rigid
+    translation mode (an exact eigenvalue 1 no gain moves) is to be set aside."""
+    loop = scene.loop("exact")
+
+    def rows(m: np.ndarray) -> list[list[str]]:
+        return [[str(Fraction(v)) for v in row] for row in m.tolist()] if m.size else [[] for _ in range(m.shape[0])]
+
+    ctrl = loop.ctrl
+    return {"T": str(Fraction(loop.T)), "a": rows(loop.a), "bu": rows(loop.bu), "c": rows(loop.c),
+            "controller": {"a": rows(ctrl.a), "b": rows(ctrl.b), "c": rows(ctrl.c), "d": rows(ctrl.d)},
+            "shape": {"plant": list(loop.a.shape), "inputs": loop.bu.shape[1], "outputs": loop.c.shape[0],
+                      "controller": ctrl.a.shape[0]},
+            "rigid": loop.rigid is not None}

@@ -198,7 +198,11 @@ def hermitian_part(state: State) -> Finding:
     shown = form.expr(sp.Symbol("theta")) if symbolic_delay else derived
     findings = [_circle_compare(state, state.prepare(m), derived, shown, symbolic_delay) for m in members]
     bad = [f for f in findings if f.verdict != Verdict.CONFIRMED]
-    return bad[0] if bad else findings[0]
+    out = bad[0] if bad else findings[0]
+    if not symbolic_delay and any(getattr(sym, "name", None) == "n" for m in members for sym in sp.sympify(m).free_symbols):
+        out = Finding(out.verdict, out.detail + f" (the printed n is the scene's delay n = {state.model.delay})",
+                      out.evidence, derived=out.derived, corrected=out.corrected)
+    return out
 
 
 #: ``theta = omega T`` of the printed displays compared on the circle.

@@ -535,14 +535,14 @@ def _entries(report: Any) -> list[tuple[str, Any]]:
 def judge_results(node: Any) -> list[CheckResult]:
     """The definition-level judge (:mod:`hapticproof.exact.judge`) on every judge object inside
     a JSON value, and an audit finding's verdict and witness held against its judge object."""
-    from hapticproof.exact.judge import finding_display, judge, judges
+    from hapticproof.exact.judge import boundary_display, finding_display, judge, judges
 
     out = []
     for obj in judges(node):
         result = judge(obj)
         out.append(CheckResult(result.ok, result.reason, verified=result.judged, source="judge"))
     if isinstance(node, dict):
-        out += [CheckResult(False, problem, source="display") for problem in finding_display(node)]
+        out += [CheckResult(False, problem, source="display") for problem in finding_display(node) + boundary_display(node)]
     return out
 
 

@@ -62,7 +62,7 @@ from hapticproof.exact.checkarith import (
 )
 
 __all__ = ["Judgement", "judge", "judges", "judged_definition", "evaluate_tree", "consistent_witness", "derive_display",
-           "finding_display", "JUDGE_BITS"]
+           "finding_display", "boundary_display", "JUDGE_BITS"]
 
 #: Working precision of the ball evaluations (bits); doubled once when a ball is too wide.
 JUDGE_BITS = 256
@@ -253,15 +253,20 @@ class _precision:
 
 
 def _circle_points(count: int) -> Iterator[Gaussian]:
-    """Rational points ``(1 + j t)/(1 - j t)`` of the unit circle, spread over it (``t`` from
-    0 to 9, both half planes), and ``z = -1``."""
+    """``count`` rational points ``(1 + j t)/(1 - j t)`` of the unit circle, spread evenly in
+    angle (``t`` a rational near ``tan(theta/2)`` for ``theta = 2 pi (k + 1/2)/count``, so
+    ``z = +-1`` are not among them), and ``z = -1`` and ``z = 1`` themselves (skipped at poles)."""
     yield Gaussian(Fraction(-1))
+    yield Gaussian(Fraction(1))
     for k in range(count):
-        t = Fraction(9 * (k + 1), count + 1) * (1 if k % 2 == 0 else -1)
+        theta = 2 * math.pi * (k + 0.5) / count
+        t = Fraction(math.tan(theta / 2)).limit_denominator(1000)
         d = 1 + t * t
         yield Gaussian((1 - t * t) / d, 2 * t / d)
 
 
+#: Sample points per circle: a violation over more than 1/32 of the circle is seen at each radius.
+_CIRCLE_COUNT = 32
 #: Radii of the exact sample points outside the unit circle (1 itself: on it).
 _RADII = (Fraction(1), Fraction(9, 8), Fraction(2), Fraction(10), Fraction(1000), Fraction(10) ** 6)
 
@@ -298,7 +303,7 @@ def _boundary_points(den: flint.fmpq_poly, domain: str) -> list[Gaussian]:
 
 def _disk_points(den: flint.fmpq_poly) -> Iterator[tuple[str, Gaussian]]:
     for r in _RADII:
-        for z in _circle_points(12):
+        for z in _circle_points(_CIRCLE_COUNT):
             yield (f"|z| = {r}", _scaled(z, r))
     for z in _boundary_points(den, "disk"):
         yield ("just outside a pole on the circle", z)
@@ -426,10 +431,13 @@ def _positive_real(obj: Mapping[str, Any]) -> str:
         if inside:
             raise CheckFailed(f"the witness {_show(witness)} lies inside the {'unit disk' if domain == 'disk' else 'left half plane'}")
         psd = _hermitian_psd(entries, witness)
-        if psd is not None and not psd[0]:
+        if psd is None:
+            raise CheckFailed(f"the witness {_show(witness)} is a pole of the transfer function, not a point of the definition")
+        if not psd[0]:
             return f"definition fails at the witness {_show(witness)}: the Hermitian part is not PSD ({psd[1]} < 0)"
-        if psd is not None and not structural:
-            raise CheckFailed(f"the witness {_show(witness)} is no counterexample: the Hermitian part is PSD there")
+        if psd[0]:              # a point shown as a counterexample must be one, whatever else fails
+            raise CheckFailed(f"the witness {_show(witness)} is no counterexample: the Hermitian part is PSD there"
+                              + (f" ({structural[0]} elsewhere)" if structural else ""))
     if structural:
         return f"definition fails: {structural[0]}"
     for where, point in points:
@@ -560,6 +568,106 @@ def _condition(obj: Mapping[str, Any]) -> str:
 
 
 # ---------------------------------------------------------------------------------------------
+# stability of a sampled-data loop
+# ---------------------------------------------------------------------------------------------
+
+
+def _arb_rows(rows: list[list[str]], shape: tuple[int, int]) -> flint.arb_mat:
+    r, c = shape
+    if r == 0 or c == 0:
+        return flint.arb_mat(r, c)
+    return flint.arb_mat(r, c, [flint.arb(flint.fmpq(q.numerator, q.denominator)) for row in rows for q in map(exact_q, row)])
+
+
+def _closed_loop(loop: Mapping[str, Any]) -> flint.arb_mat:
+    """The sample-to-sample matrix of the loop from its definition: over one period the zero-order
+    hold gives ``x+ = Phi x + Gamma u`` with ``[[Phi, Gamma], [0, I]] = exp([[a, bu], [0, 0]] T)``;
+    the controller ``eta+ = A eta + B y``, ``u = C eta + D y`` with ``y = c x``."""
+    n, m = loop["shape"]["plant"][0], loop["shape"]["inputs"]
+    p, k = loop["shape"]["outputs"], loop["shape"]["controller"]
+    T = exact_q(loop["T"])
+    a, bu, c = _arb_rows(loop["a"], (n, n)), _arb_rows(loop["bu"], (n, m)), _arb_rows(loop["c"], (p, n))
+    ctrl = loop["controller"]
+    A, B, C, D = (_arb_rows(ctrl["a"], (k, k)), _arb_rows(ctrl["b"], (k, p)), _arb_rows(ctrl["c"], (m, k)),
+                  _arb_rows(ctrl["d"], (m, p)))
+    Tb = flint.arb(flint.fmpq(T.numerator, T.denominator))
+    gen = flint.arb_mat(n + m, n + m)
+    for i in range(n):
+        for j in range(n):
+            gen[i, j] = a[i, j] * Tb
+        for j in range(m):
+            gen[i, n + j] = bu[i, j] * Tb
+    E = gen.exp()
+    size = n + k
+    M = flint.arb_mat(size, size)
+    gamma = flint.arb_mat(n, m, [E[i, n + j] for i in range(n) for j in range(m)]) if m else flint.arb_mat(n, 0)
+    top_left = flint.arb_mat(n, n, [E[i, j] for i in range(n) for j in range(n)]) + (gamma * D * c if m and p else 0)
+    for i in range(n):
+        for j in range(n):
+            M[i, j] = top_left[i, j]
+    if k:
+        top_right, bottom_left = gamma * C, B * c
+        for i in range(n):
+            for j in range(k):
+                M[i, n + j] = top_right[i, j]
+        for i in range(k):
+            for j in range(n):
+                M[n + i, j] = bottom_left[i, j]
+            for j in range(k):
+                M[n + i, n + j] = A[i, j]
+    return M
+
+
+def _schur_cohn(coeffs: list[flint.arb]) -> bool | None:
+    """All roots of a real polynomial (ascending coefficients) strictly inside the unit circle
+    (``True``), not all of them (``False``), or undecided: the Schur-Cohn recursion, every
+    reflection coefficient ``a_0/a_k`` certainly inside ``(-1, 1)``."""
+    p = list(coeffs)
+    while len(p) > 1:
+        lead, const = p[-1], p[0]
+        if not (lead > 0 or lead < 0):
+            return None
+        r = const / lead
+        if abs(r) < 1:
+            # p - r p* (p* the reversed polynomial) has a zero constant term and, by Rouche, as
+            # many zeros inside as p: divided by z it carries the test one degree down
+            k = len(p) - 1
+            p = [p[i] - r * p[k - i] for i in range(1, k + 1)]
+            continue
+        if abs(r) > 1:
+            return False
+        return None
+    return True
+
+
+def _stability(obj: Mapping[str, Any]) -> str:
+    outcomes = []
+    for side in obj["sides"]:
+        decided = None
+        for bits in (256, 1024, 4096):
+            with _precision(bits):
+                M = _closed_loop(side["loop"])
+                chi = M.charpoly()
+                coeffs = [chi[i] for i in range(chi.degree() + 1)]
+                if side["loop"].get("rigid"):       # the exact eigenvalue 1 of a free translation: divide it out
+                    quotient, carry = [], flint.arb(0)
+                    for a in reversed(coeffs):
+                        carry = a + carry
+                        quotient.append(carry)
+                    coeffs = list(reversed(quotient[:-1]))
+                decided = _schur_cohn(coeffs)
+            if decided is not None:
+                break
+        if decided is None:
+            raise CheckFailed(f"the loop at {obj.get('parameter', 'p')} = {side['value']:.10g} is not decided by Schur-Cohn")
+        if decided != side["stable"]:
+            raise CheckFailed(f"the loop at {obj.get('parameter', 'p')} = {side['value']:.10g} is "
+                              f"{'stable' if decided else 'not stable'}, the boundary says {'stable' if side['stable'] else 'unstable'}")
+        outcomes.append(f"{'stable' if decided else 'unstable'} at {side['value']:.10g}")
+    return "Schur-Cohn on the exact ZOH loop: " + ", ".join(outcomes)
+
+
+# ---------------------------------------------------------------------------------------------
 # displayed witnesses against the judge's point
 # ---------------------------------------------------------------------------------------------
 
@@ -629,7 +737,8 @@ def _witness_problems(witness: Mapping[str, Any], obj: Mapping[str, Any]) -> lis
 # ---------------------------------------------------------------------------------------------
 
 
-_JUDGES = {"positive-real": _positive_real, "circle-identity": _circle_identity, "condition": _condition}
+_JUDGES = {"positive-real": _positive_real, "circle-identity": _circle_identity, "condition": _condition,
+           "stability": _stability}
 
 
 def judge(obj: Mapping[str, Any]) -> Judgement:
@@ -811,4 +920,22 @@ def finding_display(entry: Mapping[str, Any]) -> list[str]:
         problems.append(f"the verdict shown is {entry['verdict']!r}, but the judged claim {obj.get('claim')!r} supports "
                         f"{' or '.join(allowed)}")
     problems += consistent_witness(evidence.get("witness"), obj)
+    return problems
+
+
+def boundary_display(report: Mapping[str, Any]) -> list[str]:
+    """A boundary's displayed value, tolerance and direction against the two loops it carries."""
+    obj = report.get("judge")
+    if not isinstance(obj, dict) or obj.get("judge") != "stability" or report.get("value") is None:
+        return []
+    problems = []
+    (left, right) = obj["sides"]
+    value, tol = float(report["value"]), float(report["tolerance"])
+    for side, target in ((left, value - tol), (right, value + tol)):
+        if not math.isclose(float(side["value"]), target, rel_tol=1e-12, abs_tol=1e-300):
+            problems.append(f"the loop judged at {side['value']:.12g} is not the displayed {report['parameter']}* "
+                            f"{'-' if side is left else '+'} tolerance = {target:.12g}")
+    expected = (True, False) if report.get("direction") == "destabilising" else (False, True)
+    if (left["stable"], right["stable"]) != expected:
+        problems.append(f"the direction shown ({report.get('direction')}) is not what the two judged loops say")
     return problems
