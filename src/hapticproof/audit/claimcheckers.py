@@ -120,9 +120,12 @@ def _to_c(expr: Any, state: State) -> sp.Expr:
     if omega is None or omega not in expr.free_symbols:
         return expr
     try:
-        return sp.cancel(omega_to_c(expr, omega, period_of(state)))
+        out = sp.cancel(omega_to_c(expr, omega, period_of(state)))
     except ValueError:      # not a function of cos(omega T) alone (e.g. cos(omega t_d - T)): keep omega
         return expr
+    if any(isinstance(sym, sp.Dummy) for sym in out.free_symbols):
+        return expr         # theta left over (omega T/2 outside any cosine): keep omega, never c and theta apart
+    return out
 
 
 def _with_omega(exact: Any, printed: Any, state: State) -> Any:

@@ -142,4 +142,28 @@ def condition_judge(state: Any, finding: Any) -> dict[str, Any] | None:
         if claim == "holds-not-passive" and isinstance(point.get("z"), (list, tuple)):
             out["point"] = [str(v) for v in point["z"]]
         return out
+    if finding.verdict in (Verdict.CONFIRMED, Verdict.CONSERVATIVE) and state.spec.claim != "necessary-condition" \
+            and not state.spec.assumption:
+        samples = _holding_points(state, relations)
+        if samples:
+            return {**base, "claim": "holds-passive", "values": samples[0], "samples": samples}
     return None
+
+
+def _holding_points(state: Any, relations: list, count: int = 3) -> list[dict[str, str]]:
+    """A few exact parameter points where the printed condition holds (the scene must be
+    positive real there, if the condition is sufficient)."""
+    from hapticproof.audit.claimbase import holds_at
+    from hapticproof.exact.canonical import Sampler
+    from hapticproof.systems.models import inverse_transfer
+
+    condition = sp.And(*[state.prepare(r) for r in relations])
+    symbols = sorted((condition.free_symbols | inverse_transfer(state.model).free_symbols) - {sp.Symbol("z")}, key=str)
+    symbols = [s for s in symbols if s.name != "z"]
+    out = []
+    for point in Sampler(symbols, seed=23).draw(60):
+        if holds_at(condition, point) is True:
+            out.append({s.name: str(v) for s, v in point.items()})
+            if len(out) == count:
+                break
+    return out

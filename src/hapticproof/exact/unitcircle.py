@@ -428,10 +428,16 @@ def theta_to_cos(expr: sp.Expr, theta: sp.Symbol, var: sp.Symbol = C_SYM) -> sp.
     except sp.PolynomialError:
         poly = None         # sin(theta) in a denominator, half angles: the exponential route
     if poly is None or replaced.has(theta):
-        form = circle_form(expr, theta).c_form(var)
-        if form is None:
+        try:
+            form = circle_form(expr, theta).c_form(var)
+        except ValueError:
+            if poly is None:
+                raise
+            form = None            # theta outside the circle functions (a slip such as omega T / 2): as it reads
+        if form is not None:
+            return form
+        if poly is None:
             raise ValueError("not a rational function of cos(theta) alone")
-        return form
     out = sp.Integer(0)
     for (power,), coeff in poly.terms():
         if power % 2:
