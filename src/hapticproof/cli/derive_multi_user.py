@@ -99,13 +99,8 @@ def derive(scene: MultiUserScene, minors: str = "auto") -> dict[str, Any]:
         "witness": positive_real(scene).evidence.witness,
     }
     if scene.is_numeric:
-        # the original G^-1(z) matrix for the definition-level judge (and 'check')
-        from hapticproof.analysis.multiuser import transfer_entries
-        from hapticproof.core.evidence import to_jsonable
-        from hapticproof.exact.judge import judged_definition
-
-        definition = judged_definition("disk", out["verdict"], transfer_entries(scene),
-                                       to_jsonable(out["witness"]) if out["verdict"] == "disproved" else None)
+        # the original G^-1(z) matrix, judged against the definition (and re-judged by 'check')
+        definition = positive_real(scene).evidence.facts.get("definition")
         if definition is not None:
             out["definition"] = definition
             if not definition["judged"]["ok"]:   # the decision and the definition disagree

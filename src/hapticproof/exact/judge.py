@@ -400,9 +400,21 @@ def _witness_point(witness: Mapping[str, Any] | None, domain: str) -> Gaussian |
     return None
 
 
+#: Transfer functions above this degree are not judged (each sample point costs a Horner
+#: evaluation over exact Gaussian rationals: a delay of 10 000 samples would take minutes).
+MAX_JUDGED_DEGREE = 400
+
+
+class _NotJudged(Exception):
+    pass
+
+
 def _positive_real(obj: Mapping[str, Any]) -> str:
     domain = obj.get("domain", "disk")
     entries = _entries(obj["transfer"])
+    degree = max(max(len(e["num"]), len(e["den"])) - 1 for row in entries for e in row)
+    if degree > MAX_JUDGED_DEGREE:
+        raise _NotJudged(f"degree {degree} above the judge's limit {MAX_JUDGED_DEGREE}")
     decision = obj["decision"]
     structural = _pole_violations(entries, domain)
     witness = _witness_point(obj.get("witness"), domain)
@@ -452,6 +464,43 @@ def _show(z: Gaussian) -> str:
         text = str(q)
         return text if len(text) <= 24 else f"{float(q):.6g}"
     return f"{short(z.re)} + {short(z.im)}j"
+
+
+def _circle_psd(obj: Mapping[str, Any]) -> str:
+    """``F(e^{j theta}) + F(e^{j theta})^H >= 0`` for every ``theta`` (the worst case over
+    frequency alone, poles not included): a ``proved`` must hold at every sample point of the
+    circle, a ``disproved`` at its witness (or a sample point) must fail."""
+    entries = _entries(obj["transfer"])
+    degree = max(max(len(e["num"]), len(e["den"])) - 1 for row in entries for e in row)
+    if degree > MAX_JUDGED_DEGREE:
+        raise _NotJudged(f"degree {degree} above the judge's limit {MAX_JUDGED_DEGREE}")
+    witness = _witness_point(obj.get("witness"), "disk")
+    if obj["decision"] == "proved":
+        checked = 0
+        for z in _circle_points(4 * _CIRCLE_COUNT):
+            psd = _hermitian_psd(entries, z)
+            if psd is None:
+                continue
+            checked += 1
+            if not psd[0]:
+                raise CheckFailed(f"the Hermitian part is not PSD at z = {_show(z)} on the circle ({psd[1]} < 0)")
+        return f"the Hermitian part is PSD at {checked} exact points of the circle"
+    if obj["decision"] != "disproved":
+        return "nothing to judge (the decision is neither proved nor disproved)"
+    if witness is not None:
+        if witness.re * witness.re + witness.im * witness.im != 1:
+            raise CheckFailed(f"the witness {_show(witness)} is not on the unit circle")
+        psd = _hermitian_psd(entries, witness)
+        if psd is None:
+            raise CheckFailed(f"the witness {_show(witness)} is a pole of the transfer function")
+        if psd[0]:
+            raise CheckFailed(f"the witness {_show(witness)} is no counterexample: the Hermitian part is PSD there")
+        return f"the Hermitian part is not PSD at the witness {_show(witness)} ({psd[1]} < 0)"
+    for z in _circle_points(4 * _CIRCLE_COUNT):
+        psd = _hermitian_psd(entries, z)
+        if psd is not None and not psd[0]:
+            return f"the Hermitian part is not PSD at z = {_show(z)}"
+    raise CheckFailed("no point of the circle where the Hermitian part fails to be PSD was given or found")
 
 
 # ---------------------------------------------------------------------------------------------
@@ -741,7 +790,7 @@ def _witness_problems(witness: Mapping[str, Any], obj: Mapping[str, Any]) -> lis
 
 
 _JUDGES = {"positive-real": _positive_real, "circle-identity": _circle_identity, "condition": _condition,
-           "stability": _stability}
+           "stability": _stability, "circle-psd": _circle_psd}
 
 
 def judge(obj: Mapping[str, Any]) -> Judgement:
@@ -752,6 +801,8 @@ def judge(obj: Mapping[str, Any]) -> Judgement:
         return Judgement(True, f"unknown judge kind {kind!r}", judged=False)
     try:
         return Judgement(True, run(obj))
+    except _NotJudged as err:
+        return Judgement(True, f"not judged: {err}", judged=False)
     except CheckFailed as err:
         return Judgement(False, f"FAILED: {err}")
     except (KeyError, TypeError, ValueError, ZeroDivisionError, IndexError) as err:
@@ -759,10 +810,11 @@ def judge(obj: Mapping[str, Any]) -> Judgement:
 
 
 def judged_definition(domain: str, decision: str, transfer: Mapping[str, Any],
-                      witness: Mapping[str, Any] | None = None) -> dict[str, Any] | None:
+                      witness: Mapping[str, Any] | None = None, kind: str = "positive-real") -> dict[str, Any] | None:
     """The ``positive-real`` judge object of a decision, judged now: its ``judged`` field holds
     the answer (a report that shows the decision carries both; ``None`` for a decision that is
-    neither proved nor disproved).
+    neither proved nor disproved). ``kind="circle-psd"``: the Hermitian part on the circle alone
+    (a worst case over frequency, the poles not included).
 
     >>> obj = judged_definition("disk", "proved", {"variable": "z", "num": ["1", "-1", "1"], "den": ["-1", "1"]})
     >>> obj["judged"]["ok"]
@@ -770,7 +822,7 @@ def judged_definition(domain: str, decision: str, transfer: Mapping[str, Any],
     """
     if decision not in ("proved", "disproved"):
         return None
-    obj: dict[str, Any] = {"judge": "positive-real", "domain": domain, "decision": decision, "transfer": dict(transfer)}
+    obj: dict[str, Any] = {"judge": kind, "domain": domain, "decision": decision, "transfer": dict(transfer)}
     if witness:
         obj["witness"] = {k: (list(v) if isinstance(v, tuple) else v) for k, v in witness.items()}
     answer = judge(obj)

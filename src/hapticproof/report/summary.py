@@ -188,7 +188,7 @@ def summarize_single_user(scene: SingleUserScene, with_profile: bool = False) ->
     wc = worst_case(scene)
     verdict = positive_real(scene)
     witness = dict(verdict.witness) if (verdict.witness and verdict.decision == Decision.DISPROVED) else None
-    definition = _definition(scene, verdict.decision.value, witness)
+    definition = verdict.evidence.facts.get("definition")     # G^-1 itself, judged (numeric scenes)
     decision, reason = verdict.decision.value, verdict.reason
     if definition is not None and not definition["judged"]["ok"]:
         # the decision and the definition disagree: neither is reported as established
@@ -213,16 +213,3 @@ def summarize_single_user(scene: SingleUserScene, with_profile: bool = False) ->
         conditions=tuple(conditions(scene)),
         definition=definition,
     )
-
-
-def _definition(scene: SingleUserScene, decision: str, witness: Any) -> dict | None:
-    """The judge object of a numeric scene's decision: ``G^{-1}(z)`` itself (numerator and
-    denominator), so that ``hapticproof check`` tests positive realness from the definition."""
-    if not scene.is_numeric or decision not in ("proved", "disproved"):
-        return None
-    from hapticproof.analysis.positivereal import transfer_polynomials
-    from hapticproof.exact.judge import judged_definition
-    from hapticproof.exact.kernel import transfer_json
-
-    P, Q = transfer_polynomials(scene)
-    return judged_definition("disk", decision, transfer_json(P, Q), to_jsonable(witness) if witness else None)
