@@ -19,8 +19,10 @@ FREE = SceneFamily("single-user", {"m": 0.015, "b": 0.02, "B": 0})
 def test_multiple_crossings_are_reported(monkeypatch):
     """A synthetic rho(K) = 1 + (K-1)(K-2)(K-3)/10: stable, unstable, stable, unstable."""
     rho = lambda k: 1 + (k - 1) * (k - 2) * (k - 3) / 10  # noqa: E731
-    monkeypatch.setattr(maps, "spectral_radius", lambda scene: rho(float(scene.K)))
-    monkeypatch.setattr(maps, "spectral_radii", lambda scenes: np.array([rho(float(s.K)) for s in scenes]))
+    monkeypatch.setattr(maps, "trusted_radius", lambda scene, **kw: rho(float(scene.K)))
+    monkeypatch.setattr(maps, "trusted_radii", lambda scenes: np.array([rho(float(s.K)) for s in scenes]))
+    # the certified route (both sides of each crossing): the same function's sign
+    monkeypatch.setattr(maps, "certified_stability", lambda scene, **kw: rho(float(scene.K)) < 1)
     bnd = find_boundary(FREE, "K", at={"T": 0.001}, search=(0.1, 10), rtol=1e-12)
     assert [round(c.value, 9) for c in bnd.crossings] == [1, 2, 3]
     assert [c.direction for c in bnd.crossings] == ["destabilising", "stabilising", "destabilising"]

@@ -21,7 +21,7 @@ from hapticproof.analysis.multiuser import positive_real as multi_positive_real
 from hapticproof.analysis.positivereal import positive_real
 from hapticproof.systems.singleuser import SingleUserScene
 from hapticproof.systems.teleoperator import TeleoperatorScene
-from hapticproof.analysis.teleoperator import passivity
+from hapticproof.analysis.teleoperator import criterion, passivity
 
 
 def derive_json(capsys, *args):
@@ -65,14 +65,16 @@ def test_single_user_api_and_cli_agree_on_a_proved_scene(capsys):
     scene = SingleUserScene.virtual_wall(K=2, B=sp.Rational(1, 10), b=1, T=sp.Rational(1, 1000))
     assert positive_real(scene).decision.value == "proved"
     result = check_report(data)
-    assert result.ok and "4 fully re-verified" in result.summary()
+    # four conditions and the verdict (judged against the definition from G^-1 itself)
+    assert result.ok and "5 fully re-verified" in result.summary()
 
 
 def test_derive_teleoperator_reports_an_unstable_controller(capsys):
     data = derive_json(capsys, "teleoperator", "--controller", "K/(z-3)", "--param", "K=1", "--param", "T=0.001",
                        "--param", "b_m=0.02", "--param", "b_s=0.02")
     assert data["verdict"] == "disproved"
-    assert data["conditions"][0]["decision"] == "disproved" and "outside" in data["conditions"][0]["reason"]
+    poles = next(c for c in data["conditions"] if c["name"].startswith("(P1)"))
+    assert poles["decision"] == "disproved" and "outside" in poles["reason"]
     assert check_report(data).ok
 
 
@@ -84,8 +86,13 @@ def test_teleoperator_decides_without_masses():
     assert passivity(scene).decision.value == "proved"
     below = TeleoperatorScene.pd(K=2, B=sp.Rational(1, 100), T=sp.Rational(1, 1000), b_m=sp.Rational(2, 100),
                                  b_s=sp.Rational(1, 10))
-    out = passivity(below)                        # b_m < KT + 2B = 0.022
-    assert out.decision.value == "disproved" and "master" in out.reason
+    # b_m < KT + 2B = 0.022 fails the paper's (32), yet h = b_m b_s/(b_m + b_s) = 1/60 > KT/2 + B
+    assert passivity(below).decision.value == "proved"
+    assert criterion(below).decision.value == "disproved" and "master" in criterion(below).reason
+    leaky = TeleoperatorScene.pd(K=2, B=sp.Rational(1, 100), T=sp.Rational(1, 1000), b_m=sp.Rational(1, 100),
+                                 b_s=sp.Rational(1, 100))
+    out = passivity(leaky)                        # h = 1/200 < KT/2 + B = 0.011
+    assert out.decision.value == "disproved" and "(P5)" in out.reason
 
 
 def test_multi_user_verdict_lists_conditions_and_checks():

@@ -442,7 +442,10 @@ def chebyshev_sum(coeffs: dict[int, flint.arb], kind: str) -> flint.arb_poly:
 
 def real_roots_inside(V: flint.arb_poly, bits: int) -> list[flint.arb]:
     """Certified real roots of ``V`` in the open interval (-1, 1), as arb balls."""
-    roots = flint.acb_poly(V).roots(tol=flint.arb(2) ** (-(bits // 2)))
+    try:
+        roots = flint.acb_poly(V).roots(tol=flint.arb(2) ** (-(bits // 2)))
+    except ValueError as err:        # not converged at this precision (or a repeated root)
+        raise ArithmeticError(str(err)) from None
     out = []
     for r in roots:
         im = r.imag

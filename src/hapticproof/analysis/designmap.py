@@ -552,15 +552,14 @@ def _passivity_line(spec: MapSpec, along: str, values: tuple[Fraction, ...], acr
 
 
 def _stability_point(params: Mapping[str, Fraction]) -> int:
-    from hapticproof.analysis.boundary import certified_stable
-    from hapticproof.core.evidence import Decision
+    """The certified spectral radius of the exact ZOH loop at one point (ball arithmetic at a
+    precision that grows with the scale of the parameters, :func:`hapticproof.analysis.sampled.certified_stability`)."""
+    from hapticproof.analysis.sampled import certified_stability
+    from hapticproof.systems.loops import SingleUser
 
-    try:
-        d = certified_stable(m=params["m"], b=params["b"], T=params["T"], K=params["K"], B=params["B"],
-                             n=int(params["delay"])).decision
-    except ArithmeticError:
-        return -1
-    return 1 if d == Decision.PROVED else 0 if d == Decision.DISPROVED else -1
+    stable = certified_stability(SingleUser(m=params["m"], b=params["b"], T=params["T"], K=params["K"], B=params["B"],
+                                            delay=int(params["delay"])))
+    return -1 if stable is None else int(stable)
 
 
 def _stability_gaps(params: Mapping[str, Fraction], bits: int) -> tuple[list, list[bool]]:

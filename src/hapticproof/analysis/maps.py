@@ -45,7 +45,7 @@ import scipy.optimize
 from hapticproof.core.errors import SceneError
 from hapticproof.systems.impedance import CLAMPED, Impedance, IDENTIFIER, to_fraction
 from hapticproof.systems.loops import MultiUser, Scene, SingleUser, Teleoperator
-from hapticproof.analysis.sampled import spectral_radii, spectral_radius
+from hapticproof.analysis.sampled import DECIDE_BITS, TRUSTED_MARGIN, certified_stability, loop_json, spectral_radii, spectral_radius, trusted_radii, trusted_radius
 
 __all__ = [
     "SceneFamily",
@@ -267,21 +267,30 @@ class SceneFamily:
 # --------------------------------------------------------------------------------------------
 @dataclass(frozen=True, slots=True)
 class Crossing:
-    """Where stability changes as the parameter increases (within ``+/- tolerance``)."""
+    """Where stability changes as the parameter increases (within ``+/- tolerance``).
+
+    ``certified``: the loop at ``value -/+ tolerance`` was decided by the certified spectral
+    radius (ball arithmetic, :func:`hapticproof.analysis.sampled.certified_radius`) to be stable
+    on one side and unstable on the other, as ``direction`` says."""
 
     value: float
     direction: str  # "destabilising" or "stabilising"
     tolerance: float
+    certified: bool = True
+    #: the exact loops at ``value -/+ tolerance`` (for the judge of ``hapticproof check``)
+    sides: tuple = ()
 
 
 @dataclass(frozen=True, slots=True)
 class Boundary:
     """The stability boundary of one parameter, with its certified tolerance.
 
-    ``value`` is the first crossing (``None`` if stability never changes in ``search``),
-    ``tolerance`` its certified absolute half-width, ``rtol`` the requested relative
+    ``value`` is the first crossing (``None`` if stability never changes at the points
+    scanned), ``tolerance`` its certified absolute half-width, ``rtol`` the requested relative
     tolerance; ``crossings`` lists every change found; ``stable_at_start`` tells the
-    stability at the low end of ``search``.
+    stability at the low end of ``search``. ``note`` says what was not established: with no
+    crossing found, that the scan's points (not the whole interval) were decided; a crossing
+    whose two sides could not be certified.
     """
 
     parameter: str
@@ -295,11 +304,26 @@ class Boundary:
     stable_at_start: bool
     method: str
     evaluations: int
+    note: str = ""
 
     @property
     def multiple(self) -> bool:
         """More than one crossing found (stability regained or lost again)."""
         return len(self.crossings) > 1
+
+    @property
+    def certified(self) -> bool:
+        """A crossing was found and certified on both sides (``False`` with no crossing)."""
+        return bool(self.crossings) and self.crossings[0].certified
+
+    @property
+    def outcome(self) -> str:
+        """``"crossing"`` (certified on both sides), ``"uncertified"`` (a crossing whose sides
+        were not certified), ``"none-found"`` (every point scanned had the same stability: a
+        statement about those points only) or ``"undecided"`` (a point could not be decided)."""
+        if self.crossings:
+            return "crossing" if self.certified else "uncertified"
+        return "undecided" if self.note.startswith("not decided") else "none-found"
 
     def to_json(self) -> dict[str, Any]:
         return {
@@ -308,66 +332,118 @@ class Boundary:
             "direction": self.direction,
             "tolerance": self.tolerance,
             "rtol": self.rtol,
+            "certified": self.certified,
+            "outcome": self.outcome,
             "crossings": [
-                {"value": c.value, "direction": c.direction, "tolerance": c.tolerance}
+                {"value": c.value, "direction": c.direction, "tolerance": c.tolerance, "certified": c.certified}
                 for c in self.crossings
             ],
             "search": list(self.search),
+            **({"judge": {"judge": "stability", "parameter": self.parameter, "sides": list(self.crossings[0].sides)}}
+               if self.crossings and self.crossings[0].sides else {}),
             "scan_points": self.scan_points,
-            "stable_at_start": self.stable_at_start,
+            "stable_at_start": None if self.outcome == "undecided" and not self.crossings else self.stable_at_start,
             "method": self.method,
             "evaluations": self.evaluations,
+            "note": self.note,
         }
 
 
 class _Criterion:
-    """``p -> signed distance to instability`` (negative: stable) for one method."""
+    """``p -> signed distance to instability`` (negative: stable) for one method.
+
+    The spectral method uses the float64 radius where it can be trusted
+    (:func:`hapticproof.analysis.sampled.trusted_radius`) and the certified sign everywhere else
+    (overflow, extreme scales, a radius within 1e-7 of 1: ball arithmetic on the exact loop),
+    so the sign it returns is never a rounding artefact."""
 
     def __init__(self, family: SceneFamily, vary: str, at: Mapping[str, Any], method: Method,
                  steps: int | None):
         self.family, self.vary, self.at, self.method, self.steps = family, vary, dict(at), method, steps
         self.evaluations = 0
+        self.undecided: list[float] = []
 
     def scene(self, value: float) -> Scene:
         return self.family.scene(**self.at, **{self.vary: float(value)})
 
+    def certified(self, value: float) -> float:
+        """The certified sign of ``rho - 1`` (:func:`hapticproof.analysis.sampled.certified_stability`)
+        as ``-/+ 5e-324``; ``0.0`` when undecided (the value is recorded in ``undecided``)."""
+        stable = certified_stability(self.scene(value), max_bits=DECIDE_BITS)
+        if stable is None:
+            self.undecided.append(float(value))
+            return 0.0
+        return -5e-324 if stable else 5e-324
+
     def __call__(self, value: float) -> float:
         self.evaluations += 1
-        scene = self.scene(value)
         if self.method == "spectral":
-            return spectral_radius(scene) - 1.0
+            rho = trusted_radius(self.scene(value), margin=0.0)
+            if rho is None:
+                return self.certified(value)
+            if abs(rho - 1) >= TRUSTED_MARGIN:
+                return rho - 1.0
+            # near 1 the sign is the certified one; the float keeps its magnitude when it agrees
+            sign = self.certified(value)
+            return rho - 1.0 if sign != 0 and (rho - 1.0) * sign > 0 else sign
         from hapticproof.analysis.simulate import growth_rate
 
         steps = self.steps or (2**52 if self.method == "doubling" else 10_000)
-        return growth_rate(scene, steps=steps, method=self.method)
+        return growth_rate(self.scene(value), steps=steps, method=self.method)
 
     def many(self, values: np.ndarray) -> np.ndarray:
         if self.method == "spectral":
             self.evaluations += len(values)
-            return spectral_radii([self.scene(v) for v in values]) - 1.0
+            out = trusted_radii([self.scene(v) for v in values]) - 1.0
+            for i in np.flatnonzero(~np.isfinite(out)):
+                out[i] = self.certified(values[i])
+            return out
         return np.array([self(v) for v in values])
 
 
-def _auto_search(crit: _Criterion) -> tuple[float, float] | None:
-    """A search interval around a change of stability found by doubling/halving from 1.
+#: The automatic search: doublings from 1 (to 2**30 and 2**-30), then factors of 100 out to
+#: 1e300 and 1e-300 -- every positive float64 scale a parameter can have.
+_LADDER_DOUBLINGS = 30
+_LADDER_STEP = 100.0
 
-    Up from a stable 1 (to 2**30), else down (to 2**-30); with the adjacent pair
-    (stable s, unstable u) the interval spans six decades beyond the stable side and a factor
-    4 beyond the unstable side, so the scan also sees crossings past the first.
+
+def _auto_search(crit: _Criterion) -> tuple[tuple[float, float] | None, int, bool]:
+    """A search interval around a change of stability found by a ladder of values from 1.
+
+    Up from 1 by doublings (to 2**30), then by factors of 100 (to 1e300); else down the same
+    way (to 1e-300). With the adjacent pair (s on the side of 1, u beyond) the interval spans six
+    decades beyond the side of 1 and a factor 4 beyond the other, so the scan also sees
+    crossings past the first. A rung the certified radius cannot decide ends that direction
+    (``crit.undecided`` records it). Returns the interval (``None`` when stability is the same
+    at every decided rung), the number of rungs and the stability at 1.
     """
-    value = 1.0
-    stable = crit(value) < 0
+    first = crit(1.0)
+    start, rungs = first < 0, 1
+    if first == 0.0:
+        return None, rungs, start
     for factor in (2.0, 0.5):
-        v = value
-        for _ in range(30):
-            nxt = v * factor
-            if (crit(nxt) < 0) != stable:
-                lo, hi = sorted((v, nxt))
-                if (factor > 1) == stable:  # unstable above: K-like parameter
-                    return lo * 1e-6, hi * 4
-                return lo / 4, hi * 1e6  # unstable below: b-like parameter
-            v = nxt
-    return None
+        ladder = [factor ** k for k in range(1, _LADDER_DOUBLINGS + 1)]
+        step = _LADDER_STEP if factor > 1 else 1 / _LADDER_STEP
+        while 1e-300 <= ladder[-1] * step <= 1e300:
+            ladder.append(ladder[-1] * step)
+        previous, blocked = 1.0, False
+        for chunk in range(0, len(ladder), 16):
+            values = np.array(ladder[chunk:chunk + 16])
+            signs = crit.many(values)
+            rungs += len(values)
+            for v, sign in zip(values, signs):
+                if sign == 0.0:          # undecided: this direction ends here
+                    blocked = True
+                    break
+                if (sign < 0) != start:
+                    lo, hi = sorted((previous, float(v)))
+                    if (factor > 1) == start:  # unstable above: K-like parameter
+                        return (max(lo * 1e-6, 5e-324), min(hi * 4, 1.7e308)), rungs, start
+                    return (lo / 4, min(hi * 1e6, 1.7e308)), rungs, start  # unstable below: b-like parameter
+                previous = float(v)
+            if blocked:
+                break
+    return None, rungs, start
 
 
 def find_boundary(
@@ -391,31 +467,42 @@ def find_boundary(
     at : mapping, optional
         Values of the family's other free parameters (``{"T": 0.001}``).
     search : (float, float), optional
-        Interval to search; automatic when omitted (positive parameters only).
+        Interval to search; automatic when omitted (positive parameters only: a ladder of
+        values from 1 out to 1e300 and 1e-300).
     rtol : float
         Requested relative tolerance.
     scan : int
         Number of scan points (the geometric grid on which crossings are detected).
     method : {"spectral", "doubling", "steps"}
-        ``"spectral"``: spectral radius of the exact closed loop (scan + Brent);
-        ``"doubling"`` / ``"steps"``: time-domain growth (:func:`hapticproof.analysis.simulate.growth_rate`)
-        with bisection on its sign (the Simulink-style method; ``steps`` sets the horizon).
+        ``"spectral"``: spectral radius of the exact closed loop (scan + Brent), float64 where
+        it can be trusted, certified ball arithmetic elsewhere and on both sides of every
+        crossing; ``"doubling"`` / ``"steps"``: time-domain growth
+        (:func:`hapticproof.analysis.simulate.growth_rate`) with bisection on its sign (the
+        Simulink-style method; ``steps`` sets the horizon).
+
+    Without a change of stability at the points scanned, ``value`` is ``None`` and ``note``
+    says so: the scan decides its points, not the stretches between them.
 
     Examples
     --------
     >>> fam = SceneFamily("single-user", {"m": 0.15, "b": 0.2, "B": 0}, delay=10)
     >>> bnd = find_boundary(fam, "K", at={"T": 0.002})
-    >>> round(bnd.value, 4), bnd.multiple
-    (9.5681, False)
+    >>> round(bnd.value, 4), bnd.multiple, bnd.certified
+    (9.5681, False, True)
     """
     at = dict(at or {})
     crit = _Criterion(family, vary, at, method, steps)
     if search is None:
-        found = _auto_search(crit)
+        found, rungs, stable = _auto_search(crit)
         if found is None:
-            stable = crit(1.0) < 0
-            return Boundary(vary, None, None, None, rtol, (), (0.0, math.inf), 0, stable, method,
-                            crit.evaluations)
+            state = "stable" if stable else "unstable"
+            note = (f"no change of stability at the {rungs} values of {vary} from 1e-300 to 1e300 scanned "
+                    f"({state} at every one); a window between them is not excluded")
+            if crit.undecided:
+                note = (f"not decided: the spectral radius at {vary} = {crit.undecided[0]:.6g} could not be separated "
+                        f"from 1 at {DECIDE_BITS} bits")
+            return Boundary(vary, None, None, None, rtol, (), (1e-300, 1e300), rungs, stable, method,
+                            crit.evaluations, note)
         search = found
     lo, hi = float(search[0]), float(search[1])
     if not hi > lo:
@@ -431,6 +518,15 @@ def find_boundary(
         if unstable[i] != unstable[i + 1]:
             crossings.append(_refine(crit, points[i], points[i + 1], signs[i], rtol, method))
     first = crossings[0] if crossings else None
+    note = ""
+    if first is None:
+        note = (f"no change of stability at the {scan} scan points in [{lo:.6g}, {hi:.6g}] "
+                f"({'stable' if not unstable[0] else 'unstable'} at every one); a window between them is not excluded")
+    elif not first.certified:
+        note = "the two sides of the crossing could not be certified (the spectral radius balls hold 1)"
+    if crit.undecided and first is None:
+        note = (f"not decided: the spectral radius at {vary} = {crit.undecided[0]:.6g} could not be separated "
+                f"from 1 at {DECIDE_BITS} bits")
     return Boundary(
         vary,
         first.value if first else None,
@@ -443,6 +539,7 @@ def find_boundary(
         bool(not unstable[0]),
         method,
         crit.evaluations,
+        note,
     )
 
 
@@ -459,14 +556,21 @@ def _refine(crit: _Criterion, a: float, b: float, fa: float, rtol: float, method
                 a = mid
             else:
                 b = mid
-        return Crossing(0.5 * (a + b), direction, 0.5 * (b - a))
-    tol = max(rtol * abs(x), eps * abs(x))
-    for _ in range(30):  # certify: the two sides must differ as claimed
-        left, right = crit(x - tol), crit(x + tol)
-        if (left < 0) == (fa < 0) and (right < 0) != (fa < 0):
+        return Crossing(0.5 * (a + b), direction, 0.5 * (b - a), certified=False)
+    tol = max(rtol * abs(x), eps * abs(x), 5e-324)
+    for _ in range(30):  # certify: the two sides must differ as claimed, by the certified radius
+        if x - tol < a or x + tol > b:   # the scan's own points bracket the crossing
+            tol = min(x - a, b - x)
+        left, right = crit.certified(x - tol), crit.certified(x + tol)
+        crit.evaluations += 2
+        if left != 0 and right != 0 and (left < 0) == (fa < 0) and (right < 0) != (fa < 0):
+            sides = tuple({"value": v, "stable": st, "loop": loop_json(crit.scene(v))}
+                          for v, st in ((x - tol, left < 0), (x + tol, right < 0)))
+            return Crossing(float(x), direction, float(tol), sides=sides)
+        if tol >= min(x - a, b - x):
             break
         tol *= 4
-    return Crossing(float(x), direction, float(tol))
+    return Crossing(float(x), direction, float(tol), certified=False)
 
 
 def refine_boundary_mp(

@@ -26,7 +26,7 @@ from typing import Any
 import flint
 import sympy as sp
 
-from hapticproof.core.evidence import Decision, Evidence, Method, Outcome
+from hapticproof.core.evidence import Decision, Evidence, Method, Outcome, to_jsonable
 from hapticproof.exact.kernel import decide_rational_sign, locate_roots, transfer_json
 from hapticproof.core.lazy import stage
 from hapticproof.systems.models import environment_path, inverse_transfer
@@ -38,7 +38,7 @@ from hapticproof.core.symbols import z as Z_SYM
 from hapticproof.exact.unitcircle import CRational, ThetaForm, circle_real_part, hermitian_part_rational, numerator_denominator, theta_form
 from hapticproof.exact.conditions import HERMITIAN, RESIDUES, Condition, POLES_IN_DISK, POLES_SIMPLE, combine, pole_conditions, properness_condition
 
-__all__ = ["conditions", "transfer_polynomials", "numeric_scene", "Pole", "Residue", "WorstCase", "poles_of", "unit_circle_residues", "hermitian_of", "decide_hermitian", "symbolic_minimum", "symbolic_c_degree", "SYMBOLIC_CFORM_LIMIT", "poles", "residues", "hermitian", "worst_case", "positive_real"]
+__all__ = ["conditions", "transfer_polynomials", "numeric_scene", "Pole", "Residue", "WorstCase", "poles_of", "unit_circle_residues", "hermitian_of", "decide_hermitian", "symbolic_minimum", "symbolic_c_degree", "SYMBOLIC_CFORM_LIMIT", "poles", "residues", "hermitian", "worst_case", "positive_real", "with_definition"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -547,5 +547,25 @@ def positive_real(scene: SingleUserScene) -> Outcome:
     >>> out = positive_real(sc)
     >>> out.decision.value, out.reason
     ('disproved', 'G^-1 is not positive real: poles in |z| <= 1: 1 pole(s) outside the unit circle (z ~ 2)')
+    >>> positive_real(sc).evidence.facts["definition"]["judged"]["ok"]       # G^-1 itself, for the judge
+    True
     """
-    return combine(conditions(scene))
+    out = combine(conditions(scene))
+    if scene.is_numeric:
+        out = with_definition(out, transfer_json(*transfer_polynomials(scene)))
+    return out
+
+
+def with_definition(out: Outcome, transfer: dict[str, Any]) -> Outcome:
+    """``out`` with the judged definition object of its decision (:func:`hapticproof.exact.judge.judged_definition`)
+    in its facts: whoever re-checks the decision (the audit's :func:`~hapticproof.audit.runner.rechecked`,
+    ``hapticproof check``) tests it against the definition from ``G^{-1}`` itself."""
+    from dataclasses import replace
+
+    from hapticproof.exact.judge import judged_definition
+
+    definition = judged_definition("disk", out.decision.value, transfer,
+                                   to_jsonable(out.witness) if out.decision == Decision.DISPROVED and out.witness else None)
+    if definition is None:
+        return out
+    return replace(out, evidence=replace(out.evidence, facts={**out.evidence.facts, "definition": definition}))

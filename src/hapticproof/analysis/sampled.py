@@ -52,6 +52,9 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import Any
 
+import math
+from fractions import Fraction
+
 import flint
 import mpmath
 import numpy as np
@@ -61,7 +64,15 @@ from hapticproof.exact.realroots import ball_spectral_radius, flint_precision
 from hapticproof.systems.impedance import Precision, as_float, as_mp
 from hapticproof.systems.loops import Loop, Scene
 
-__all__ = ["discretize", "closed_loop_matrix", "closed_loop_matrices", "spectral_radius", "spectral_radii", "is_stable", "free_device_boundary"]
+__all__ = ["TRUSTED_MARGIN", "discretize", "closed_loop_matrix", "closed_loop_matrices", "spectral_radius", "spectral_radii", "is_stable",
+           "free_device_boundary", "certified_radius", "certified_stability", "trusted_radius", "trusted_radii", "loop_json", "MAX_BITS", "DECIDE_BITS"]
+
+#: The certified route doubles its working precision up to this many bits (an ``expm`` of a
+#: generator of norm 1e300 squares some 1000 times and needs about as many bits).
+MAX_BITS = 16384
+#: A decision by the certified route stops doubling here (a radius within about 2^-4000 of 1
+#: is reported as undecided rather than computed for minutes).
+DECIDE_BITS = 4096
 
 
 # --------------------------------------------------------------------------------------------
@@ -275,3 +286,259 @@ def free_device_boundary(m: Any, b: Any, T: Any, precision: Precision = "float",
         c2 = alpha * (1 + p) - 2 * (1 - p)
         bound2 = 2 * (1 + p) / c2 if c2 > 0 else mpmath.inf
         return b_ * b_ / m_ * min(bound1, bound2)
+
+
+# --------------------------------------------------------------------------------------------
+# certified spectral radius at any scale (ball arithmetic from the exact loop)
+# --------------------------------------------------------------------------------------------
+def _arb_q(value: Any) -> flint.arb:
+    q = Fraction(value)
+    return flint.arb(flint.fmpq(q.numerator, q.denominator))
+
+
+def _arb_matrix(rows: np.ndarray) -> flint.arb_mat:
+    r, c = rows.shape
+    return flint.arb_mat(r, c, [_arb_q(rows[i, j]) for i in range(r) for j in range(c)])
+
+
+def _closed_loop_arb(loop: Loop) -> flint.arb_mat:
+    """The ZOH closed loop of an exact loop as an arb matrix at the current precision (the rigid
+    translation mode deflated by the exact similarity of :func:`_deflate`)."""
+    n, m = loop.bu.shape
+    T = Fraction(loop.T)
+    gen = np.zeros((n + m, n + m), dtype=object)
+    gen[...] = Fraction(0)
+    gen[:n, :n], gen[:n, n:] = loop.a * T, loop.bu * T
+    E = _arb_matrix(gen).exp() if n + m else flint.arb_mat(0, 0)
+    phi = flint.arb_mat(n, n, [E[i, j] for i in range(n) for j in range(n)])
+    gamma = flint.arb_mat(n, m, [E[i, n + j] for i in range(n) for j in range(m)])
+    ctrl, nc = loop.ctrl, loop.ctrl.a.shape[0]
+    top_left = phi + gamma * _arb_matrix(ctrl.d @ loop.c)
+    top_right = gamma * _arb_matrix(ctrl.c) if nc else None
+    bottom_left = _arb_matrix(ctrl.b @ loop.c) if nc else None
+    size = n + nc
+    rows = [[flint.arb(0)] * size for _ in range(size)]
+    for i in range(n):
+        for j in range(n):
+            rows[i][j] = top_left[i, j]
+        for j in range(nc):
+            rows[i][n + j] = top_right[i, j]
+    for i in range(nc):
+        for j in range(n):
+            rows[n + i][j] = bottom_left[i, j]
+        for j in range(nc):
+            rows[n + i][n + j] = _arb_q(ctrl.a[i, j])
+    if loop.rigid is not None:
+        rigid = [Fraction(v) for v in loop.rigid]
+        idx = max(range(size), key=lambda i: abs(rigid[i]))
+        w = [v / rigid[idx] for v in rigid]
+        d = [_arb_q(v - (1 if i == idx else 0)) for i, v in enumerate(w)]
+        ap = [row[:] for row in rows]
+        for i in range(size):
+            ap[i][idx] = ap[i][idx] + sum((rows[i][k] * d[k] for k in range(size)), flint.arb(0))
+        out = [[ap[i][j] - d[i] * ap[idx][j] for j in range(size)] for i in range(size)]
+        keep = [i for i in range(size) if i != idx]
+        rows = [[out[i][j] for j in keep] for i in keep]
+        size -= 1
+    return flint.arb_mat(size, size, [v for row in rows for v in row]) if size else flint.arb_mat(0, 0)
+
+
+def certified_radius(scene: Scene, bits: int = 128, decide: bool = False, max_bits: int = MAX_BITS) -> flint.arb:
+    """A certified enclosure of the spectral radius of the (deflated) closed loop, at any scale.
+
+    The loop is assembled from exact fractions (``scene.loop("exact")``), the ZOH transition
+    matrix enclosed by ``arb_mat.exp`` of the exact generator and the eigenvalues by isolating
+    balls (``acb_mat.eig``); the working precision doubles from ``bits`` until the balls
+    isolate the eigenvalues -- with ``decide``, until the ball also excludes 1 (a radius
+    ``1 - 1e-260`` needs some 900 bits) -- up to ``max_bits`` (then the last ball, which may
+    hold 1, is returned). Ball arithmetic has no overflow, so
+    parameters from 1e-300 to 1e300 are decided as they are given, where ``float64`` loses
+    every digit (an ``expm`` entry ``e^{-1e300}``, a gain ``1e300`` next to an entry ``1``).
+    Raises :class:`ArithmeticError` when the eigenvalues stay clustered.
+
+    >>> from hapticproof.systems.loops import SingleUser
+    >>> rho = certified_radius(SingleUser(m="0.015", b="0.02", T="0.001", K=30))
+    >>> rho < 1, round(float(rho.mid()), 6)
+    (True, 0.999833)
+    >>> certified_radius(SingleUser(m="0.015", b="1e297", T="0.001", K="1e300")) < 1     # far beyond float64
+    True
+    """
+    loop = scene.loop("exact")
+    # scaling and squaring an exponential of norm 2^k loses about k bits: start above that
+    T = Fraction(loop.T)
+    entries = [abs(Fraction(v) * T) for v in (*loop.a.ravel(), *loop.bu.ravel())]
+    norm = max(entries, default=Fraction(0))
+    scale_bits = max(0, norm.numerator.bit_length() - norm.denominator.bit_length()) if norm else 0
+    precision = max(bits, 64 + 2 * scale_bits)
+    last = None
+    while precision <= max(max_bits, bits):
+        with flint_precision(precision):
+            matrix = _closed_loop_arb(loop)
+            if matrix.nrows() == 0:
+                return flint.arb(0)
+            finite = all(matrix[i, j].is_finite() for i in range(matrix.nrows()) for j in range(matrix.ncols()))
+            radius = ball_spectral_radius(flint.acb_mat(matrix)) if finite else None
+            if radius is not None and radius.is_finite() and radius.rad() < flint.arb(2) ** -40 * (1 + radius.mid()):
+                last = radius
+                if not decide or radius < 1 or radius > 1:
+                    return radius
+        precision *= 2
+    if last is not None:
+        return last
+    raise ArithmeticError("the closed-loop eigenvalues were not isolated at the highest working precision")
+
+
+def _disk_routh(charpoly: flint.arb_poly) -> bool | None:
+    """Every root of a real polynomial strictly inside the unit circle (``True``), one strictly
+    outside (``False``), or undecided (``None``), in ball arithmetic: the bilinear map
+    ``z = (1 + s)/(1 - s)`` and a Routh array whose first column must be certainly positive.
+
+    Clusters of roots do not matter (a crowd of eigenvalues near 0 -- the delay states of a
+    loop with a tiny period -- maps near ``s = -1``, far from the axis); only roots near the
+    circle need precision. With a regular array the sign changes of the first column count the
+    roots in ``Re s > 0`` (Routh), i.e. outside the circle.
+    """
+    coeffs = [charpoly[k] for k in range(charpoly.degree() + 1)]
+    n = len(coeffs) - 1
+    if n <= 0:
+        return True
+    one_plus, one_minus = flint.arb_poly([1, 1]), flint.arb_poly([1, -1])
+    R = flint.arb_poly([0])
+    for k, a in enumerate(coeffs):
+        R += a * one_plus**k * one_minus ** (n - k)
+    c = [R[k] for k in range(n + 1)][::-1]          # highest degree first
+    if not (c[0] > 0 or c[0] < 0):
+        return None                                  # a root near z = -1 (s = infinity)
+    if c[0] < 0:
+        c = [-v for v in c]
+    top, below = c[0::2], c[1::2]
+    width = len(top)
+    below = below + [flint.arb(0)] * (width - len(below))
+    column = [top[0]]
+    rows = [top, below]
+    for _ in range(n):
+        a, b = rows[-2], rows[-1]
+        if not (b[0] > 0 or b[0] < 0):
+            return None
+        column.append(b[0])
+        rows.append([(b[0] * a[k + 1] - a[0] * b[k + 1]) / b[0] for k in range(width - 1)] + [flint.arb(0)])
+    column = column[: n + 1]
+    changes = sum(1 for x, y in zip(column, column[1:]) if (x > 0) != (y > 0))
+    return changes == 0
+
+
+def certified_stability(scene: Scene, max_bits: int = 0) -> bool | None:
+    """``True`` (every closed-loop eigenvalue certainly inside the unit circle), ``False`` (one
+    certainly outside) or ``None`` (undecided at ``max_bits``, default :data:`DECIDE_BITS`).
+
+    The exact loop's ZOH matrix in ball arithmetic (as :func:`certified_radius`), its
+    characteristic polynomial, and a Routh array after the bilinear map (:func:`_disk_routh`):
+    no eigenvalue isolation, so the crowd of eigenvalues a tiny period leaves near 0 and near
+    1 costs only the precision the margin to the circle needs.
+
+    >>> from hapticproof.systems.loops import SingleUser
+    >>> certified_stability(SingleUser(m="0.015", b="0.02", T="0.001", K=30)), certified_stability(
+    ...     SingleUser(m="0.015", b="0.02", T="0.001", K=50))
+    (True, False)
+    >>> certified_stability(SingleUser(m="0.015", b="0.02", T="1e-300", K=30, delay=5))    # every eigenvalue near 0 or 1
+    True
+    """
+    loop = scene.loop("exact")
+    T = Fraction(loop.T)
+    entries = [abs(Fraction(v) * T) for v in (*loop.a.ravel(), *loop.bu.ravel())]
+    norm = max(entries, default=Fraction(0))
+    scale_bits = max(0, norm.numerator.bit_length() - norm.denominator.bit_length()) if norm else 0
+    precision, top = max(128, 64 + 2 * scale_bits), max(max_bits or DECIDE_BITS, 128 + 2 * scale_bits)
+    while precision <= top:
+        with flint_precision(precision):
+            matrix = _closed_loop_arb(loop)
+            if matrix.nrows() == 0:
+                return True
+            if all(matrix[i, j].is_finite() for i in range(matrix.nrows()) for j in range(matrix.ncols())):
+                verdict = _disk_routh(matrix.charpoly())
+                if verdict is not None:
+                    return verdict
+        precision *= 2
+    return None
+
+
+#: A float64 spectral radius is trusted only this far from 1, and only for a closed-loop
+#: matrix whose entries stay below :data:`_TRUSTED_ENTRY` (eigenvalue errors grow with the norm).
+TRUSTED_MARGIN = _TRUSTED_MARGIN = 1e-7
+_TRUSTED_ENTRY = 1e8
+
+
+def _float_scaled(scene: Scene) -> bool:
+    """The loop's generator ``[A, Bu] T`` and controller entries are within float64's comfortable
+    range (no entry above 1e8: a larger ``expm`` argument squares away every digit)."""
+    try:
+        with np.errstate(all="ignore"):
+            loop = scene.loop("float")
+            parts = [loop.a * loop.T, loop.bu * loop.T, loop.ctrl.a, loop.ctrl.b, loop.ctrl.c, loop.ctrl.d]
+            return all(p.size == 0 or (np.all(np.isfinite(p)) and np.max(np.abs(p)) <= _TRUSTED_ENTRY) for p in parts)
+    except (OverflowError, ValueError, ZeroDivisionError):
+        return False
+
+
+def trusted_radius(scene: Scene, margin: float = _TRUSTED_MARGIN) -> float | None:
+    """The float64 spectral radius when it can be trusted, else ``None``: the matrix exponential
+    overflowed or produced NaN, the closed loop is badly scaled (an entry above 1e8), or the
+    radius lies within 1e-7 of 1 (rounding decides such a sign). Callers then take the
+    certified route (:func:`certified_radius`)."""
+    if not _float_scaled(scene):
+        return None
+    try:
+        with np.errstate(all="ignore"):
+            matrix = closed_loop_matrix(scene)
+            if not np.all(np.isfinite(matrix)) or (matrix.size and np.max(np.abs(matrix)) > _TRUSTED_ENTRY):
+                return None
+            rho = float(np.max(np.abs(np.linalg.eigvals(matrix)))) if matrix.size else 0.0
+    except (np.linalg.LinAlgError, OverflowError, ValueError, ZeroDivisionError):
+        return None
+    if not math.isfinite(rho) or abs(rho - 1) < margin:
+        return None
+    return rho
+
+
+def trusted_radii(scenes: Sequence[Scene]) -> np.ndarray:
+    """Batched float64 spectral radii (as :func:`spectral_radii`), ``NaN`` wherever
+    :func:`trusted_radius` would not trust the value (overflow, a badly scaled loop, a radius
+    within 1e-7 of 1)."""
+    out = np.full(len(scenes), np.nan)
+    keep = [i for i, scene in enumerate(scenes) if _float_scaled(scene)]
+    try:
+        with np.errstate(all="ignore"):
+            mats = closed_loop_matrices([scenes[i] for i in keep])
+    except (np.linalg.LinAlgError, OverflowError, ValueError, ZeroDivisionError):
+        return out
+    for i, mat in zip(keep, mats):
+        if mat.size == 0:
+            out[i] = 0.0
+            continue
+        if not np.all(np.isfinite(mat)) or np.max(np.abs(mat)) > _TRUSTED_ENTRY:
+            continue
+        try:
+            rho = float(np.max(np.abs(np.linalg.eigvals(mat))))
+        except np.linalg.LinAlgError:
+            continue
+        if math.isfinite(rho) and abs(rho - 1) >= _TRUSTED_MARGIN:
+            out[i] = rho
+    return out
+
+
+def loop_json(scene: Scene) -> dict[str, Any]:
+    """The exact loop of a scene as JSON (exact fractions as strings), for the judge of
+    :mod:`hapticproof.exact.judge`: ``dx/dt = a x + bu u`` held over ``T``, sampled ``y = c x``,
+    the discrete controller ``(A, B, C, D)`` from ``y`` to ``u``, and whether a rigid
+    translation mode (an exact eigenvalue 1 no gain moves) is to be set aside."""
+    loop = scene.loop("exact")
+
+    def rows(m: np.ndarray) -> list[list[str]]:
+        return [[str(Fraction(v)) for v in row] for row in m.tolist()] if m.size else [[] for _ in range(m.shape[0])]
+
+    ctrl = loop.ctrl
+    return {"T": str(Fraction(loop.T)), "a": rows(loop.a), "bu": rows(loop.bu), "c": rows(loop.c),
+            "controller": {"a": rows(ctrl.a), "b": rows(ctrl.b), "c": rows(ctrl.c), "d": rows(ctrl.d)},
+            "shape": {"plant": list(loop.a.shape), "inputs": loop.bu.shape[1], "outputs": loop.c.shape[0],
+                      "controller": ctrl.a.shape[0]},
+            "rigid": loop.rigid is not None}

@@ -83,7 +83,7 @@ class State:
 
     def prepare(self, expr: Any) -> Any:
         """A printed expression in the model's symbols: names unified, the scene's values
-        substituted, ``t_d = n T`` with the scene's delay, ``omega`` kept."""
+        substituted, ``t_d = n T`` and the delay ratio ``n`` with the scene's delay, ``omega`` kept."""
         return _prepare(expr, self)
 
 
@@ -139,6 +139,10 @@ def _prepare(expr: Any, state: State) -> Any:
             rename[sym] = values[sym.name]
         elif sym.name in state.names and state.names[sym.name] != sym:
             rename[sym] = state.names[sym.name]
+    delay = _delay_of(state) if state.scene is not None else None
+    if delay is not None and delay.is_Integer and "n" not in values:
+        # the printed delay ratio n of a scene with a numeric delay is that delay
+        rename.update({sym: delay for sym in free if getattr(sym, "name", None) == "n"})
     if rename:
         expr = expr.xreplace(rename)
     t_d = next((s for s in expr.free_symbols if getattr(s, "name", None) == "t_d"), None) if isinstance(expr, sp.Basic) else None

@@ -25,8 +25,12 @@ from hapticproof.audit.compare import as_bound, compare_expressions
 from hapticproof.exact.canonical import is_identically_zero
 from hapticproof.audit.claimbase import State, claimed_members, frequency_symbol, display_members, period_of, preferred_variables, conjuncts, compare_conditions
 from hapticproof.core.evidence import Decision, Evidence, Finding, Method, Outcome, Verdict
+from hapticproof.core.errors import HapticproofError
 from hapticproof.core.symbols import c as C_SYM
+from hapticproof.core.symbols import cos_n as COS_N
 from hapticproof.core.symbols import n as N_SYM
+from hapticproof.core.symbols import sin_n as SIN_N
+from hapticproof.core.symbols import sin_theta as SIN_T
 from hapticproof.audit.claimbase import malformed_finding, scene_system
 
 __all__ = ["inverse_transfer", "hermitian_part", "residue"]
@@ -116,9 +120,12 @@ def _to_c(expr: Any, state: State) -> sp.Expr:
     if omega is None or omega not in expr.free_symbols:
         return expr
     try:
-        return sp.cancel(omega_to_c(expr, omega, period_of(state)))
+        out = sp.cancel(omega_to_c(expr, omega, period_of(state)))
     except ValueError:      # not a function of cos(omega T) alone (e.g. cos(omega t_d - T)): keep omega
         return expr
+    if any(isinstance(sym, sp.Dummy) for sym in out.free_symbols):
+        return expr         # theta left over (omega T/2 outside any cosine): keep omega, never c and theta apart
+    return out
 
 
 def _with_omega(exact: Any, printed: Any, state: State) -> Any:
@@ -190,35 +197,176 @@ def hermitian_part(state: State) -> Finding:
     if not members:
         return malformed_finding("no member of the display states Re G^-1")
     state.repairable = True
-    if not symbolic_delay:
-        derived = form.expr()
-        findings = [_compare_one(_to_c(state.prepare(m), state), derived, "the printed Re G^-1 (in c = cos(omega T))",
-                                 quick=state.repairing) for m in members]
-        bad = [f for f in findings if f.verdict != Verdict.CONFIRMED]
-        return bad[0] if bad else findings[0]
-    derived = form.canonical()
-    for m in members:
-        printed = _theta(state.prepare(m), state)
-        if not is_identically_zero(printed - derived):
-            if state.repairing:
-                return Finding(Verdict.WRONG, "the canonical theta-forms differ", Evidence(Method.CANONICAL_FORM))
-            return _delay_instances_expression(state, m)
-    return Finding(Verdict.CONFIRMED, "the printed Re G^-1 equals the derived one for every integer delay n (canonical "
-                   "theta-form: cos(n theta), sin(n theta) independent of c)", Evidence(Method.CANONICAL_FORM),
-                   derived=form.expr(sp.Symbol("theta")))
+    derived = form.canonical() if symbolic_delay else form.expr()
+    shown = form.expr(sp.Symbol("theta")) if symbolic_delay else derived
+    findings = [_circle_compare(state, state.prepare(m), derived, shown, symbolic_delay) for m in members]
+    bad = [f for f in findings if f.verdict != Verdict.CONFIRMED]
+    out = bad[0] if bad else findings[0]
+    if not symbolic_delay and any(getattr(sym, "name", None) == "n" for m in members for sym in sp.sympify(m).free_symbols):
+        out = Finding(out.verdict, out.detail + f" (the printed n is the scene's delay n = {state.model.delay})",
+                      out.evidence, derived=out.derived, corrected=out.corrected)
+    return out
 
 
-def _delay_instances_expression(state: State, member: Any) -> Finding:
-    from hapticproof.analysis.positivereal import hermitian
+#: ``theta = omega T`` of the printed displays compared on the circle.
+_THETA = sp.Symbol("theta", real=True)
 
-    for n in (1, 2, 3):
-        printed = _to_c(state.prepare(member).xreplace({N_SYM: n}), state)
-        derived = hermitian(_at_delay(state, n)).expr()
-        f = compare_expressions(printed, derived, on_mismatch=Verdict.WRONG, what=f"the printed Re G^-1 at n = {n}")
-        if f.verdict != Verdict.CONFIRMED:
-            return _at_delay_n(f, n, " (its canonical theta-form differs from the derived one)")
-    return Finding(Verdict.UNDECIDED, "the canonical theta-forms differ but the expressions agree at n = 1, 2, 3",
-                   Evidence(Method.INSTANCES, instances=3))
+
+def _in_theta(expr: Any, state: State) -> sp.Expr:
+    """A printed expression with ``omega T`` replaced by ``theta`` (``t_d = n T`` is already in)."""
+    expr = _real_form(expr)
+    omega = frequency_symbol(state)
+    if omega is None or omega not in expr.free_symbols:
+        return expr
+    return sp.sympify(expr).xreplace({omega: _THETA / period_of(state)})
+
+
+_CIRCLE_VARIABLES = (C_SYM, SIN_T, COS_N, SIN_N, _THETA, N_SYM)
+
+
+def _circle_compare(state: State, printed: Any, derived: Any, shown: Any, symbolic_delay: bool) -> Finding:
+    """The printed ``Re G^{-1}`` against the derived form (in ``c``, or the theta-form of a
+    symbolic delay) as functions on the unit circle (:class:`~hapticproof.exact.unitcircle.CircleForm`:
+    half angles, Dirichlet kernels, shifted cosines and products of sines are exact); when they
+    differ, an exact point of the circle where they do, every linked quantity from one angle."""
+    from hapticproof.exact.unitcircle import circle_form, theta_form_on_circle
+
+    what = ("the printed Re G^-1" + (" (every integer delay n)" if symbolic_delay else " (in c = cos(omega T))"))
+    in_theta = _in_theta(printed, state)
+    if state.repairing and _circle_differs_numerically(in_theta, derived, symbolic_delay):
+        return Finding(Verdict.WRONG, f"{what} differs", Evidence(Method.CANONICAL_FORM))
+    n = N_SYM if symbolic_delay else None
+    try:
+        form_p = circle_form(in_theta, _THETA, n)
+    except ValueError:
+        form_p = None
+    form_d = theta_form_on_circle(derived)
+    if form_p is not None and form_p.equals(form_d):
+        how = ("for every integer delay n: equal as rational functions of e^{j theta/%d} and e^{j n theta}, "
+               "which are independent for theta/pi irrational (structural)" % form_p.L if symbolic_delay
+               else "identically on the unit circle (equal as rational functions of e^{j theta/%d})" % form_p.L)
+        facts: dict[str, Any] = {"printed_form": ("equals the derived", sp.sstr(derived))}
+        if not state.repairing:
+            judge = _circle_judge_equal(state, printed, in_theta, derived, symbolic_delay, form_p.L)
+            if judge is not None:
+                facts["judge"] = judge
+        return Finding(Verdict.CONFIRMED, f"{what} equals the derived one {how}",
+                       Evidence(Method.STRUCTURAL if symbolic_delay else Method.CANONICAL_FORM, facts=facts), derived=shown)
+    if state.repairing:
+        return Finding(Verdict.WRONG, f"{what} differs", Evidence(Method.CANONICAL_FORM))
+    found = _circle_difference(state, in_theta, derived, symbolic_delay, form_p.L if form_p is not None else 1)
+    if found is None:
+        return Finding(Verdict.UNDECIDED, f"{what} and the derived one differ in form, and no point of the circle where "
+                       "they differ was found", Evidence(Method.CANONICAL_FORM, instances=_ANGLE_TRIES), derived=shown)
+    values, point, pv, dv = found
+    from hapticproof.audit.judged import circle_judge, witness_of
+
+    witness = witness_of(values, point, period_of(state))
+    facts = {"printed_value": pv, "derived_value": dv, "printed_form": ("reads", sp.sstr(in_theta)),
+             "point": f"theta = omega T = {sp.sstr(point['theta'])}, z = e^(j theta) = {point['z'][0]} + "
+                      f"{point['z'][1]} j, c = {point['c']}"}
+    judge = circle_judge("differ", printed, getattr(frequency_symbol(state), "name", "omega"), period_of(state),
+                         [_judge_point(state, values, point)])
+    if judge is not None:
+        facts["judge"] = judge
+    shown_pv = sp.N(pv, 12) if not pv.is_Rational else pv
+    return Finding(Verdict.WRONG, f"{what} differs from the derived one: {sp.sstr(shown_pv)} vs {sp.sstr(dv)} at the "
+                   f"witness (one angle theta = {sp.sstr(point['theta'])} gives omega, c and z)",
+                   Evidence(Method.COUNTEREXAMPLE, witness=witness, facts=facts), derived=shown)
+
+
+_ANGLE_TRIES = 12
+
+
+def _circle_differs_numerically(in_theta: sp.Expr, derived: sp.Expr, symbolic_delay: bool) -> bool:
+    """A quick look at two points of the circle (used only to skip a repair, never to decide)."""
+    from hapticproof.audit.judged import circle_point
+    from hapticproof.exact.canonical import Sampler
+
+    symbols = sorted((sp.sympify(in_theta).free_symbols | sp.sympify(derived).free_symbols) - set(_CIRCLE_VARIABLES), key=str)
+    ranges = {s: (sp.Rational(1, 3), sp.Integer(3)) for s in symbols}
+    for k, values in enumerate(Sampler(symbols, seed=13, ranges=ranges).draw(3)[1:]):
+        point = circle_point(sp.Rational(2 + k, 7), 1, 2 + k if symbolic_delay else None)
+        sub = {C_SYM: point["c"], SIN_T: point["z"][1]}
+        if symbolic_delay:
+            sub.update({COS_N: point["z^n"][0], SIN_N: point["z^n"][1]})
+        try:
+            dv = sp.N(sp.sympify(derived).xreplace(values).xreplace(sub), 30)
+            pv = sp.N(sp.sympify(in_theta).xreplace(values).xreplace(
+                {_THETA: point["theta"], **({N_SYM: point["n"]} if symbolic_delay else {})}), 30)
+        except (TypeError, ValueError, ZeroDivisionError):
+            continue
+        if pv.is_number and dv.is_number and pv.is_finite and dv.is_finite and abs(pv - dv) > sp.Float("1e-12") * (1 + abs(dv)):
+            return True
+    return False
+
+
+def _circle_difference(state: State, in_theta: sp.Expr, derived: sp.Expr, symbolic_delay: bool, L: int) -> Any:
+    """``(values, point, printed value, derived value)`` at the first exact point where the two
+    differ (certified), or ``None``."""
+    from hapticproof.audit.judged import ANGLES, circle_point
+    from hapticproof.exact.canonical import Sampler, certified_nonzero
+
+    symbols = _sampled_symbols(state, in_theta, derived)
+    delays = (1, 2, 3) if symbolic_delay else (None,)
+    for values in Sampler(symbols, seed=3).draw(12):
+        for t in ANGLES[:_ANGLE_TRIES]:
+            for n in delays:
+                point = circle_point(t, L, n)
+                sub = {C_SYM: point["c"], SIN_T: point["z"][1]}
+                if n is not None:
+                    sub.update({COS_N: point["z^n"][0], SIN_N: point["z^n"][1], N_SYM: n})
+                dv = sp.sympify(derived).xreplace(values).xreplace(sub)
+                if dv.has(sp.zoo, sp.nan, sp.oo) or not dv.is_number:
+                    continue
+                dv = sp.nsimplify(sp.cancel(dv))
+                pv = sp.sympify(in_theta).xreplace(values).xreplace({_THETA: point["theta"], **({N_SYM: n} if n else {})})
+                if pv.has(sp.zoo, sp.nan, sp.oo) or not pv.is_number:
+                    continue
+                try:
+                    if certified_nonzero(pv - dv):
+                        return values, point, pv, dv
+                except (TypeError, ValueError, ZeroDivisionError):
+                    continue
+    return None
+
+
+def _sampled_symbols(state: State, in_theta: sp.Expr, derived: sp.Expr) -> list[sp.Symbol]:
+    """The parameters a point of the circle needs: those of both forms, and the period ``T``
+    (``omega = theta/T`` even where ``T`` cancels from both)."""
+    symbols = (sp.sympify(in_theta).free_symbols | sp.sympify(derived).free_symbols) - set(_CIRCLE_VARIABLES)
+    period = sp.sympify(period_of(state))
+    symbols |= period.free_symbols
+    return sorted(symbols, key=str)
+
+
+def _judge_point(state: State, values: Mapping[Any, Any], point: Mapping[str, Any]) -> dict[str, Any]:
+    from hapticproof.audit.claimbase import numeric_scene_at
+    from hapticproof.audit.judged import transfer_at
+
+    at = dict(values)
+    if "n" in point:
+        at["n"] = point["n"]
+    try:
+        transfer = transfer_at(numeric_scene_at(state, at).build())
+    except HapticproofError:
+        transfer = None
+    return {**point, "values": dict(values), "transfer": transfer}
+
+
+def _circle_judge_equal(state: State, printed: Any, in_theta: sp.Expr, derived: sp.Expr, symbolic_delay: bool,
+                        L: int) -> dict[str, Any] | None:
+    """The judge's sample points of a confirmed identity: a few parameter values, angles and
+    delays where the display must equal ``Re G^{-1}`` of the scene."""
+    from hapticproof.audit.judged import ANGLES, circle_judge, circle_point
+    from hapticproof.exact.canonical import Sampler
+
+    symbols = _sampled_symbols(state, in_theta, derived)
+    rows = []
+    for k, values in enumerate(Sampler(symbols, seed=11).draw(3)):
+        point = circle_point(ANGLES[(3 * k) % len(ANGLES)], L, (1, 2, 5)[k] if symbolic_delay else None)
+        rows.append(_judge_point(state, values, point))
+    return circle_judge("equal", printed, getattr(frequency_symbol(state), "name", "omega"), period_of(state), rows)
 
 
 def _in_c(relation: Any, state: State) -> Any:

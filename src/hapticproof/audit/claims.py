@@ -107,7 +107,22 @@ def check(ctx: Any, *, spec: Any, source: Any) -> Finding:
                        Evidence(Method.STRUCTURAL, facts={"error": f"{type(err).__name__}: {err}"}))
     if _should_repair(state, finding):
         finding = _repair(state, finding)
-    return finding
+    return _judged(state, finding)
+
+
+def _judged(state: State, finding: Finding) -> Finding:
+    """The finding with the judge's data of a condition claim (:func:`hapticproof.audit.judged.condition_judge`)."""
+    if state.spec.claim not in ("passivity-condition", "sufficient-condition", "necessary-condition"):
+        return finding
+    if "judge" in finding.evidence.facts:
+        return finding
+    from hapticproof.audit.judged import condition_judge
+
+    obj = condition_judge(state, finding)
+    if obj is None:
+        return finding
+    return dataclasses.replace(finding, evidence=dataclasses.replace(finding.evidence,
+                                                                     facts={**finding.evidence.facts, "judge": obj}))
 
 
 def _run(state: State) -> Finding:

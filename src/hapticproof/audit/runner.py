@@ -376,17 +376,27 @@ def run_equation(paper: Paper, equation: Equation) -> EquationResult:
 
 def rechecked(finding: Finding) -> Finding:
     """``finding`` with every certificate in its evidence re-verified by the independent checker
-    (:mod:`hapticproof.exact.checker`); the tally goes to ``evidence.facts["checker"]``. A certificate
-    the checker rejects makes the verdict ``undecided`` -- the decision and its proof disagree,
-    so neither is reported as established."""
-    from hapticproof.exact.checker import check_certificates
+    (:mod:`hapticproof.exact.checker`) and every judge object (the printed display and the
+    scene's original ``G^{-1}`` at its points) judged against the definition
+    (:mod:`hapticproof.exact.judge`), the verdict and the displayed witness held against them;
+    the tally goes to ``evidence.facts["checker"]``. A certificate the checker rejects, or a
+    disagreement of the judge, makes the verdict ``undecided`` -- the decision and its proof
+    (or the definition) disagree, so neither is reported as established."""
+    from hapticproof.exact.checker import check_certificates, judge_results
 
-    results = check_certificates(finding.evidence.to_json())
-    if not results:
+    data = finding.evidence.to_json()
+    results = check_certificates(data)
+    judged = judge_results({"verdict": finding.verdict.value, "evidence": data})
+    if not results and not judged:
         return finding
-    tally: dict[str, Any] = {"certificates": len(results), "re-verified": sum(r.ok and r.verified for r in results)}
+    tally: dict[str, Any] = {}
+    if results:
+        tally.update({"certificates": len(results), "re-verified": sum(r.ok and r.verified for r in results)})
+    definition = [r for r in judged if r.source == "judge"]
+    if definition:
+        tally["definition"] = [r.reason for r in definition]
     skipped = [r.reason for r in results if r.ok and not r.verified]
-    failed = [r.reason for r in results if not r.ok]
+    failed = [r.reason for r in results + judged if not r.ok]
     if skipped:
         tally["not re-verified"] = skipped
     if failed:
@@ -394,8 +404,9 @@ def rechecked(finding: Finding) -> Finding:
     evidence = replace(finding.evidence, facts={**finding.evidence.facts, "checker": tally})
     if not failed:
         return replace(finding, evidence=evidence)
+    what = "a certificate of this check" if any(not r.ok for r in results) else "this verdict against the definition"
     return replace(finding, verdict=Verdict.UNDECIDED, evidence=evidence, corrected=None,
-                   detail=f"the independent checker rejected a certificate of this check ({failed[0]}); "
+                   detail=f"the independent checker rejected {what} ({failed[0]}); "
                           f"the check had said {finding.verdict.value}: {finding.detail}")
 
 

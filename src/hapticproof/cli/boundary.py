@@ -111,14 +111,15 @@ def handler(args: argparse.Namespace) -> int:
             raise InputFormatError("--csv and --plot draw a curve: give --over NAME=start:stop:count")
         loops.scene(**{args.vary: 1.0})        # fail early, clearly
         bnd = find_boundary(loops, args.vary, search=search, rtol=args.rtol)
+        out = sys.stderr if args.json == "-" else sys.stdout     # standard output is the JSON's
         if bnd.value is None:
-            state = "stable" if bnd.stable_at_start else "unstable"
-            print(f"{args.vary}: no change of stability in [{bnd.search[0]:.6g}, {bnd.search[1]:.6g}] ({state} throughout)")
+            print(f"{args.vary}: {bnd.note}", file=out)
         else:
             more = f"; {len(bnd.crossings)} crossings: " + ", ".join(f"{c.value:.10g} ({c.direction})" for c in bnd.crossings) \
                 if bnd.multiple else ""
+            certified = "" if bnd.certified else f"; NOT certified: {bnd.note}"
             print(f"{args.vary}* = {bnd.value:.10g} +- {bnd.tolerance:.2g} ({bnd.direction}: spectral radius of the exact "
-                  f"ZOH loop crosses 1){more}")
+                  f"ZOH loop crosses 1){more}{certified}", file=out)
         if args.json:
             write_text(args.json, json.dumps(bnd.to_json(), indent=1))
         return 0
@@ -145,7 +146,9 @@ def handler(args: argparse.Namespace) -> int:
         if bnd.value is not None and bnd.direction == "stabilising":
             notes.append("stabilising")
         if bnd.value is None:
-            notes.append(("stable" if bnd.stable_at_start else "unstable") + " throughout search")
+            notes.append(("stable" if bnd.stable_at_start else "unstable") + f" at all {bnd.scan_points} scan points")
+        elif not bnd.certified:
+            notes.append("not certified")
         lines.append(f"{x:>12.6g} {exact:>18} {pr:>18} {ratio:>9}  {', '.join(notes)}")
     print("\n".join(lines), file=sys.stderr if to_stdout else sys.stdout)
     if args.csv:

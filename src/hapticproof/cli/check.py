@@ -3,8 +3,13 @@
 The report is what ``hapticproof audit --format json`` or ``hapticproof derive ... --format json``
 wrote. Every certificate in it is re-checked by the independent checker
 (:mod:`hapticproof.exact.checker`: Sturm sequences, exact evaluation of the original transfer
-function, Routh-Hurwitz); entries without a certificate are listed as not re-verifiable.
-Exit code 0 when every certificate holds, 1 when one fails, 2 for a file that cannot be read.
+function, Routh-Hurwitz); every verdict that carries its original object (``G^{-1}(z)``, the
+printed display as given, the scene at the witness) is judged against the definition
+(:mod:`hapticproof.exact.judge`); and what the report *displays* -- a verdict, a witness -- is
+re-derived from what it carries: a tampered verdict, witness or certificate number is refused
+with a line saying what does not match. Entries without a certificate are listed as not
+re-verifiable. Exit code 0 when everything holds, 1 when something fails or is refused, 2 for
+a file that cannot be read.
 """
 
 from __future__ import annotations
@@ -25,7 +30,9 @@ def register(sub: argparse._SubParsersAction) -> None:
         help="re-verify the certificates in a saved JSON report (audit or derive)",
         description="Re-verify every certificate in a JSON report written by 'audit --format json' or "
         "'derive ... --format json', with the independent checker (Sturm sequences, exact evaluation, "
-        "Routh-Hurwitz). Lists the entries that carry no certificate. Use - to read standard input.",
+        "Routh-Hurwitz), judge every verdict carrying its original object against the definition, and "
+        "re-derive the displayed verdicts and witnesses (a report whose display its evidence does not give is "
+        "refused). Lists the entries that carry no certificate. Use - to read standard input.",
     )
     parser.add_argument("report", help="the JSON report (a file, or - for standard input)")
     parser.add_argument("--quiet", action="store_true", help="print only the summary line")
@@ -46,4 +53,8 @@ def run(args: argparse.Namespace) -> int:
     result = check_report(report)
     lines = result.summary().splitlines()
     print("\n".join(lines[-1:] if args.quiet else lines))
+    refused = [(name, r) for name, r in result.failed if r.source == "display"]
+    if refused:
+        name, first = refused[0]
+        print(f"report refused: {name}: {first.reason}", file=sys.stderr)
     return 0 if result.ok else 1

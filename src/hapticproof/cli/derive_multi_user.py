@@ -110,6 +110,15 @@ def derive(scene: Any, minors: str = "auto", full: bool = False) -> dict[str, An
         "reason": positive_real(scene).reason,
         "witness": positive_real(scene).evidence.witness,
     }
+    if scene.is_numeric:
+        # the original G^-1(z) matrix, judged against the definition (and re-judged by 'check')
+        definition = positive_real(scene).evidence.facts.get("definition")
+        if definition is not None:
+            out["definition"] = definition
+            if not definition["judged"]["ok"]:   # the decision and the definition disagree
+                out["reason"] = (f"the definition-level judge disagrees with '{out['verdict']}' "
+                                 f"({definition['judged']['reason']}); the decision said: {out['reason']}")
+                out["verdict"], out["witness"] = "undecided", None
     if show_minors:
         out["principal_minors"] = {tuple(i + 1 for i in k): mn.expr() for k, mn in principal_minors(scene).items()}
     if scene.equal_delays and not scene.is_numeric:

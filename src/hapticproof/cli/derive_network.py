@@ -130,7 +130,20 @@ def analyse(Z: sp.Matrix, ports: tuple[int, ...] | None, search: bool = True, de
     out["poles"] = {"rhp": [f"{r:.6g}" for _, r in rep.rhp], "imaginary_axis": [(p.label(), m) for p, m in rep.axis],
                     "pole_at_infinity_order": rep.improper}
     decided = [{"name": "Z positive real (Definition 3)", **pr.to_json()}]
-    out["positive_real"] = {"decision": pr.decision.value, "reason": pr.reason}
+    from hapticproof.core.evidence import to_jsonable
+    from hapticproof.exact.judge import judged_definition
+
+    # the original Z(s) for the definition-level judge (and 'check'): proper up to a simple
+    # pole at infinity, no pole in Re s > 0, Z + Z^H >= 0 at points of the closed right half plane
+    definition = judged_definition("halfplane", pr.decision.value, R.transfer_json(),
+                                   to_jsonable(pr.evidence.witness) if pr.evidence.witness else None)
+    if definition is not None:
+        decided[0]["definition"] = definition
+        if not definition["judged"]["ok"]:     # the decision and the definition disagree
+            decided[0]["decision"] = "undecided"
+            decided[0]["reason"] = (f"the definition-level judge disagrees with '{pr.decision.value}' "
+                                    f"({definition['judged']['reason']}); the decision said: {pr.reason}")
+    out["positive_real"] = {"decision": decided[0]["decision"], "reason": decided[0]["reason"]}
     blocks = port_blocks(n, ports)
     if n == 2 and len(blocks) == 2:
         result = verdict.llewellyn if verdict.llewellyn is not None else llewellyn(R)

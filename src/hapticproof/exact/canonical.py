@@ -216,14 +216,25 @@ def evaluate_at(expr: sp.Expr, values: Mapping[sp.Symbol, Any]) -> sp.Expr | Non
 
 
 def certified_nonzero(value: sp.Expr) -> bool:
-    """Certified ``value != 0`` for an exact number (evalf with increasing precision)."""
+    """Certified ``value != 0`` for an exact number (evalf with increasing precision).
+
+    ``False`` means "not certified": a value that evaluates to below ``10^-50`` at 100 digits
+    is not called non-zero (``simplify`` failing to reach 0 proves nothing: ``2 - 2 sin(2
+    atan(1/2))^2 - sqrt(5) sin(3 atan(1/2))/2 + 19/50`` is 0).
+
+    >>> t = 2*sp.atan(sp.Rational(1, 2))
+    >>> certified_nonzero(2 - 2*sp.sin(t)**2 - sp.sqrt(5)*sp.sin(3*t/2)/2 + sp.Rational(19, 50))
+    False
+    >>> certified_nonzero(sp.sin(t) - sp.Rational(4, 5) + sp.Rational(1, 10**40))
+    True
+    """
     if value.is_Rational:
         return value != 0
     for digits in (30, 100):
         approx = sp.N(value, digits)
         if approx.is_number and abs(approx) > sp.Float(10) ** (-digits // 2):
             return True
-    return sp.simplify(value) != 0
+    return False
 
 
 class _NotRational(Exception):

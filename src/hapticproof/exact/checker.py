@@ -48,12 +48,16 @@ from typing import Any
 
 import flint
 
-__all__ = ["CheckResult", "certificates", "check_certificate", "check_certificates", "check_report", "ReportCheck",
-           "MAX_DEGREE"]
+from hapticproof.exact.checkarith import MAX_DEGREE, CheckFailed as _Fail, CheckSkipped as _Skip, Gaussian as _G
+from hapticproof.exact.checkarith import as_fmpq as _fq, axis_gcd as _axis_gcd, bilinear as _bilinear
+from hapticproof.exact.checkarith import charpoly_coefficients as _charpoly_coefficients, count_with_multiplicity as _count_with_multiplicity
+from hapticproof.exact.checkarith import determinant as _det, eval_transfer as _eval_transfer, exact_q as _q
+from hapticproof.exact.checkarith import json_poly as _poly, max_degree as _max_degree
+from hapticproof.exact.checkarith import routh_hurwitz as _routh_hurwitz, Sturm as _Sturm, value_at as _val
 
-#: Sturm sequences above this degree are not computed (the certificate is reported as not
-#: re-verified rather than taking minutes); ``HAPTICPROOF_CHECK_MAX_DEGREE`` overrides it.
-MAX_DEGREE = 600
+__all__ = ["CheckResult", "certificates", "check_certificate", "check_certificates", "check_report", "ReportCheck",
+           "judge_results", "MAX_DEGREE"]
+
 
 
 @dataclass
@@ -65,153 +69,9 @@ class CheckResult:
     reason: str
     verified: bool = True
     notes: list[str] = field(default_factory=list)
-
-
-class _Fail(Exception):
-    pass
-
-
-class _Skip(Exception):
-    pass
-
-
-def _max_degree() -> int:
-    import os
-
-    return int(os.environ.get("HAPTICPROOF_CHECK_MAX_DEGREE", MAX_DEGREE))
-
-
-# ---------------------------------------------------------------------------------------------
-# exact numbers
-# ---------------------------------------------------------------------------------------------
-
-
-def _q(text: Any) -> Fraction:
-    if isinstance(text, (int, Fraction)):
-        return Fraction(text)
-    return Fraction(str(text))
-
-
-def _poly(coeffs: list) -> flint.fmpq_poly:
-    return flint.fmpq_poly([flint.fmpq(v.numerator, v.denominator) for v in map(_q, coeffs)])
-
-
-def _fq(v: Fraction) -> flint.fmpq:
-    return flint.fmpq(v.numerator, v.denominator)
-
-
-def _val(p: flint.fmpq_poly, x: Fraction) -> Fraction:
-    r = p(_fq(x))
-    return Fraction(int(r.p), int(r.q))
-
-
-class _G:
-    """Gaussian rationals ``a + j b`` (exact)."""
-
-    __slots__ = ("re", "im")
-
-    def __init__(self, re: Fraction, im: Fraction = Fraction(0)):
-        self.re, self.im = Fraction(re), Fraction(im)
-
-    def __add__(self, o: _G) -> _G:
-        return _G(self.re + o.re, self.im + o.im)
-
-    def __sub__(self, o: _G) -> _G:
-        return _G(self.re - o.re, self.im - o.im)
-
-    def __mul__(self, o: _G) -> _G:
-        return _G(self.re * o.re - self.im * o.im, self.re * o.im + self.im * o.re)
-
-    def __truediv__(self, o: _G) -> _G:
-        d = o.re * o.re + o.im * o.im
-        if d == 0:
-            raise ZeroDivisionError
-        return _G((self.re * o.re + self.im * o.im) / d, (self.im * o.re - self.re * o.im) / d)
-
-    def conj(self) -> _G:
-        return _G(self.re, -self.im)
-
-    def is_zero(self) -> bool:
-        return self.re == 0 and self.im == 0
-
-
-def _horner(coeffs: list[Fraction], z: _G) -> _G:
-    acc = _G(Fraction(0))
-    for a in reversed(coeffs):
-        acc = acc * z + _G(a)
-    return acc
-
-
-def _eval_transfer(entry: dict, z: _G) -> _G:
-    num = [_q(v) for v in entry["num"]]
-    den = [_q(v) for v in entry["den"]]
-    d = _horner(den, z)
-    if d.is_zero():
-        raise _Fail("the witness is a pole of the transfer function")
-    value = _horner(num, z) / d
-    if "factor" in entry:                    # a Gaussian-rational constant factor (e.g. j)
-        value = value * _G(_q(entry["factor"][0]), _q(entry["factor"][1]))
-    return value
-
-
-# ---------------------------------------------------------------------------------------------
-# Sturm sequences
-# ---------------------------------------------------------------------------------------------
-
-
-def _normalise(p: flint.fmpq_poly) -> flint.fmpq_poly:
-    """Divide by a positive constant (|leading coefficient|): signs are unchanged."""
-    lead = p.coeffs()[-1]
-    return p / abs(lead)
-
-
-class _Sturm:
-    """Sturm sequence of a squarefree polynomial: distinct real roots in open intervals."""
-
-    def __init__(self, p: flint.fmpq_poly):
-        if p.degree() > _max_degree():
-            raise _Skip(f"degree {p.degree()} above the checker's limit {_max_degree()} (HAPTICPROOF_CHECK_MAX_DEGREE)")
-        g = p.gcd(p.derivative()) if p.degree() > 0 else flint.fmpq_poly([1])
-        q = p / g if g.degree() > 0 else p            # squarefree, same distinct roots
-        self.q = _normalise(q) if q.degree() >= 0 and not q.is_zero() else q
-        seq = [self.q]
-        if self.q.degree() > 0:
-            seq.append(_normalise(self.q.derivative()))
-            while seq[-1].degree() > 0:
-                r = seq[-2] % seq[-1]
-                if r.is_zero():
-                    break
-                seq.append(_normalise(-r))
-        self.seq = seq
-
-    def _variations(self, x: Fraction | None) -> int:
-        signs = []
-        for p in self.seq:
-            if x is None:  # +oo: signs of the leading coefficients
-                value = p.coeffs()[-1] if not p.is_zero() else 0
-            else:
-                value = p(_fq(x))
-            if value != 0:
-                signs.append(value > 0)
-        return sum(1 for a, b in zip(signs, signs[1:]) if a != b)
-
-    def count_open(self, a: Fraction, b: Fraction | None) -> int:
-        """Distinct real roots in the open ``(a, b)`` (``b=None``: ``(a, oo)``)."""
-        q = self.q
-        if q.degree() <= 0:
-            return 0
-        # make both ends non-roots by deflating exact rational roots there
-        shift = 0
-        for end in (a, b):
-            if end is not None and q(_fq(end)) == 0:
-                shift += 1
-        if shift:
-            reduced = q
-            for end in (a, b):
-                if end is not None and reduced(_fq(end)) == 0:
-                    reduced = reduced / flint.fmpq_poly([-_fq(end), 1])
-            return _Sturm(reduced).count_open(a, b)
-        return self._variations(a) - self._variations(b)
+    #: ``"certificate"``, ``"judge"`` (the definition, :mod:`hapticproof.exact.judge`) or
+    #: ``"display"`` (what the report shows against what it carries)
+    source: str = "certificate"
 
 
 # ---------------------------------------------------------------------------------------------
@@ -331,26 +191,6 @@ def _axis_points(count: int) -> Iterator[tuple[Fraction, _G]]:
 # ---------------------------------------------------------------------------------------------
 
 
-def _det(M: list[list[_G]]) -> _G:
-    """Exact determinant by Gaussian elimination over the Gaussian rationals."""
-    A = [row[:] for row in M]
-    n = len(A)
-    det = _G(Fraction(1))
-    for k in range(n):
-        pivot = next((i for i in range(k, n) if not A[i][k].is_zero()), None)
-        if pivot is None:
-            return _G(Fraction(0))
-        if pivot != k:
-            A[k], A[pivot] = A[pivot], A[k]
-            det = _G(Fraction(0)) - det
-        det = det * A[k][k]
-        for i in range(k + 1, n):
-            factor = A[i][k] / A[k][k]
-            for j in range(k, n):
-                A[i][j] = A[i][j] - factor * A[k][j]
-    return det
-
-
 def _hermitian_at(transfer: dict, point: _G) -> list[list[_G]]:
     entries = transfer["entries"]
     m = len(entries)
@@ -407,76 +247,6 @@ def _check_psd(cert: dict) -> list[str]:
 # ---------------------------------------------------------------------------------------------
 # roots: bilinear map, imaginary-axis part, Routh-Hurwitz
 # ---------------------------------------------------------------------------------------------
-
-
-def _bilinear(p: flint.fmpq_poly) -> flint.fmpq_poly:
-    """``(1 - s)^d p((1 + s)/(1 - s))``: the unit disk to the left half plane."""
-    d = p.degree()
-    one_plus, one_minus = flint.fmpq_poly([1, 1]), flint.fmpq_poly([1, -1])
-    out = flint.fmpq_poly([])
-    for k, a in enumerate(p.coeffs()):
-        if a != 0:
-            out += a * one_plus**k * one_minus ** (d - k)
-    return out
-
-
-def _axis_gcd(p: flint.fmpq_poly) -> flint.fmpq_poly:
-    """``gcd(Re p(jw), Im p(jw))`` as a real polynomial in ``w``."""
-    re, im = [], []
-    for k, a in enumerate(p.coeffs()):
-        unit = k % 4            # j^k = 1, j, -1, -j
-        re.append(a if unit == 0 else -a if unit == 2 else flint.fmpq(0))
-        im.append(a if unit == 1 else -a if unit == 3 else flint.fmpq(0))
-    pr, pi = flint.fmpq_poly(re), flint.fmpq_poly(im)
-    if pi.is_zero():
-        return pr
-    if pr.is_zero():
-        return pi
-    return pr.gcd(pi)
-
-
-def _count_with_multiplicity(g: flint.fmpq_poly) -> tuple[int, bool]:
-    """Real roots of ``g`` counted with multiplicity, and whether all of them are simple."""
-    total = 0
-    simple = True
-    level = 0
-    while g.degree() > 0:
-        distinct = _Sturm(g).count_open(-_cauchy(g), _cauchy(g))
-        if level > 0 and distinct > 0:
-            simple = False
-        total += distinct
-        g = g.gcd(g.derivative())
-        level += 1
-    return total, simple
-
-
-def _cauchy(p: flint.fmpq_poly) -> Fraction:
-    coeffs = [Fraction(int(a.p), int(a.q)) for a in p.coeffs()]
-    lead = abs(coeffs[-1])
-    return 1 + max((abs(a) for a in coeffs[:-1]), default=Fraction(0)) / lead
-
-
-def _routh_hurwitz(p: flint.fmpq_poly) -> bool:
-    """All roots in the open left half plane: the exact Routh array has ``degree + 1`` rows and
-    a positive first column (a zero pivot means no)."""
-    coeffs = [Fraction(int(a.p), int(a.q)) for a in p.coeffs()][::-1]   # highest first
-    if coeffs[0] < 0:
-        coeffs = [-a for a in coeffs]
-    degree = len(coeffs) - 1
-    if degree == 0:
-        return True
-    if any(a <= 0 for a in coeffs):         # necessary: every coefficient positive
-        return False
-    width = degree // 2 + 1
-    top = coeffs[0::2] + [Fraction(0)] * (width - len(coeffs[0::2]))
-    below = coeffs[1::2] + [Fraction(0)] * (width - len(coeffs[1::2]))
-    rows = [top, below]
-    for _ in range(degree - 1):
-        a, b = rows[-2], rows[-1]
-        if b[0] <= 0:
-            return False
-        rows.append([(b[0] * a[k + 1] - a[0] * b[k + 1]) / b[0] for k in range(width - 1)] + [Fraction(0)])
-    return all(row[0] > 0 for row in rows)
 
 
 def _check_roots(cert: dict) -> list[str]:
@@ -553,22 +323,6 @@ def _check_residue(cert: dict) -> list[str]:
     if (value >= 0) != cert["holds"]:
         raise _Fail("the residue's sign differs from the certificate")
     return [f"Res/z0 = {value} at z0 = {pole}"]
-
-
-def _charpoly_coefficients(M: list[list[_G]]) -> list[Fraction]:
-    """``E_1..E_m`` (sums of principal minors) by Faddeev-LeVerrier over the Gaussian rationals."""
-    m = len(M)
-    identity = [[_G(Fraction(int(i == j))) for j in range(m)] for i in range(m)]
-    Mk = [row[:] for row in identity]
-    coeffs = [_G(Fraction(1))]        # det(lambda I - M) = sum c_k lambda^(m-k)
-    for k in range(1, m + 1):
-        AM = [[sum((M[i][t] * Mk[t][j] for t in range(m)), _G(Fraction(0))) for j in range(m)] for i in range(m)]
-        trace = sum((AM[i][i] for i in range(m)), _G(Fraction(0)))
-        ck = _G(-trace.re / k, -trace.im / k)
-        coeffs.append(ck)
-        Mk = [[AM[i][j] + (identity[i][j] * ck) for j in range(m)] for i in range(m)]
-    # E_k = (-1)^k c_k, real for a Hermitian matrix
-    return [(-1) ** k * coeffs[k].re for k in range(1, m + 1)]
 
 
 def _check_constant_psd(cert: dict) -> list[str]:
@@ -793,21 +547,34 @@ class ReportCheck:
         lines = []
         verified = unverifiable = 0
         for name, results in self.entries:
+            certs = [r for r in results if r.source == "certificate"]
+            judged = [r for r in results if r.source != "certificate"]
             if not results:
                 lines.append(f"{name}: no certificate (not re-verifiable)")
                 unverifiable += 1
                 continue
-            good = sum(r.ok and r.verified for r in results)
-            skipped = [r for r in results if r.ok and not r.verified]
+            good = sum(r.ok and r.verified for r in certs)
+            skipped = [r for r in certs if r.ok and not r.verified]
             bad = [r for r in results if not r.ok]
-            text = f"{name}: {good}/{len(results)} certificates re-verified"
+            parts = [f"{good}/{len(certs)} certificates re-verified"] if certs else []
+            definition = [r for r in judged if r.source == "judge"]
+            if definition:
+                parts.append(f"definition judged {sum(r.ok and r.verified for r in definition)}/{len(definition)}")
+            shown = [r for r in judged if r.source == "display" and r.ok]
+            if shown:
+                parts.append(shown[0].reason)
+            text = f"{name}: " + ("; ".join(parts) if parts else "no certificate")
             if skipped:
                 text += "; " + "; ".join(r.reason for r in skipped[:2])
             if bad:
-                text += "; " + "; ".join(r.reason for r in bad[:3])
+                text += "; " + "; ".join(("REFUSED (display): " if r.source == "display" else "") + r.reason for r in bad[:3])
             lines.append(text)
-            verified += good == len(results)
-        lines.append(f"{len(self.entries)} entries: {verified} fully re-verified, {len(self.failed)} certificate(s) failed, "
+            verified += good == len(certs) and not bad and bool(certs or definition)
+        failed = self.failed
+        lines.append(f"{len(self.entries)} entries: {verified} fully re-verified, "
+                     f"{sum(r.source == 'certificate' for _, r in failed)} certificate(s) failed, "
+                     f"{sum(r.source == 'judge' for _, r in failed)} definition check(s) failed, "
+                     f"{sum(r.source == 'display' for _, r in failed)} display(s) refused, "
                      f"{unverifiable} without a certificate")
         return "\n".join(lines)
 
@@ -831,7 +598,8 @@ def check_certificates(node: Any) -> list[CheckResult]:
 
 
 def _entries(report: Any) -> list[tuple[str, Any]]:
-    """Top-level entries: audit equations, derive conditions, or the report itself."""
+    """Top-level entries: audit equations, derive conditions (and the verdict they give), or
+    the report itself."""
     if isinstance(report, dict) and "papers" in report:
         return [(f"{p['paper']} ({e['id']})", e) for p in report["papers"] for e in p.get("equations", [])]
     if isinstance(report, dict) and "equations" in report:
@@ -841,15 +609,50 @@ def _entries(report: Any) -> list[tuple[str, Any]]:
     return [("report", report)]
 
 
+def judge_results(node: Any) -> list[CheckResult]:
+    """The definition-level judge (:mod:`hapticproof.exact.judge`) on every judge object inside
+    a JSON value, and an audit finding's verdict and witness held against its judge object."""
+    from hapticproof.exact.judge import judge, judges
+    from hapticproof.exact.judgedisplay import boundary_display, finding_display
+
+    out = []
+    for obj in judges(node):
+        result = judge(obj)
+        out.append(CheckResult(result.ok, result.reason, verified=result.judged, source="judge"))
+    if isinstance(node, dict):
+        out += [CheckResult(False, problem, source="display") for problem in finding_display(node) + boundary_display(node)]
+    return out
+
+
 def check_report(report: Any) -> ReportCheck:
-    """Re-verify every certificate in a saved JSON report (a dict, or a JSON string).
+    """Re-verify every certificate in a saved JSON report (a dict, or a JSON string), judge every
+    verdict that carries its original object against the definition, and re-derive what the
+    report displays (verdicts, witnesses) from what it carries: a displayed verdict or witness
+    its certificates and judge objects do not give is refused.
 
     >>> check_report({"conditions": [{"name": "x", "decision": "proved"}]}).summary().splitlines()[0]
     'x: no certificate (not re-verifiable)'
+    >>> shown = {"conditions": [{"name": "x", "decision": "proved"}], "verdict": "disproved"}
+    >>> check_report(shown).failed[0][1].reason
+    "the verdict shown is 'disproved', its conditions give 'proved'"
     """
+    from hapticproof.exact.judge import judge, judges
+    from hapticproof.exact.judgedisplay import derive_display
+
     if isinstance(report, str):
         report = json.loads(report)
     out = []
     for name, entry in _entries(report):
-        out.append((name, check_certificates(entry)))
+        out.append((name, check_certificates(entry) + judge_results(entry)))
+    if isinstance(report, dict) and "conditions" in report and "verdict" in report:
+        top = []
+        definition = report.get("definition")
+        for obj in judges(definition) if isinstance(definition, dict) else ():
+            result = judge(obj)
+            top.append(CheckResult(result.ok, result.reason, verified=result.judged, source="judge"))
+        problems = derive_display(report)
+        top += [CheckResult(False, problem, source="display") for problem in problems]
+        if not problems:
+            top.append(CheckResult(True, "verdict and witness re-derived from the conditions", source="display"))
+        out.append(("verdict", top))
     return ReportCheck(out)

@@ -21,6 +21,7 @@ B*c - K*T/2 + b
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from functools import lru_cache
 from typing import Any
@@ -53,6 +54,9 @@ __all__ = [
     "real_part_x",
     "imaginary_axis_rational",
     "evaluate_on_circle",
+    "CircleForm",
+    "circle_form",
+    "theta_form_on_circle",
 ]
 
 
@@ -419,7 +423,21 @@ def theta_to_cos(expr: sp.Expr, theta: sp.Symbol, var: sp.Symbol = C_SYM) -> sp.
     s_sym = sp.Dummy("s")
     replaced = expanded.subs({sp.sin(theta): s_sym, sp.cos(theta): var})
     replaced = sp.expand(replaced)
-    poly = sp.Poly(replaced, s_sym)
+    try:
+        poly = sp.Poly(replaced, s_sym)
+    except sp.PolynomialError:
+        poly = None         # sin(theta) in a denominator, half angles: the exponential route
+    if poly is None or replaced.has(theta):
+        try:
+            form = circle_form(expr, theta).c_form(var)
+        except ValueError:
+            if poly is None:
+                raise
+            form = None            # theta outside the circle functions (a slip such as omega T / 2): as it reads
+        if form is not None:
+            return form
+        if poly is None:
+            raise ValueError("not a rational function of cos(theta) alone")
     out = sp.Integer(0)
     for (power,), coeff in poly.terms():
         if power % 2:
@@ -478,6 +496,207 @@ def canonical_theta(
         return sp.expand(out)
 
     return sp.expand(sp.cancel(reduce_sin(num) / reduce_sin(den)))
+
+
+#: The exponential variables of :class:`CircleForm`: ``u = e^{j theta/L}``, ``w = e^{j n theta}``
+#: and the imaginary unit ``j`` (reduced modulo ``j^2 + 1``).
+U_SYM = sp.Symbol("u_circle")
+W_SYM = sp.Symbol("w_circle")
+J_SYM = sp.Symbol("j_circle")
+
+
+@dataclass(frozen=True, slots=True)
+class CircleForm:
+    r"""A trigonometric expression in ``theta = wT`` (and ``n theta``) as a rational function of
+    the exponentials ``u = e^{j theta/L}`` and ``w = e^{j n theta/M}``: ``real + j imag`` with
+    ``real``, ``imag`` real-rational in ``u``, ``w`` and the parameters (``M`` divides ``L``).
+
+    Every angle ``(a n + r) theta`` with rational ``a``, ``r`` becomes the monomial
+    ``w^{aM} u^{rL}`` (``M``, ``L`` the least common denominators), so half angles (the
+    Dirichlet kernel ``sin((n + 1/2) theta)/sin(theta/2)``), shifted cosines and products of
+    sines are rational functions -- and two expressions are equal for every ``theta`` (and every
+    integer ``n``) exactly when their forms are equal: an identity of rational functions holds on
+    the circle iff it holds identically, and for ``theta/pi`` irrational the powers ``w = e^{j n
+    theta}`` of the integers are dense on the circle, so ``w`` is an independent variable.
+
+    >>> th = sp.Symbol('theta', real=True)
+    >>> n = sp.Symbol('n', integer=True)
+    >>> dirichlet = circle_form(sp.sin((n + sp.Rational(1, 2))*th)/sp.sin(th/2), th, n)
+    >>> plain = circle_form(sp.cos(n*th) + sp.sin(n*th)*sp.sin(th)/(1 - sp.cos(th)), th, n)
+    >>> dirichlet.equals(plain), dirichlet.L
+    (True, 2)
+    """
+
+    real: sp.Expr
+    imag: sp.Expr
+    L: int
+    M: int = 1
+
+    def with_period(self, L: int, M: int = 1) -> CircleForm:
+        """The same form over ``u' = e^{j theta/L}``, ``w' = e^{j n theta/M}`` for multiples
+        ``L``, ``M`` of :attr:`L`, :attr:`M`."""
+        if L % self.L or M % self.M or L % M:
+            raise ValueError(f"({L}, {M}) is not a multiple of ({self.L}, {self.M})")
+        sub = {U_SYM: U_SYM ** (L // self.L), W_SYM: W_SYM ** (M // self.M)}
+        return CircleForm(sp.cancel(self.real.xreplace(sub)), sp.cancel(self.imag.xreplace(sub)), L, M)
+
+    def __sub__(self, other: CircleForm) -> CircleForm:
+        M = self.M * other.M // math.gcd(self.M, other.M)
+        L = self.L * other.L // math.gcd(self.L, other.L)
+        L = L * M // math.gcd(L, M)
+        a, b = self.with_period(L, M), other.with_period(L, M)
+        return CircleForm(sp.cancel(a.real - b.real), sp.cancel(a.imag - b.imag), L, M)
+
+    def is_zero(self) -> bool:
+        from hapticproof.exact.canonical import is_identically_zero
+
+        return is_identically_zero(self.real) and is_identically_zero(self.imag)
+
+    def equals(self, other: CircleForm) -> bool:
+        """Equal for every ``theta`` (and integer ``n``): the difference is the zero form."""
+        return (self - other).is_zero()
+
+    def at(self, t: Any, n: Any = None, values: dict | None = None) -> sp.Expr | None:
+        """The exact (Gaussian-rational) value at ``u = (1 + j t)/(1 - j t)`` -- ``theta = 2 L
+        atan(t)`` -- and the integer ``n`` (``w = u^{L n / M}``), the parameters at ``values``;
+        ``None`` at a pole."""
+        u = (1 + sp.I * sp.Rational(t)) / (1 - sp.I * sp.Rational(t))
+        sub = dict(values or {})
+        sub[U_SYM] = u
+        if n is not None:
+            sub[W_SYM] = u ** (self.L // self.M * int(n))
+        out = []
+        for part in (self.real, self.imag):
+            num, den = sp.fraction(sp.together(part))
+            d = sp.expand(sp.sympify(den).xreplace(sub))
+            if d == 0:
+                return None
+            out.append(sp.expand(sp.sympify(num).xreplace(sub)) / d)
+        value = sp.expand(out[0] + sp.I * out[1])
+        return sp.nsimplify(value) if value.free_symbols == set() else value
+
+    def c_form(self, var: sp.Symbol = C_SYM) -> sp.Expr | None:
+        """The rational function of ``c = cos(theta)`` the expression is, or ``None`` when it is
+        not one (it depends on ``sin theta`` or on ``n theta``, or is not ``2 pi``-periodic)."""
+        if self.real.has(W_SYM) or self.imag.has(W_SYM):
+            return None
+        from hapticproof.exact.canonical import is_identically_zero
+
+        parts = []
+        for part in (self.real, self.imag):
+            num, den = sp.fraction(sp.cancel(sp.together(part)))
+            polys = [sp.Poly(num, U_SYM), sp.Poly(den, U_SYM)]
+            if any(k % self.L for poly in polys for (k,) in poly.monoms()):
+                return None              # not 2 pi-periodic in theta
+            z_of = lambda e: sp.sympify(e).xreplace({U_SYM: Z_SYM ** sp.Rational(1, self.L)})  # noqa: E731
+            parts.append(sp.cancel(sp.powsimp(z_of(num), force=True) / sp.powsimp(z_of(den), force=True)))
+        real_z, imag_z = parts
+        # Re(real(z) + j imag(z)) on |z| = 1 with real-rational real, imag: herm(real) - Im(imag);
+        # Im(imag) = sin(theta) V(c) vanishes identically for a function of c alone
+        if not is_identically_zero(imaginary_part_rational(imag_z, Z_SYM, var).expr()):
+            return None
+        if not is_identically_zero(imaginary_part_rational(real_z, Z_SYM, var).expr()
+                                   + hermitian_part_rational(imag_z, Z_SYM, var).expr()):
+            return None              # not real on the circle
+        return sp.cancel(hermitian_part_rational(real_z, Z_SYM, var).expr())
+
+
+def _angle_multiple(arg: sp.Expr, theta: sp.Symbol, n: sp.Symbol | None) -> tuple[sp.Rational, sp.Rational]:
+    """``arg = (a n + r) theta`` with rational ``a`` and ``r``; else ``ValueError``."""
+    ratio = sp.expand(arg / theta)
+    if ratio.has(theta):
+        raise ValueError(f"the angle {sp.sstr(arg)} is not a multiple of theta")
+    a = sp.Integer(0)
+    if n is not None and ratio.has(n):
+        poly = sp.Poly(ratio, n)
+        if poly.degree() != 1:
+            raise ValueError(f"the angle {sp.sstr(arg)} is not linear in n")
+        a, ratio = poly.coeff_monomial(n), poly.coeff_monomial(1)
+    if not (a.is_Rational and ratio.is_Rational):
+        raise ValueError(f"the angle {sp.sstr(arg)} is not (rational n + rational) times theta")
+    return sp.Rational(a), sp.Rational(ratio)
+
+
+def circle_form(expr: Any, theta: sp.Symbol, n: sp.Symbol | None = None) -> CircleForm:
+    """The :class:`CircleForm` of an expression in ``cos``, ``sin``, ``tan``, ``cot``, ``sec``,
+    ``csc`` and ``exp(j ...)`` of angles ``(a n + p/q) theta``; ``ValueError`` for any other
+    dependence on ``theta`` (an angle ``theta + 1``, ``theta^2``, ``cos(cos theta)``).
+
+    >>> th = sp.Symbol('theta', real=True)
+    >>> circle_form(sp.sin(3*th/2)/sp.sin(th/2), th).c_form()
+    2*c + 1
+    """
+    expr = sp.sympify(expr)
+    angles: dict[sp.Basic, tuple[sp.Rational, sp.Rational, bool]] = {}
+    for atom in expr.atoms(sp.cos, sp.sin, sp.tan, sp.cot, sp.sec, sp.csc, sp.exp):
+        if not atom.has(theta):
+            continue
+        arg = atom.args[0]
+        if isinstance(atom, sp.exp):
+            inner = sp.expand(arg / sp.I)
+            if inner.has(sp.I):
+                raise ValueError(f"exp({sp.sstr(arg)}) is not a point of the circle")
+            a, r = _angle_multiple(inner, theta, n)
+        else:
+            a, r = _angle_multiple(arg, theta, n)
+        angles[atom] = (a, r, isinstance(atom, sp.exp))
+    L = M = 1
+    for a, r, _ in angles.values():
+        L = L * int(r.q) // math.gcd(L, int(r.q))
+        M = M * int(a.q) // math.gcd(M, int(a.q))
+    L = L * M // math.gcd(L, M)
+    sub = {}
+    for atom, (a, r, _) in angles.items():
+        X = W_SYM ** int(a * M) * U_SYM ** int(r * L)
+        if isinstance(atom, sp.exp):
+            sub[atom] = X
+        elif isinstance(atom, sp.cos):
+            sub[atom] = (X + 1 / X) / 2
+        elif isinstance(atom, sp.sin):
+            sub[atom] = (X - 1 / X) / (2 * J_SYM)
+        elif isinstance(atom, sp.tan):
+            sub[atom] = (X - 1 / X) / (J_SYM * (X + 1 / X))
+        elif isinstance(atom, sp.cot):
+            sub[atom] = J_SYM * (X + 1 / X) / (X - 1 / X)
+        elif isinstance(atom, sp.sec):
+            sub[atom] = 2 / (X + 1 / X)
+        else:
+            sub[atom] = 2 * J_SYM / (X - 1 / X)
+    out = expr.xreplace(sub).xreplace({sp.I: J_SYM})
+    if out.has(theta):
+        raise ValueError("the expression depends on theta other than through the circle")
+    return _split_j(out, L, M)
+
+
+def _split_j(expr: sp.Expr, L: int, M: int = 1) -> CircleForm:
+    """``expr`` (rational in ``j``) as ``real + j imag`` modulo ``j^2 + 1``."""
+    num, den = sp.fraction(sp.cancel(sp.together(expr)))
+
+    def parts(poly_expr: sp.Expr) -> tuple[sp.Expr, sp.Expr]:
+        poly = sp.Poly(sp.expand(poly_expr), J_SYM)
+        re, im = sp.Integer(0), sp.Integer(0)
+        for (k,), coeff in poly.terms():
+            sign = -1 if (k // 2) % 2 else 1
+            if k % 2:
+                im += sign * coeff
+            else:
+                re += sign * coeff
+        return re, im
+
+    n0, n1 = parts(num)
+    d0, d1 = parts(den)
+    # (n0 + j n1)/(d0 + j d1) = ((n0 d0 + n1 d1) + j (n1 d0 - n0 d1)) / (d0^2 + d1^2)
+    norm = sp.expand(d0**2 + d1**2)
+    return CircleForm(sp.cancel((n0 * d0 + n1 * d1) / norm), sp.cancel((n1 * d0 - n0 * d1) / norm), L, M)
+
+
+def theta_form_on_circle(expr: Any, var: sp.Symbol = C_SYM) -> CircleForm:
+    """A derived form in ``c``, ``sin(theta)``, ``cos(n theta)``, ``sin(n theta)`` (the variables
+    of :meth:`ThetaForm.canonical`, or a plain rational function of ``c``) as a :class:`CircleForm`."""
+    z_ = U_SYM
+    sub = {var: (z_ + 1 / z_) / 2, SIN_T: (z_ - 1 / z_) / (2 * J_SYM),
+           COS_N: (W_SYM + 1 / W_SYM) / 2, SIN_N: (W_SYM - 1 / W_SYM) / (2 * J_SYM)}
+    return _split_j(sp.sympify(expr).xreplace(sub), 1)
 
 
 def evaluate_on_circle(F: Any, omega_T: Any, z: sp.Symbol = Z_SYM, digits: int = 30):

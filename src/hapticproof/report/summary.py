@@ -6,8 +6,8 @@
 ('proved', None)
 >>> [c.decision.value for c in summary.conditions]
 ['proved', 'proved', 'proved', 'proved']
->>> sorted(summary.to_json())[:4]
-['G_inverse', 'approximation', 'conditions', 'delay']
+>>> sorted(summary.to_json())[:5]             # 'definition': G^-1 itself, for the judge of 'check'
+['G_inverse', 'approximation', 'conditions', 'definition', 'delay']
 """
 
 from __future__ import annotations
@@ -57,6 +57,8 @@ class SceneSummary:
     conditions: tuple[Condition, ...] = ()
     #: what was not computed because the decision does not need it: name -> (why, how to get it)
     skipped: dict = field(default_factory=dict)
+    #: the original ``G^{-1}(z)`` and the decision, for the definition-level judge of ``check``
+    definition: dict | None = None
 
     def to_json(self) -> dict[str, Any]:
         out = {
@@ -77,6 +79,8 @@ class SceneSummary:
         }
         if self.skipped:
             out["skipped"] = {k: {"reason": why, "option": how} for k, (why, how) in self.skipped.items()}
+        if self.definition is not None:
+            out["definition"] = self.definition
         if self.stages:
             out["stages_seconds"] = self.stages
         return to_jsonable(out)
@@ -223,6 +227,13 @@ def summarize_single_user(scene: SingleUserScene, with_profile: bool = False, fu
     wc = worst_case(scene)
     verdict = positive_real(scene)
     witness = dict(verdict.witness) if (verdict.witness and verdict.decision == Decision.DISPROVED) else None
+    definition = verdict.evidence.facts.get("definition")     # G^-1 itself, judged (numeric scenes)
+    decision, reason = verdict.decision.value, verdict.reason
+    if definition is not None and not definition["judged"]["ok"]:
+        # the decision and the definition disagree: neither is reported as established
+        decision, witness = Decision.UNDECIDED.value, None
+        reason = (f"the definition-level judge disagrees with '{verdict.decision.value}' ({definition['judged']['reason']}); "
+                  f"the decision said: {verdict.reason}")
     return SceneSummary(
         system="single-user",
         approximation=scene.approximation,
@@ -232,14 +243,15 @@ def summarize_single_user(scene: SingleUserScene, with_profile: bool = False, fu
         poles=poles(scene),
         residues=residues(scene),
         worst_case=wc.condition,
-        verdict=verdict.decision.value,
+        verdict=decision,
         witness=witness,
-        reason=verdict.reason,
+        reason=reason,
         minimiser=wc.minimiser,
         minimum=wc.minimum,
         stages=profile(scene) if with_profile else {},
         conditions=tuple(conditions(scene)),
         skipped=skipped,
+        definition=definition,
     )
 
 

@@ -21,7 +21,8 @@ from hapticproof.core.errors import DerivationError, InputFormatError, SceneErro
 __all__ = ["Impedance", "Clamped", "CLAMPED", "DiscreteTF", "to_fraction"]
 
 
-Precision = Literal["float", "mp"]
+#: ``"exact"`` assembles loops from :class:`~fractions.Fraction` entries (certified ball routes start there).
+Precision = Literal["float", "mp", "exact"]
 
 
 Number = Union[int, float, Fraction, sp.Rational]
@@ -85,21 +86,22 @@ def as_mp(value: Any) -> mpmath.mpf:
 
 
 class NumberField:
-    """Arithmetic of one precision: float64 arrays or object arrays of mpmath numbers."""
+    """Arithmetic of one precision: float64 arrays, object arrays of mpmath numbers, or object
+    arrays of exact fractions (``"exact"``: the loop as the scene defines it, no rounding)."""
 
     __slots__ = ("name", "dtype", "num")
 
     def __init__(self, name: Precision):
-        if name not in ("float", "mp"):
-            raise SceneError(f"precision must be 'float' or 'mp', got {name!r}")
+        if name not in ("float", "mp", "exact"):
+            raise SceneError(f"precision must be 'float', 'mp' or 'exact', got {name!r}")
         self.name = name
         self.dtype = float if name == "float" else object
-        self.num = as_float if name == "float" else as_mp
+        self.num = {"float": as_float, "mp": as_mp, "exact": to_fraction}[name]
 
     def zeros(self, rows: int, cols: int) -> np.ndarray:
         out = np.zeros((rows, cols), dtype=self.dtype)
         if self.dtype is object:
-            out[...] = mpmath.mpf(0)
+            out[...] = mpmath.mpf(0) if self.name == "mp" else Fraction(0)
         return out
 
     def eye(self, n: int) -> np.ndarray:

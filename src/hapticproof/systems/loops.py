@@ -271,10 +271,39 @@ def _rigid_vector(pos: np.ndarray, pattern: list, ctrl: _SS, field: NumberField)
     rhs = ctrl.b @ y
     if field.name == "float":
         eta = np.linalg.lstsq(lhs.astype(float), rhs.astype(float), rcond=None)[0]
+    elif field.name == "exact":
+        eta = np.array(_solve_exact(lhs, rhs), dtype=object)
     else:
         sol = mpmath.qr_solve(mpmath.matrix(lhs.tolist()), mpmath.matrix(rhs.tolist()))[0]
         eta = np.array([sol[i] for i in range(nc)], dtype=object)
     return np.concatenate([xi, eta])
+
+
+def _solve_exact(lhs: np.ndarray, rhs: np.ndarray) -> list[Fraction]:
+    """A solution of the consistent system ``lhs eta = rhs`` over the rationals (Gaussian
+    elimination; free unknowns set to 0, as a least-squares solution need not be)."""
+    rows, cols = lhs.shape
+    aug = [[Fraction(lhs[i, j]) for j in range(cols)] + [Fraction(rhs[i])] for i in range(rows)]
+    pivots, r = [], 0
+    for col in range(cols):
+        pivot = next((i for i in range(r, rows) if aug[i][col] != 0), None)
+        if pivot is None:
+            continue
+        aug[r], aug[pivot] = aug[pivot], aug[r]
+        lead = aug[r][col]
+        aug[r] = [v / lead for v in aug[r]]
+        for i in range(rows):
+            if i != r and aug[i][col] != 0:
+                factor = aug[i][col]
+                aug[i] = [a - factor * b for a, b in zip(aug[i], aug[r])]
+        pivots.append(col)
+        r += 1
+    if any(all(v == 0 for v in row[:-1]) and row[-1] != 0 for row in aug):
+        raise SceneError("the controller's rigid-mode states have no steady state")
+    eta = [Fraction(0)] * cols
+    for i, col in enumerate(pivots):
+        eta[col] = aug[i][-1]
+    return eta
 
 
 def _free(term: Termination) -> bool:
