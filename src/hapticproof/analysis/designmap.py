@@ -49,6 +49,7 @@ from typing import Any
 import numpy as np
 
 from hapticproof.core.errors import InputFormatError
+from hapticproof.core.limits import check
 
 __all__ = ["QUANTITIES", "PARAMETERS", "Axis", "MapSpec", "MapResult", "map_chunk", "compute", "stream",
            "line_values", "write_map", "plot_map"]
@@ -66,8 +67,17 @@ LINE_AXES = {"passivity": ("b", "z_a", "K", "B", "T", "K0", "B0"), "stability": 
 
 
 def _exact(text: Any, name: str) -> Fraction:
+    from hapticproof.core.limits import check_number_text
+
     try:
-        return Fraction(str(text).strip()) if not isinstance(text, (int, Fraction)) else Fraction(text)
+        if isinstance(text, (int, Fraction)):
+            return Fraction(text)
+        value = str(text).strip()
+        if not value.isascii():    # digits 0-9 only
+            raise ValueError(value)
+        for part in value.split("/"):
+            check_number_text(part, name)
+        return Fraction(value)
     except (ValueError, ZeroDivisionError):
         raise InputFormatError(f"{name}: {text!r} is not a number") from None
 
@@ -95,12 +105,15 @@ class Axis:
             if len(parts) != 3:
                 raise InputFormatError(f"expected NAME=start:stop:count, got {text!r}")
             start, stop = _exact(parts[0], name), _exact(parts[1], name)
-            try:
-                count = int(parts[2])
-            except ValueError:
-                raise InputFormatError(f"{text!r}: the count must be an integer") from None
+            count_text = parts[2].strip()
+            if not (count_text.isascii() and count_text.isdigit()):
+                raise InputFormatError(f"{text!r}: the count must be an integer")
+            if len(count_text) > 30:
+                count_text = "9" * 31
+            count = int(count_text)
             if count < 1:
                 raise InputFormatError(f"{text!r}: the count must be at least 1")
+            check("grid", count, name)          # before the values are built
             values = (start,) if count == 1 else tuple(start + (stop - start) * k / (count - 1) for k in range(count))
         else:
             values = tuple(_exact(v, name) for v in spec.split(","))
@@ -134,6 +147,7 @@ class MapSpec:
             raise InputFormatError(f"unknown map {quantity!r}; choose one of {', '.join(QUANTITIES)}")
         x = Axis.parse(x) if isinstance(x, str) else x
         y = Axis.parse(y) if isinstance(y, str) else y
+        check("grid", len(x.values) * len(y.values), f"the {quantity} map ({x.name} x {y.name})")
         names = PARAMETERS[quantity]
         if x.name == y.name:
             raise InputFormatError(f"both axes vary {x.name}")
@@ -178,6 +192,8 @@ class MapSpec:
             raise InputFormatError(f"delay must be a non-negative integer, got {v}")
         if name == "users" and (v.denominator != 1 or v < 1):
             raise InputFormatError(f"users must be a positive integer, got {v}")
+        if name in ("delay", "users"):
+            check(name, int(v), name)
         if name in ("T", "m", "K") and v <= 0:
             raise InputFormatError(f"{name} must be positive, got {v}")
         if name in ("b", "B", "z_a") and v < 0:
@@ -545,11 +561,15 @@ def _number(value: Fraction) -> str:
 
 
 class MapWriter:
-    """Streams lines to CSV (``.csv``) or Parquet (``.parquet``, needs pyarrow) in line order."""
+    """Streams lines to CSV (``.csv``) or Parquet (``.parquet``, needs pyarrow) in line order,
+    into a temporary file beside the target: :meth:`close` renames it over the target when the
+    map is complete (``ok``), and removes it otherwise (an error, Ctrl-C), so that the target is
+    never a partial or torn map, and two maps writing the same file each leave a whole one."""
 
     def __init__(self, path: str | Path, spec: MapSpec):
+        from hapticproof.core.files import AtomicOutput
+
         self.path = Path(path)
-        self.path.parent.mkdir(parents=True, exist_ok=True)
         self.header = [spec.x.name, spec.y.name, _label(spec)]
         self.parquet = self.path.suffix.lower() in (".parquet", ".pq")
         if self.parquet:
@@ -560,10 +580,11 @@ class MapWriter:
                 raise InputFormatError("Parquet output needs pyarrow: pip install 'hapticproof[parquet]'") from None
             self._pa = pa
             self.schema = pa.schema([(spec.x.name, pa.string()), (spec.y.name, pa.string()), (self.header[2], pa.int8())])
-            self._writer = pq.ParquetWriter(str(self.path), self.schema)
+        self._out = AtomicOutput(self.path, "--output", binary=self.parquet).__enter__()
+        if self.parquet:
+            self._writer = pq.ParquetWriter(self._out.stream, self.schema)
         else:
-            self._file = open(self.path, "w", encoding="utf-8", newline="")
-            self._csv = csv.writer(self._file, lineterminator="\n")
+            self._csv = csv.writer(self._out.stream, lineterminator="\n")
             self._csv.writerow(self.header)
 
     def write(self, spec: MapSpec, line: int, verdicts: np.ndarray) -> None:
@@ -575,13 +596,19 @@ class MapWriter:
             self._writer.write_table(table)
         else:
             self._csv.writerows(rows)
-            self._file.flush()
 
-    def close(self) -> None:
-        if self.parquet:
-            self._writer.close()
-        else:
-            self._file.close()
+    def close(self, ok: bool = True) -> None:
+        """Finish the file: renamed over the target when ``ok``, else removed (the target is left as it was)."""
+        if self._out.done:
+            return
+        try:
+            if self.parquet and ok:
+                self._writer.close()
+        finally:
+            if ok:
+                self._out.commit()
+            else:
+                self._out.__exit__(None, None, None)
 
 
 def write_map(result: MapResult, path: str | Path | None = None) -> str:
@@ -602,7 +629,9 @@ def write_map(result: MapResult, path: str | Path | None = None) -> str:
         writer.writerows(_line_rows(spec, line, np.array(along)))
     text = buf.getvalue()
     if path is not None:
-        Path(path).write_text(text, encoding="utf-8")
+        from hapticproof.core.files import write_atomic
+
+        write_atomic(path, text)
     return text
 
 
@@ -625,7 +654,9 @@ def plot_map(result: MapResult, path: str | Path, title: str = "") -> Path:
     ax.set_ylabel(spec.y.name)
     fixed = ", ".join(f"{k} = {_number(v)}" for k, v in spec.fixed)
     ax.set_title(title or f"exact {spec.quantity} map ({fixed}); light: {_label(spec)}", fontsize=9)
+    from hapticproof.core.files import atomic_path
+
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=110, bbox_inches="tight")
+    with atomic_path(path, "--plot") as temp:     # whole or not at all, no folder created
+        fig.savefig(temp, dpi=110, bbox_inches="tight", format=path.suffix.lstrip(".").lower() or "png")
     return path

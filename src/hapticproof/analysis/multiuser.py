@@ -552,7 +552,17 @@ def conditions(scene: MultiUserScene) -> list[Condition]:
                         "every unit-circle pole of the kernels is simple" if roots.boundary_simple
                         else "a unit-circle pole of the kernels is not simple")
     R = sp.Matrix(scene.T * stiffness_matrix(scene))
-    if R.free_symbols:
+    if R.free_symbols and scene.is_uniform and (scene.is_complete or scene.users > 12):
+        # the structure instead of 2^m - 1 minors: T Kmat = T (K_0 I + K L) is PSD iff each of its
+        # eigenvalues T (K_0 + lambda K) is >= 0 (lambda: the Laplacian eigenvalues, the modes)
+        from hapticproof.exact.psd import psd_outcome
+
+        K0 = scene.K0[0]
+        K = scene.K[0] if scene.K else sp.Integer(0)
+        modes = uniform_modes(scene)
+        residue = psd_outcome(sp.diag(*[scene.T * (K0 + md.eigenvalue * K) for md in modes]),
+                              "the residue matrix T Kmat at z = 1 (its eigenvalues T (K_0 + lambda K), one per mode)")
+    elif R.free_symbols:
         from hapticproof.exact.psd import psd_outcome
 
         residue = psd_outcome(R, "the residue matrix T Kmat at z = 1")

@@ -4,17 +4,16 @@ The report is what ``hapticproof audit --format json`` or ``hapticproof derive .
 wrote. Every certificate in it is re-checked by the independent checker
 (:mod:`hapticproof.exact.checker`: Sturm sequences, exact evaluation of the original transfer
 function, Routh-Hurwitz); entries without a certificate are listed as not re-verifiable.
-Exit code 0 when every certificate holds, 1 when one fails, 2 for a file that cannot be read.
+Exit code 0 when every certificate holds, 1 when one fails, 2 for a file that cannot be read or
+is not a report (its shape is checked first: :mod:`hapticproof.core.shapes`).
 """
 
 from __future__ import annotations
 
 import argparse
-import json
-import sys
-from pathlib import Path
 
-from hapticproof.core.errors import InputFormatError
+from hapticproof.core.files import read_json, read_text
+from hapticproof.core.shapes import check_report as check_shape
 
 __all__ = ["register"]
 
@@ -35,14 +34,9 @@ def register(sub: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     from hapticproof.exact.checker import check_report
 
-    try:
-        text = sys.stdin.read() if args.report == "-" else Path(args.report).read_text(encoding="utf-8")
-    except OSError as err:
-        raise InputFormatError(f"cannot read {args.report}: {err.strerror}") from None
-    try:
-        report = json.loads(text)
-    except json.JSONDecodeError as err:
-        raise InputFormatError(f"{args.report} is not JSON: {err.msg} at line {err.lineno}") from None
+    name = "<stdin>" if args.report == "-" else args.report
+    report = read_json(read_text(args.report, name), name)
+    check_shape(report, name)      # a number, null or a table of another form is no report
     result = check_report(report)
     lines = result.summary().splitlines()
     print("\n".join(lines[-1:] if args.quiet else lines))

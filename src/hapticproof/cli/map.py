@@ -17,7 +17,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from hapticproof.cli.common import add_param_option, parse_params
+from hapticproof.cli.common import add_param_option, check_output, parse_params
 from hapticproof.core.errors import InputFormatError
 
 __all__ = ["register"]
@@ -54,6 +54,8 @@ def run(args: argparse.Namespace) -> int:
     from hapticproof.analysis import designmap
     from hapticproof.analysis.scaleout import ProgressBar
 
+    check_output(args.output, "--output")                                  # before any work
+    check_output(args.plot, "--plot", (".png", ".pdf", ".svg"))
     if args.workers < 1:
         raise InputFormatError("--workers must be at least 1")
     if args.chunk_lines is not None and args.chunk_lines < 1:
@@ -61,13 +63,15 @@ def run(args: argparse.Namespace) -> int:
     spec = designmap.MapSpec.build(args.quantity, args.x, args.y, parse_params(args.param), args.approximation)
     sink = designmap.MapWriter(args.output, spec) if args.output else None
     bar = ProgressBar(1, f"{args.quantity} map")
+    complete = False
     try:
         result = designmap.compute(spec, workers=args.workers, scheduler=args.scheduler,
                                    lines_per_chunk=args.chunk_lines, progress=bar, sink=sink)
+        complete = True
     finally:
         bar.close()
         if sink is not None:
-            sink.close()
+            sink.close(ok=complete)     # an incomplete map never replaces the target
     counts = ", ".join(f"{k}: {v}" for k, v in result.counts.items())
     print(f"{spec.points} points ({spec.lines} lines along {spec.x.name if spec.line_axis == 'x' else spec.y.name}) "
           f"in {result.seconds:.2f} s [{result.settings['mode']}]; {counts}", file=sys.stderr)

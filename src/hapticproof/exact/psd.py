@@ -612,9 +612,12 @@ def principal_minors(
     >>> [(k, m.expr()) for k, m in principal_minors(hermitian_part_matrix(G)).items()]
     [((0,), 4), ((1,), 4), ((0, 1), 15)]
     """
+    from hapticproof.core.limits import check_minors
+
     m = H.size
     if subsets is None:
         wanted = sorted(set(sizes)) if sizes is not None else range(1, m + 1)
+        check_minors(m, "principal minors", wanted)     # counted before one is computed
         subsets = [s for k in wanted for s in itertools.combinations(range(m), k)]
     alg, minor = _minor_engine(H)
     out: dict[tuple[int, ...], Minor] = {}

@@ -55,6 +55,7 @@ from hapticproof.core.evidence import exact
 from hapticproof.core.symbols import n as N_SYM
 from hapticproof.core.symbols import z as Z_SYM
 from hapticproof.systems.singleuser import APPROXIMATIONS, SingleUserScene, delay_ratio, virtual_wall
+import functools
 import json
 import re
 import sys
@@ -64,7 +65,8 @@ from pathlib import Path
 from hapticproof.core.errors import HapticproofError, InputFormatError
 from hapticproof.core.expr import write_expression
 
-__all__ = ["SYSTEMS", "Scene", "FIELDS", "SceneFileError", "loads", "dumps", "read_scene", "write_scene", "scene_from_table",            "read_matrix", "toml_value", "line_of"]
+__all__ = ["SYSTEMS", "Scene", "FIELDS", "SceneFileError", "loads", "dumps", "read_scene", "write_scene", "scene_from_table",            "read_matrix", "toml_value", "line_of",
+           "TomlLines", "toml_lines", "read_toml"]
 
 
 #: Systems a :class:`Scene` describes.
@@ -146,6 +148,39 @@ def _param_value(name: str, value: Any, where: str) -> Any:
         return expr if not expr.is_Rational else sp.Rational(expr)
     raise SceneError(f"{where}{name}: cannot use {value!r} (a number, an expression or one of "
                      f"{', '.join(ASSUMPTIONS)})")
+
+
+def _refuse_cycles(params: Mapping[str, Any]) -> None:
+    """Parameters defined in terms of each other (``K = "B*2"``, ``B = "K/2"``; ``K = "K/2"``)
+    define nothing: one line naming the cycle.
+
+    >>> _refuse_cycles({"K": sp.Symbol("B") * 2, "B": sp.Symbol("K") / 2})
+    Traceback (most recent call last):
+    ...
+    hapticproof.core.errors.SceneError: parameters defined in a cycle: B = K/2, K = 2*B (give one of them a value or an assumption)
+    """
+    defined = {k: v for k, v in params.items() if isinstance(v, sp.Basic) and not v.is_Number}
+    uses = {k: sorted(s.name for s in v.free_symbols if s.name in defined) for k, v in defined.items()}
+    state: dict[str, int] = {}      # 1: on the path, 2: done
+
+    for root in sorted(uses):
+        if state.get(root):
+            continue
+        path, stack = [root], [iter(uses[root])]
+        state[root] = 1
+        while stack:
+            following = next(stack[-1], None)
+            if following is None:
+                state[path.pop()] = 2
+                stack.pop()
+            elif state.get(following) == 1:
+                cycle = path[path.index(following):]
+                shown = ", ".join(f"{name} = {sp.sstr(defined[name])}" for name in cycle)
+                raise SceneError(f"parameters defined in a cycle: {shown} (give one of them a value or an assumption)")
+            elif not state.get(following):
+                state[following] = 1
+                path.append(following)
+                stack.append(iter(uses[following]))
 
 
 @dataclass(frozen=True, slots=True)
@@ -277,6 +312,7 @@ class Scene:
                 set_(name, self._normalise(value, name, params))
         params = {k: (self._normalise(v, k, params) if isinstance(v, sp.Basic) and not v.is_Rational else v)
                   for k, v in params.items()}
+        _refuse_cycles(params)
         set_("params", tuple(sorted(params.items())))
         # delays, users, graph
         set_("delay", self._delay(self.delay))
@@ -284,6 +320,9 @@ class Scene:
             users = 2 if self.users is None else self.users
             if isinstance(users, bool) or not isinstance(users, int) or users < 1:
                 raise SceneError(f"users must be a positive integer, got {users!r}")
+            from hapticproof.core.limits import check
+
+            check("users", users, "users")
             set_("users", users)
             graph = str(self.graph).strip().lower().replace(" ", "")
             set_("graph", graph)
@@ -304,7 +343,11 @@ class Scene:
                 raise SceneError("the impedance matrix must be square and not empty")
             set_("matrix", tuple(tuple(self._normalise(e, "matrix", params) for e in row) for row in rows))
             if self.ports is not None:
-                ports = tuple(int(p) for p in self.ports)
+                items = self.ports if isinstance(self.ports, (list, tuple)) else [self.ports]
+                if not all((isinstance(p, int) and not isinstance(p, bool))
+                           or (isinstance(p, str) and p.strip().isascii() and p.strip().isdigit()) for p in items):
+                    raise SceneError(f"ports must be port sizes (positive integers such as 3,3), got {self.ports!r}")
+                ports = tuple(int(p) for p in items)
                 if sum(ports) != len(rows) or any(p < 1 for p in ports):
                     raise SceneError(f"ports {list(ports)} must be positive sizes adding up to {len(rows)}")
                 set_("ports", ports)
@@ -348,6 +391,8 @@ class Scene:
 
     @staticmethod
     def _delay(delay: Any) -> Any:
+        from hapticproof.core.limits import check
+
         if isinstance(delay, (list, tuple)):
             values = tuple(Scene._delay(d) for d in delay)
             if any(not isinstance(v, int) for v in values):
@@ -360,13 +405,19 @@ class Scene:
         if isinstance(delay, str):
             if "," in delay:
                 return Scene._delay([d for d in delay.split(",")])
-            try:
-                delay = sp.Rational(delay.strip())
-            except (TypeError, ValueError):
-                raise SceneError(f"the delay n = t_d/T must be a non-negative integer or 'n', got {delay!r}") from None
+            text = delay.strip()
+            # digits 0-9 only (int() reads Arabic-Indic digits too); "1/0", "2.5", "1e9" are refused
+            if not (text.isascii() and text.isdigit()):
+                raise SceneError(f"the delay n = t_d/T must be a non-negative integer or 'n', got {delay!r}")
+            if len(text) > 30:
+                check("delay", 10**30, "delay")
+            delay = int(text)
+        if isinstance(delay, bool) or not isinstance(delay, (int, sp.Basic)):
+            raise SceneError(f"the delay n = t_d/T must be a non-negative integer or 'n', got {delay!r}")
         value = sp.sympify(delay)
         if not (value.is_Integer and value >= 0):
             raise SceneError(f"the delay n = t_d/T must be a non-negative integer or 'n', got {delay}")
+        check("delay", int(value), "delay")
         return int(value)
 
     # -- reading the fields -------------------------------------------------------------------
@@ -664,6 +715,79 @@ class SceneFileError(InputFormatError):
     """A scene file (or scene table) that cannot be read: names the file, line and field."""
 
 
+class TomlLines:
+    r"""Where things are in a TOML text, indexed once (loading stays linear in the file's size):
+    the first line of each ``key = ...`` per table, every line of each key, the headers
+    ``[table]`` and the entries ``[[name]]``.
+
+    >>> index = TomlLines('a = 1\n[params]\nK = 2\n[[equations]]\nid = "1"\n[[equations]]\nid = "2"\n')
+    >>> index.line("K", "params"), index.header("params"), index.entries("equations")
+    (3, 2, [(4, 5), (6, 7)])
+    >>> index.line_between("id", 6, 7)
+    7
+    """
+
+    _KEY = re.compile(r"""\s*(?:"([^"\\]*)"|'([^']*)'|([A-Za-z0-9_-]+))\s*=""")
+    _HEADER = re.compile(r"\s*(\[+)\s*([^\]]+?)\s*\]+")
+
+    def __init__(self, text: str):
+        self.count = 0
+        self.first: dict[tuple[str, str], int] = {}
+        self.lines: dict[str, list[int]] = {}
+        self.headers: dict[str, int] = {}
+        self.arrays: dict[str, list[int]] = {}
+        self.header_lines: list[int] = []
+        current = ""
+        for number, line in enumerate(text.splitlines(), 1):
+            self.count = number
+            header = self._HEADER.match(line)
+            if header:
+                current = header.group(2).strip()
+                self.header_lines.append(number)
+                if len(header.group(1)) == 1:
+                    self.headers.setdefault(current, number)
+                else:
+                    self.arrays.setdefault(current, []).append(number)
+                continue
+            key = self._KEY.match(line)
+            if key:
+                name = next(g for g in key.groups() if g is not None)
+                self.first.setdefault((current, name), number)
+                self.lines.setdefault(name, []).append(number)
+
+    def line(self, key: str, table: str = "") -> int | None:
+        """The first line of ``key = ...`` in ``[table]`` (``None``: not found)."""
+        return self.first.get((table, key))
+
+    def header(self, table: str) -> int | None:
+        """The line of the header ``[table]``."""
+        return self.headers.get(table)
+
+    def entries(self, name: str) -> list[tuple[int, int]]:
+        """First and last line of each ``[[name]]`` entry."""
+        import bisect
+
+        out = []
+        for start in self.arrays.get(name, []):
+            k = bisect.bisect_right(self.header_lines, start)
+            out.append((start, self.header_lines[k] - 1 if k < len(self.header_lines) else self.count))
+        return out
+
+    def line_between(self, key: str, first: int, last: int) -> int | None:
+        """The first line of ``key = ...`` from line ``first`` to ``last``."""
+        import bisect
+
+        lines = self.lines.get(key, [])
+        k = bisect.bisect_left(lines, first)
+        return lines[k] if k < len(lines) and lines[k] <= last else None
+
+
+@functools.lru_cache(maxsize=8)
+def toml_lines(text: str) -> TomlLines:
+    """The :class:`TomlLines` of ``text`` (built once per text)."""
+    return TomlLines(text)
+
+
 def line_of(text: str | None, key: str, table: str = "") -> int | None:
     """The line (1-based) of ``key = ...`` in ``[table]`` of a TOML text (``None`` if not found).
 
@@ -672,16 +796,7 @@ def line_of(text: str | None, key: str, table: str = "") -> int | None:
     """
     if not text:
         return None
-    current = ""
-    pattern = re.compile(r"\s*(?:\"" + re.escape(key) + r"\"|'" + re.escape(key) + r"'|" + re.escape(key) + r")\s*=")
-    for number, line in enumerate(text.splitlines(), 1):
-        header = re.match(r"\s*\[+\s*([^\]]+?)\s*\]+", line)
-        if header:
-            current = header.group(1).strip()
-            continue
-        if current == table and pattern.match(line):
-            return number
-    return None
+    return toml_lines(text).line(key, table)
 
 
 def _where(source: str, text: str | None, key: str, table: str = "") -> str:
@@ -689,38 +804,62 @@ def _where(source: str, text: str | None, key: str, table: str = "") -> str:
     return f"{source}:{line}" if line is not None else source
 
 
-def read_matrix(path: str | Path) -> tuple[list[list[str]], tuple[int, ...] | None]:
+def read_matrix(path: str | Path, *, named_in: str | None = None) -> tuple[list[list[str]], tuple[int, ...] | None]:
     """Entries (text) and port sizes of a matrix file: rows of comma-separated entries ('#'
-    comments) or JSON (``{"matrix": [[...]], "ports": [..]}`` or a list of rows)."""
+    comments) or JSON (``{"matrix": [[...]], "ports": [..]}`` or a list of rows).
+
+    ``named_in`` says the file was named inside another file (a scene's ``matrix``): it is then
+    read only if it is a regular file. Every entry must read as a rational expression in ``s``;
+    a mistake names the line and the entry but never shows the file's content.
+    """
+    from hapticproof.core.expr import ExpressionError, read_expression
+    from hapticproof.core.files import read_json, read_text
+
     path = Path(path)
-    try:
-        content = path.read_text(encoding="utf-8")
-    except OSError as err:
-        raise SceneFileError(f"cannot read {path}: {err.strerror}") from None
-    ports = None
+    shown = str(path)
+    content = read_text(path, shown, regular_only=named_in is not None)
+    ports: Any = None
+    lines: list[int | None] = []
     if path.suffix.lower() == ".json":
-        try:
-            data = json.loads(content)
-        except json.JSONDecodeError as err:
-            raise SceneFileError(f"{path}:{err.lineno}: invalid JSON ({err.msg})") from None
+        data = read_json(content, shown, parse_float=str)
         rows, ports = (data.get("matrix"), data.get("ports")) if isinstance(data, dict) else (data, None)
-        if not isinstance(rows, list) or not all(isinstance(r, list) for r in rows):
-            raise SceneFileError(f"{path}: expected a list of rows (or {{'matrix': [...]}})")
+        if not isinstance(rows, list) or not rows or not all(isinstance(r, list) for r in rows):
+            raise SceneFileError(f"{shown}: expected a list of rows (or {{'matrix': [...]}})")
+        for i, row in enumerate(rows):
+            for j, entry in enumerate(row):
+                if isinstance(entry, bool) or not isinstance(entry, (str, int)):
+                    raise SceneFileError(f"{shown}: row {i + 1}, entry {j + 1}: expected an expression as text or "
+                                         f"a number, got {type(entry).__name__}")
         table = [[str(e) for e in r] for r in rows]
+        lines = [None] * len(table)
     else:
         table = []
-        for line in content.splitlines():
+        for number, line in enumerate(content.splitlines(), 1):
             line = line.split("#", 1)[0].strip()
             if line:
                 table.append([e.strip() for e in line.split(",")])
+                lines.append(number)
     if not table:
-        raise SceneFileError(f"{path}: no matrix rows")
-    return table, (tuple(int(p) for p in ports) if ports else None)
+        raise SceneFileError(f"{shown}: no matrix rows")
+    for i, (row, number) in enumerate(zip(table, lines)):
+        place = f"{shown}:{number}" if number else f"{shown}: row {i + 1}"
+        for j, entry in enumerate(row):
+            try:
+                read_expression(entry, "s")
+            except ExpressionError as err:   # the reason and the place, not the file's text
+                raise SceneFileError(f"{place}, entry {j + 1}: {err.reason}"
+                                     + (f" at position {err.position}" if err.position is not None else "")) from None
+    if ports is not None:
+        if not isinstance(ports, list) or not all(isinstance(p, int) and not isinstance(p, bool) for p in ports):
+            raise SceneFileError(f"{shown}: 'ports' must be a list of integers (port sizes)")
+    return table, (tuple(ports) if ports else None)
 
 
 def _plain(value: Any) -> Any:
     """TOML values as the scene expects them (decimals as exact text)."""
     if isinstance(value, Decimal):
+        if not value.is_finite():
+            raise ValueError(f"{value} is not a number")
         return str(value)
     if isinstance(value, list):
         return [_plain(v) for v in value]
@@ -732,7 +871,8 @@ def _plain(value: Any) -> Any:
 def scene_from_table(table: Mapping[str, Any], where: str = "scene", base: str | Path | None = None,
                      assumptions: Mapping[str, str] | None = None, text: str | None = None, prefix: str = ""):
     """A :class:`~hapticproof.systems.scene.Scene` from a table of fields (a parsed scene file, or a
-    paper file's ``[scenes.X]``). ``base`` resolves a relative matrix file; ``assumptions``
+    paper file's ``[scenes.X]``). ``base`` is the folder of the file (default: the current
+    folder): a ``matrix`` file is read there only (relative, no ``..``, a regular file); ``assumptions``
     adds parameter assumptions from outside (a paper's ``[symbols]``), the table's own
     ``[params]`` winning; ``text`` and ``prefix`` (the table's TOML path, ``'scenes.wall'``)
     let errors name the line.
@@ -750,22 +890,40 @@ def scene_from_table(table: Mapping[str, Any], where: str = "scene", base: str |
         if not isinstance(value, _TYPES[key]) or (isinstance(value, bool) and bool not in _TYPES[key]):
             kinds = " or ".join(t.__name__.replace("Decimal", "number").replace("dict", "table").replace("str", "text")
                                 .replace("int", "integer").replace("list", "list") for t in _TYPES[key])
-            raise SceneFileError(f"{_where(where, text, key, prefix)}: field {key!r} must be {kinds}, got {value!r}")
-        fields[key] = _plain(value)
+            raise SceneFileError(f"{_where(where, text, key, prefix)}: field {key!r} must be {kinds}, got {_shown(value)}")
+        if key in ("delay", "ports") and isinstance(value, list):
+            allowed = (int,) if key == "ports" else (int, str)
+            bad = [v for v in value if isinstance(v, bool) or not isinstance(v, allowed)]
+            if bad:
+                what = "integers (port sizes)" if key == "ports" else "integers (one delay per user)"
+                raise SceneFileError(f"{_where(where, text, key, prefix)}: field {key!r} must be a list of {what}, "
+                                     f"got {_shown(bad[0])} in it")
+        if key == "params":       # each value is checked below, with its own line
+            fields[key] = dict(value)
+            continue
+        try:
+            fields[key] = _plain(value)
+        except ValueError as err:
+            raise SceneFileError(f"{_where(where, text, key, prefix)}: field {key!r}: {err}") from None
     if "system" not in fields:
         raise SceneFileError(f"{where}: missing field 'system' (single-user, multi-user, teleoperator or network)")
     params = dict(fields.pop("params", {}))
     for name, value in (assumptions or {}).items():
         params.setdefault(name, value)
     for name, value in params.items():
+        here = _where(where, text, name, (prefix + '.params').lstrip('.'))
         if isinstance(value, (list, dict)):
-            raise SceneFileError(f"{_where(where, text, name, (prefix + '.params').lstrip('.'))}: parameter {name!r} "
-                                 "must be a number, an expression or an assumption")
+            raise SceneFileError(f"{here}: parameter {name!r} must be a number, an expression or an assumption")
+        if isinstance(value, Decimal) and not value.is_finite():
+            raise SceneFileError(f"{here}: parameter {name!r}: {str(value).lower()} is not a number (a value is a "
+                                 "finite number, an expression or an assumption)")
+        params[name] = _plain(value)
     if isinstance(fields.get("matrix"), str):
-        path = Path(fields["matrix"])
-        if base is not None and not path.is_absolute():
-            path = Path(base) / path
-        rows, ports = read_matrix(path)
+        from hapticproof.core.files import file_in_folder
+
+        path = file_in_folder(base, fields["matrix"], f"{_where(where, text, 'matrix', prefix)}: field 'matrix'",
+                              owner=where if base is not None else None)
+        rows, ports = read_matrix(path, named_in=where)
         fields["matrix"] = rows
         if ports and "ports" not in fields:
             fields["ports"] = list(ports)
@@ -780,6 +938,19 @@ def scene_from_table(table: Mapping[str, Any], where: str = "scene", base: str |
         raise SceneFileError(f"{_where(where, text, key, table_name) if key else where}: {message}") from None
 
 
+def _shown(value: Any, limit: int = 60) -> str:
+    """A value for an error message, shortened (a file's table may be large)."""
+    text = repr(_plain_safe(value))
+    return text if len(text) <= limit else text[:limit - 3] + "..."
+
+
+def _plain_safe(value: Any) -> Any:
+    try:
+        return _plain(value)
+    except ValueError:
+        return value
+
+
 def _field_in(message: str, keys: list[str]) -> str | None:
     for key in sorted(keys, key=len, reverse=True):
         if message.startswith(key) or f" {key}" in message or f"{key}:" in message or f"{key!r}" in message:
@@ -787,25 +958,55 @@ def _field_in(message: str, keys: list[str]) -> str | None:
     return None
 
 
-def loads(text: str, where: str = "scene", base: str | Path | None = None):
-    """A scene from the text of a scene file."""
+def read_toml(text: str, where: str, error: type[Exception] | None = None) -> dict[str, Any]:
+    r"""TOML text as tables (numbers as exact decimals), its nesting within
+    :attr:`~hapticproof.core.limits.Limits.depth` before the (recursive) parser sees it; a
+    syntax error is one ``error`` line (default :class:`SceneFileError`) naming the line.
+
+    >>> read_toml("a = 0.1", "s.toml")
+    {'a': Decimal('0.1')}
+    >>> read_toml("a = [1,\nb = 2\n", "s.toml")
+    Traceback (most recent call last):
+    ...
+    hapticproof.systems.scene.SceneFileError: s.toml:2: TOML syntax: Invalid value
+    """
+    from hapticproof.core.files import toml_depth
+    from hapticproof.core.limits import check
+
+    error = error or SceneFileError
+    if text.startswith("\N{BYTE ORDER MARK}"):
+        text = text[1:]
+    check("depth", toml_depth(text), where)
     try:
-        table = tomllib.loads(text, parse_float=Decimal)
+        return tomllib.loads(text, parse_float=Decimal)
     except tomllib.TOMLDecodeError as err:
-        raise SceneFileError(f"{where}: {err}") from None
+        message = str(err)
+        match = re.search(r"\(at line (\d+), column \d+\)", message)
+        line = match.group(1) if match else str(max(1, text.count("\n") + (not text.endswith("\n"))))
+        reason = re.sub(r"\s*\(at (?:line \d+, column \d+|end of document)\)", "", message)
+        raise error(f"{where}:{line}: TOML syntax: {reason}") from None
+    except RecursionError:
+        raise error(f"{where}: nested too deeply") from None
+
+
+def loads(text: str, where: str = "scene", base: str | Path | None = None):
+    """A scene from the text of a scene file (``base``: the folder its ``matrix`` file is in;
+    default the current folder)."""
+    table = read_toml(text, where)
     return scene_from_table(table, where=where, base=base, text=text)
 
 
 def read_scene(path: str | Path):
     """A scene from a scene file (``-``: standard input)."""
-    if str(path) == "-":
-        return loads(sys.stdin.read(), "<stdin>")
-    path = Path(path)
+    from hapticproof.core.files import FileAccessError, read_text
+
     try:
-        text = path.read_text(encoding="utf-8")
-    except OSError as err:
-        raise SceneFileError(f"cannot read {path}: {err.strerror}") from None
-    return loads(text, str(path), base=path.parent)
+        text = read_text(path, "<stdin>" if str(path) == "-" else str(path))
+    except FileAccessError as err:
+        raise SceneFileError(str(err)) from None
+    if str(path) == "-":
+        return loads(text, "<stdin>")
+    return loads(text, str(path), base=Path(path).parent)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -901,7 +1102,6 @@ def write_scene(scene, path: str | Path) -> Path | None:
     if str(path) == "-":
         sys.stdout.write(text)
         return None
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(text, encoding="utf-8")
-    return path
+    from hapticproof.core.files import write_atomic
+
+    return write_atomic(path, text)          # whole or not at all; no folder created
