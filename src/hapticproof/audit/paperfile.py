@@ -211,13 +211,13 @@ def _key_pattern(key: str) -> re.Pattern:
 
 def _blocks(text: str, name: str) -> list[tuple[int, int]]:
     """First and last line (1-based) of each ``[[name]]`` entry."""
-    from hapticproof.systems.scene import toml_lines
+    from hapticproof.core.tomltext import toml_lines
 
     return toml_lines(text).entries(name)
 
 
 def _line_in(text: str, key: str, block: tuple[int, int] | None) -> int | None:
-    from hapticproof.systems.scene import toml_lines
+    from hapticproof.core.tomltext import toml_lines
 
     if block is None:
         return None
@@ -226,7 +226,7 @@ def _line_in(text: str, key: str, block: tuple[int, int] | None) -> int | None:
 
 
 def _table_line(text: str, key: str, table: str) -> int | None:
-    from hapticproof.systems.scene import line_of
+    from hapticproof.core.tomltext import line_of
 
     return line_of(text, key, table)
 
@@ -387,7 +387,7 @@ def _read_scenes(raw: Any, path: str, text: str, words: Mapping[str, str]) -> di
 
 
 def _header_line(text: str, table: str) -> int | None:
-    from hapticproof.systems.scene import toml_lines
+    from hapticproof.core.tomltext import toml_lines
 
     return toml_lines(text).header(table)
 
