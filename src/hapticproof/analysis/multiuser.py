@@ -552,7 +552,7 @@ def conditions(scene: MultiUserScene) -> list[Condition]:
                         "every unit-circle pole of the kernels is simple" if roots.boundary_simple
                         else "a unit-circle pole of the kernels is not simple")
     R = sp.Matrix(scene.T * stiffness_matrix(scene))
-    if R.free_symbols and scene.is_uniform and (scene.is_complete or scene.users > 12):
+    if scene.is_uniform and scene.users > 2 and (scene.is_complete or (R.free_symbols and scene.users > 12)):
         # the structure instead of 2^m - 1 minors: T Kmat = T (K_0 I + K L) is PSD iff each of its
         # eigenvalues T (K_0 + lambda K) is >= 0 (lambda: the Laplacian eigenvalues, the modes)
         from hapticproof.exact.psd import psd_outcome
@@ -560,8 +560,9 @@ def conditions(scene: MultiUserScene) -> list[Condition]:
         K0 = scene.K0[0]
         K = scene.K[0] if scene.K else sp.Integer(0)
         modes = uniform_modes(scene)
-        residue = psd_outcome(sp.diag(*[scene.T * (K0 + md.eigenvalue * K) for md in modes]),
-                              "the residue matrix T Kmat at z = 1 (its eigenvalues T (K_0 + lambda K), one per mode)")
+        diagonal = sp.diag(*[scene.T * (K0 + md.eigenvalue * K) for md in modes])
+        what = "the residue matrix T Kmat at z = 1 (its eigenvalues T (K_0 + lambda K), one per mode)"
+        residue = psd_outcome(diagonal, what) if diagonal.free_symbols else decide_constant_psd(diagonal, what)
     elif R.free_symbols:
         from hapticproof.exact.psd import psd_outcome
 

@@ -13,6 +13,7 @@ import sympy as sp
 
 from hapticproof.core.errors import InputFormatError
 from hapticproof.core.evidence import exact
+from hapticproof.core.limits import LimitError
 
 __all__ = ["parse_params", "param_items", "add_param_option", "write_text", "add_output_option", "check_output",
            "write_output", "add_scene_options", "scene_from_args", "input_files"]
@@ -57,6 +58,8 @@ def parse_params(items: list[str]) -> dict[str, sp.Rational]:
     for name, value in param_items(items).items():
         try:
             out[name] = exact(value)
+        except LimitError as err:     # "number: a number of ... digits ..." named by its option
+            raise LimitError(f"--param {name}: {str(err).split(': ', 1)[-1]}") from None
         except (ValueError, ZeroDivisionError) as err:
             raise InputFormatError(f"--param {name}: {value!r} is not a number") from err
     return out

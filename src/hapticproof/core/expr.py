@@ -235,26 +235,31 @@ class _Parser:
     # denominator in the transform variable, so that a power is refused before it is built
     # when the degree it would reach is above the limit (``z**10**9``, ``(z**1000)**1000``).
     def expr(self) -> _Value:
-        value = self.term()
+        first = self.term()
+        terms, num, den = [first.expr], first.num, first.den
         while self.token.text in ("+", "-"):
             op = self.take().text
             right = self.term()
-            value = _Value(value.expr + right.expr if op == "+" else value.expr - right.expr,
-                           max(value.num + right.den, right.num + value.den), value.den + right.den)
-        return value
+            terms.append(right.expr if op == "+" else -right.expr)
+            num, den = max(num + right.den, right.num + den), den + right.den
+        # one Add of all the terms: adding them one by one sorts the growing sum each time
+        return first if len(terms) == 1 else _Value(sp.Add(*terms), num, den)
 
     def term(self) -> _Value:
-        value = self.unary()
+        first = self.unary()
+        factors, num, den = [first.expr], first.num, first.den
         while self.token.text in ("*", "/"):
             op = self.take()
             right = self.unary()
             if op.text == "*":
-                value = _Value(value.expr * right.expr, value.num + right.num, value.den + right.den)
+                factors.append(right.expr)
+                num, den = num + right.num, den + right.den
             else:
                 if right.expr == 0:
                     self.fail("division by zero", op.position)
-                value = _Value(value.expr / right.expr, value.num + right.den, value.den + right.num)
-        return value
+                factors.append(sp.Pow(right.expr, -1))
+                num, den = num + right.den, den + right.num
+        return first if len(factors) == 1 else _Value(sp.Mul(*factors), num, den)
 
     def unary(self) -> _Value:
         negative = False

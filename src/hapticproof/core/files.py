@@ -122,11 +122,16 @@ def read_text(path: str | Path, name: str | None = None, *, regular_only: bool =
         fd = os.open(os.fspath(path), flags)
     except OSError as err:
         raise FileAccessError(f"cannot read {shown}: {_reason(err)}") from None
+    try:
+        info = os.fstat(fd)
+    except OSError as err:
+        os.close(fd)
+        raise FileAccessError(f"cannot read {shown}: {_reason(err)}") from None
+    if stat.S_ISDIR(info.st_mode):
+        os.close(fd)
+        raise FileAccessError(f"cannot read {shown}: it is a directory")
     with os.fdopen(fd, "rb") as stream:
         try:
-            info = os.fstat(fd)
-            if stat.S_ISDIR(info.st_mode):
-                raise FileAccessError(f"cannot read {shown}: it is a directory")
             if regular_only and not stat.S_ISREG(info.st_mode):
                 raise FileAccessError(f"cannot read {shown}: not a regular file")
             if stat.S_ISREG(info.st_mode) and info.st_size > limit:

@@ -77,15 +77,35 @@ def _max_degree() -> int:
     return int(os.environ.get("HAPTICPROOF_CHECK_MAX_DEGREE", MAX_DEGREE))
 
 
+#: Rows of a constant matrix whose characteristic coefficients the checker recomputes
+#: (Faddeev-LeVerrier over exact rationals costs m^4 operations: a report from anyone may hold
+#: a matrix of any size); a larger one is "not re-verified".
+MAX_MATRIX = 32
+
+
+def _max_matrix() -> int:
+    import os
+
+    return int(os.environ.get("HAPTICPROOF_CHECK_MAX_MATRIX", MAX_MATRIX))
+
+
 # ---------------------------------------------------------------------------------------------
 # exact numbers
 # ---------------------------------------------------------------------------------------------
 
 
 def _q(text: Any) -> Fraction:
-    if isinstance(text, (int, Fraction)):
+    if isinstance(text, (int, Fraction)) and not isinstance(text, bool):
         return Fraction(text)
-    return Fraction(str(text))
+    if not isinstance(text, str):
+        raise TypeError(f"expected an exact number as text, got {type(text).__name__}")
+    from hapticproof.core.limits import check_number_text
+
+    if not text.isascii():
+        raise ValueError("not a number (digits 0-9)")
+    for part in text.split("/"):
+        check_number_text(part, "certificate")       # 1e999999999 is never built
+    return Fraction(text)
 
 
 def _poly(coeffs: list) -> flint.fmpq_poly:
@@ -568,6 +588,9 @@ def _charpoly_coefficients(M: list[list[_G]]) -> list[Fraction]:
 
 
 def _check_constant_psd(cert: dict) -> list[str]:
+    if len(cert["matrix"]) > _max_matrix():      # bounded before any work
+        raise _Skip(f"a {len(cert['matrix'])} x {len(cert['matrix'])} matrix is above the checker's limit of "
+                    f"{_max_matrix()} rows (HAPTICPROOF_CHECK_MAX_MATRIX)")
     M = [[_G(_q(a), _q(b)) for a, b in row] for row in cert["matrix"]]
     m = len(M)
     if any(M[i][j].re != M[j][i].re or M[i][j].im != -M[j][i].im for i in range(m) for j in range(m)):
@@ -688,8 +711,8 @@ def check_certificate(cert: dict) -> CheckResult:
         return CheckResult(True, f"not re-verified: {skip}", verified=False)
     except _Fail as fail:
         return CheckResult(False, f"FAILED: {fail}")
-    except (KeyError, TypeError, ValueError, ZeroDivisionError) as err:
-        return CheckResult(False, f"FAILED: malformed certificate ({type(err).__name__}: {err})")
+    except (KeyError, TypeError, ValueError, ZeroDivisionError, IndexError, AttributeError, OverflowError) as err:
+        return CheckResult(False, f"FAILED: malformed certificate ({type(err).__name__}: {str(err)[:200]})")
     return CheckResult(True, "; ".join(notes))
 
 

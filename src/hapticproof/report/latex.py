@@ -639,7 +639,10 @@ def derivation_fragment(items: Sequence[tuple[str, str]]) -> str:
     """
     for label, latex in items:
         if not (is_typesettable(latex) and _laid_out_safely(display(latex))):
-            raise ValueError(f"derived display {label!r} is not safe to typeset: {latex!r}")
+            from hapticproof.core.errors import DerivationError
+
+            raise DerivationError(f"derived display {' '.join(label.split())[:60]!r} is not safe to typeset "
+                                  "as a fragment (a bug, or symbol names TeX would read as commands)")
     return "\n".join("% " + " ".join(label.split()) + "\n" + display(latex) for label, latex in items)
 
 
