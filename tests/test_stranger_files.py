@@ -247,7 +247,8 @@ def _alive(pid: int) -> bool:
 def test_audit_workers_die_with_their_parent(tmp_path, sig):
     process = subprocess.Popen([sys.executable, "-m", "hapticproof", "audit", "hve", "--jobs", "2", "-o",
                                 str(tmp_path / "out.txt")], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
-                               text=True, start_new_session=True)
+                               text=True, start_new_session=True,
+                               preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))  # as in a terminal
     try:
         deadline = time.monotonic() + 60
         workers: list[int] = []
@@ -372,7 +373,8 @@ def test_a_byte_order_mark_is_skipped(tmp_path, capsys):
     ('{"paper": "p", "equations": [{"verdict": "confirmed", "printed": "x"}]}', "missing field 'id'"),
     ('{"paper": "p", "equations": [{"id": 3, "verdict": "confirmed", "printed": "x"}]}', "field 'id' must be text"),
     ('{"papers": [null]}', "papers[0]: expected an object"),
-    ('{"paper": "p", "equations": [{"id": "1", "verdict": "fine", "printed": "x"}]}', "unknown verdict"),
+    ('{"paper": "p", "equations": [{"id": "1", "kind": "condition", "verdict": "fine", "printed": "x", "detail": "",'
+     ' "evidence": {"method": "parse"}}]}', "unknown verdict"),
     ("[" * 100000 + "]" * 100000, "100000 levels of nesting"),
     ('{"a": NaN}', "not JSON"), ("{", "not JSON"),
 ])

@@ -61,7 +61,8 @@ def run(args: argparse.Namespace) -> int:
     if args.chunk_lines is not None and args.chunk_lines < 1:
         raise InputFormatError("--chunk-lines must be at least 1")
     spec = designmap.MapSpec.build(args.quantity, args.x, args.y, parse_params(args.param), args.approximation)
-    sink = designmap.MapWriter(args.output, spec) if args.output else None
+    to_file = bool(args.output) and args.output != "-"           # "-" is standard output, as everywhere
+    sink = designmap.MapWriter(args.output, spec) if to_file else None
     bar = ProgressBar(1, f"{args.quantity} map")
     complete = False
     try:
@@ -75,7 +76,7 @@ def run(args: argparse.Namespace) -> int:
     counts = ", ".join(f"{k}: {v}" for k, v in result.counts.items())
     print(f"{spec.points} points ({spec.lines} lines along {spec.x.name if spec.line_axis == 'x' else spec.y.name}) "
           f"in {result.seconds:.2f} s [{result.settings['mode']}]; {counts}", file=sys.stderr)
-    if args.output:
+    if to_file:
         print(f"wrote {args.output}", file=sys.stderr)
     else:
         sys.stdout.write(designmap.write_map(result))

@@ -96,15 +96,14 @@ def _paper(data: Any, name: str, path: str) -> None:
     for k, entry in enumerate(_list(paper, "equations", here)):
         where = f"{name}: {path + '.' if path else ''}equations[{k}]"
         entry = _object(entry, where)
-        for key in ("id", "printed", "verdict"):
+        for key in ("id", "kind", "printed", "verdict", "detail"):
             _field(entry, key, (str,), where)
-        for key in ("kind", "detail"):
-            _field(entry, key, (str,), where, required=False)
         for key in ("derived", "corrected"):
             _field(entry, key, (str, type(None)), where, required=False)
         _field(entry, "seconds", (int, float), where, required=False)
         if entry["verdict"] not in verdicts:
             raise InputFormatError(f"{where}: unknown verdict {entry['verdict'][:40]!r} (verdicts: {', '.join(sorted(verdicts))})")
+        _field(entry, "evidence", (Mapping,), where)
         if "evidence" in entry:
             evidence = _object(entry["evidence"], f"{where}.evidence")
             _field(evidence, "method", (str,), f"{where}.evidence")
@@ -117,7 +116,8 @@ def check_audit(data: Any, name: str) -> str:
     """Check a saved audit (``audit --format json``): one paper or ``{"papers": [...]}``;
     returns its :func:`report_kind`.
 
-    >>> check_audit({"paper": "p", "equations": [{"id": "1", "printed": "x", "verdict": "typo"}]}, "a.json")
+    >>> check_audit({"paper": "p", "equations": [{"id": "1", "kind": "condition", "printed": "x", "verdict": "typo",
+    ...     "detail": "a slip", "evidence": {"method": "canonical-form"}}]}, "a.json")
     'audit'
     >>> check_audit({"paper": "p", "equations": [None]}, "a.json")
     Traceback (most recent call last):
