@@ -143,7 +143,7 @@ def test_html_in_text_is_text(command, payload):
     if command not in (r"\tag",):
         assert payload.replace(" ", "\u00a0") in texts(escaped).replace(" ", "\u00a0")
     assert texts(cleaned) == texts(escaped)
-    # the snapshot's path (raw converter output) cleaned: inert, if not faithful
+    # the old (before issue 22) path (raw converter output) cleaned: inert, if not faithful
     assert disallowed(clean_mathml(raw)) == []
     if payload.startswith("<") and not payload.startswith("<!"):  # (html.parser hides what follows <!)
         assert disallowed(raw) != []  # the control: the raw output is live markup
@@ -152,7 +152,7 @@ def test_html_in_text_is_text(command, payload):
 def test_issue_example_exactly():
     printed = r"b > \frac{KT}{2} + B \text{<script>document.title='PWNED'</script>}"
     raw = latex2mathml.convert(printed)
-    assert "<script>" in raw  # what the snapshot put into the report
+    assert "<script>" in raw  # what the old converter put into the report
     cleaned = clean_mathml(latex_to_mathml(printed))
     assert "<script" not in cleaned and "&lt;script&gt;" in cleaned
 

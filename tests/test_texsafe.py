@@ -36,7 +36,7 @@ needs_pdflatex = pytest.mark.skipif(PDFLATEX is None, reason="pdflatex is not in
 def test_issue_input_through_caret_code_is_seen_and_refused():
     printed = r"b > \frac{KT}{2} + B ^^5cinput{/etc/hostname}"
     assert "\\input" in tex_commands(printed)
-    assert re.findall(r"\\([A-Za-z]+)", printed) == ["frac"]  # what the snapshot's allow-list looked at
+    assert re.findall(r"\\([A-Za-z]+)", printed) == ["frac"]  # what the old (before issue 22) allow-list looked at
     reason = check_tex(printed, ALLOWED, ENVIRONMENTS)
     assert reason is not None and "^^5c" in reason
 
@@ -49,7 +49,7 @@ def test_issue_immediate_openout_is_seen_and_refused():
 
 
 def test_alignment_mark_between_carets_is_refused():
-    # the snapshot's layout drops top-level & and joins the tokens: ^&^5c became ^^5c in the PDF
+    # the old (before issue 22) layout drops top-level & and joins the tokens: ^&^5c became ^^5c in the PDF
     printed = r"b > a^&^5cinput{/etc/hostname}"
     assert "\\input" not in tex_commands(printed)  # TeX does not see it in the display as given ...
     assert "\\input" in tex_commands(printed.replace("&", ""))  # ... but in the laid-out display
@@ -149,7 +149,7 @@ HOSTILE = {
     "parameter": (r"#1", "macro-parameter"),
     "unbalanced-open": (r"\frac{a}{b", "not closed"),
     "unbalanced-close": (r"a}}\input{x}{{", "closes a group"),
-    "escaped-brace-trick": (r"x \\{ y", "not closed"),  # \\ then {: the snapshot's is_balanced saw \{
+    "escaped-brace-trick": (r"x \\{ y", "not closed"),  # \\ then {: the old (before issue 22) is_balanced saw \{
     "trailing-backslash": ("b > a \\", "ends the text"),
     "blank-line": ("a\n\nb", "blank line"),
     "null": ("a\x00b", "control character"),
@@ -227,8 +227,8 @@ def test_escaped_text_reads_as_text(text):
     assert "\n" not in escaped and "\r" not in escaped
 
 
-def test_escaped_text_matches_the_snapshot_escaper_on_plain_text():
-    # the snapshot's doctests of latex.escape_text
+def test_escaped_text_matches_the_old_escaper_on_plain_text():
+    # the old (before issue 22) doctests of latex.escape_text
     assert escape_tex_text("b_1 > 50% & {x}") == "b\\_1 $>$ 50\\% \\& \\{x\\}"
     assert escape_tex_text("b >= B + K*T/2, |B|") == "b $\\geq$ B + K*T/2, $|$B$|$"
 

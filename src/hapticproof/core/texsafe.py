@@ -59,7 +59,7 @@ IGNORED, SPACE, LETTER, OTHER, ACTIVE, COMMENT, INVALID = range(9, 16)
 #: (TeX Live 2022, LaTeX 2022-11) reports them after ``\begin{document}`` with the reports'
 #: preamble (T1, lmodern, amsmath, hyperref): the control characters and every byte >= 128
 #: are active (inputenc's UTF-8 reader), NUL and DEL invalid, ``@`` other.
-#: ``test_texsafe.py`` measures the table again with pdflatex when it is installed.
+#: ``tests/test_texsafe.py`` measures the table again with pdflatex when it is installed.
 LATEX_CATCODES: tuple[int, ...] = tuple(
     [INVALID] + [ACTIVE] * 8 + [SPACE, OTHER, ACTIVE, ACTIVE, END_LINE] + [ACTIVE] * 18  # 0-31
     + [SPACE, OTHER, OTHER, PARAMETER, MATH_SHIFT, COMMENT, ALIGN] + [OTHER] * 25  # 32-63
@@ -570,8 +570,8 @@ def escape_tex_text(text: str, breakable: bool = True) -> str:
     is checked with :func:`tokenize` (only the commands written here, no ``^^`` code, no
     comment), so a mistake in the table raises instead of reaching TeX.
 
-    The same output as the snapshot's ``latex.escape_text`` for text without control
-    characters or line ends.
+    For text without control characters or line ends, the same output as the escaper the
+    reports had before.
 
     >>> escape_text_ = escape_tex_text
     >>> escape_text_("b_1 > 50% & {x}")

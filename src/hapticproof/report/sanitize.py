@@ -9,7 +9,7 @@ comes out as live markup, and ``\href{javascript:...}{B}``, ``\style``, ``\class
   every text escaped (only the numeric character references latex2mathml writes for symbols
   are kept), so ``\text{<b>}`` shows the characters ``<b>``. For LaTeX whose texts hold no
   ``<``, ``>`` or ``&`` the output is the very string latex2mathml gives, so the rewriting
-  that ``hapticproof.html`` applies afterwards works unchanged.
+  that :mod:`hapticproof.report.html` applies afterwards works unchanged.
 * :func:`clean_mathml` parses any MathML markup (:mod:`html.parser`, no regular expression
   on markup) and writes it again keeping only an allow-list of MathML presentation elements
   and attributes, each attribute value checked against its grammar, all text escaped;
