@@ -11,6 +11,7 @@ from __future__ import annotations
 import importlib.util
 import io
 import json
+import os
 import re
 import shutil
 import subprocess
@@ -24,6 +25,7 @@ from hapticproof.core.evidence import Plot, Verdict
 from hapticproof.report.export import export_document
 from hapticproof.report.html import _plots, report_html
 from hapticproof.audit.registry import papers
+from hapticproof.report.sanitize import html_violations
 
 HERE = Path(__file__).resolve().parent
 _spec = importlib.util.spec_from_file_location("hp_chromium", HERE / "chromium.py")
@@ -47,8 +49,9 @@ def typeset(source: str, name: str, directory: Path) -> tuple[str, str]:
     """Compile ``source`` with pdflatex in ``directory``; return (log, text of the PDF)."""
     path = directory / f"{name}.tex"
     path.write_text(source, encoding="utf-8")
-    run = subprocess.run(["pdflatex", "-interaction=nonstopmode", "-halt-on-error", path.name],
-                         cwd=directory, capture_output=True, text=True, timeout=300)
+    run = subprocess.run(["pdflatex", "-no-shell-escape", "-interaction=nonstopmode", "-halt-on-error", path.name],
+                         cwd=directory, capture_output=True, text=True, timeout=300,
+                         env=dict(os.environ, openout_any="p", openin_any="p"))  # the README's command
     log = (directory / f"{name}.log").read_text(encoding="latin-1")
     assert run.returncode == 0, f"{name}.tex does not compile:\n" + run.stdout[-3000:]
     text = subprocess.run(["pdftotext", "-enc", "UTF-8", f"{name}.pdf", "-"], cwd=directory,
@@ -159,6 +162,7 @@ def _expected_fallbacks(reports) -> int:
 def test_html_report_is_one_self_contained_page(audit_reports, all_page):
     page = all_page.read_text(encoding="utf-8")
     assert page.startswith("<!DOCTYPE html>") and "<script" not in page.lower()
+    assert html_violations(page) == []  # nothing runs or loads; the policy is the first thing in <head>
     assert not re.search(r"""(src|href)=["']?(https?:)?//""", page), "the page must not load anything"
     assert "merror" not in page
     # one anchor per equation, a summary chip per verdict present, linked to its index row

@@ -55,7 +55,6 @@ from .exactpoly import (Poly, Rat, ReadError, pdeg, pderiv, peval_complex, pgcd,
 
 __all__ = [
     "YES", "NO", "UNCERTAIN", "Answer", "discrete_pr", "discrete_pr_matrix", "continuous_pr",
-    "integrator", "hve_inverse", "discretize", "teleoperator_criterion", "shortage_of_passivity",
     "unit_point", "read", "Rat", "ReadError",
 ]
 
@@ -684,7 +683,6 @@ def discrete_pr_matrix(G: Sequence[Sequence[Any]], *, dps: int | None = None, gr
     'no'
     """
     G = [[_as_rat(e) for e in row] for row in G]
-    n = len(G)
     entries = [e for row in G for e in row]
     dps = dps or min(_dps_for([p for e in entries for p in (e.num, e.den)]), 200)
     with mpmath.workdps(dps):

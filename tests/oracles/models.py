@@ -22,7 +22,7 @@ from typing import Any
 
 import mpmath
 
-from .definitions import (NO, UNCERTAIN, YES, Answer, _dps_for, _ExactRe, _fnum, _golden, _mp, _poles, _roots,
+from .definitions import (NO, ROOT_DPS, UNCERTAIN, YES, Answer, _dps_for, _ExactRe, _fnum, _golden, _mp, _poles, _roots,
                          unit_point)
 from .exactpoly import Poly, Rat, pdeg, pderiv, peval_complex, pmul, ptrim, squarefree
 

@@ -56,6 +56,7 @@ import numpy as np
 import sympy as sp
 
 from hapticproof.core.errors import InputFormatError, SceneError
+from hapticproof.core.limits import check
 
 __all__ = ["QUANTITIES", "FIELD_AXES", "Axis", "MapSpec", "MapResult", "map_chunk", "compute", "stream",
            "line_values", "write_map", "plot_map"]
@@ -67,13 +68,19 @@ FIELD_AXES = ("delay", "users")
 
 def _exact(text: Any, name: str) -> Fraction:
     from hapticproof.core.expr import not_a_name
+    from hapticproof.core.limits import check_number_text
 
     if isinstance(text, (int, Fraction)) and not isinstance(text, bool):
         return Fraction(text)
     if not_a_name(str(text).strip().lstrip("+-")):
         raise InputFormatError(f"{name}: {str(text).strip()!r} {not_a_name(str(text).strip().lstrip('+-'))}")
     try:
-        return Fraction(str(text).strip())
+        value = str(text).strip()
+        if not value.isascii():    # digits 0-9 only
+            raise ValueError(value)
+        for part in value.split("/"):
+            check_number_text(part, name)
+        return Fraction(value)
     except (ValueError, ZeroDivisionError):
         raise InputFormatError(f"{name}: {text!r} is not a number") from None
 
@@ -101,12 +108,15 @@ class Axis:
             if len(parts) != 3:
                 raise InputFormatError(f"expected NAME=start:stop:count, got {text!r}")
             start, stop = _exact(parts[0], name), _exact(parts[1], name)
-            try:
-                count = int(parts[2])
-            except ValueError:
-                raise InputFormatError(f"{text!r}: the count must be an integer") from None
+            count_text = parts[2].strip()
+            if not (count_text.isascii() and count_text.isdigit()):
+                raise InputFormatError(f"{text!r}: the count must be an integer")
+            if len(count_text) > 30:
+                count_text = "9" * 31
+            count = int(count_text)
             if count < 1:
                 raise InputFormatError(f"{text!r}: the count must be at least 1")
+            check("grid", count, name)          # before the values are built
             values = (start,) if count == 1 else tuple(start + (stop - start) * k / (count - 1) for k in range(count))
         else:
             values = tuple(_exact(v, name) for v in spec.split(","))
@@ -149,6 +159,7 @@ class MapSpec:
             raise InputFormatError(f"unknown map {quantity!r}; choose one of {', '.join(QUANTITIES)}")
         x = Axis.parse(x) if isinstance(x, str) else x
         y = Axis.parse(y) if isinstance(y, str) else y
+        check("grid", len(x.values) * len(y.values), f"the {quantity} map ({x.name} x {y.name})")
         if x.name == y.name:
             raise InputFormatError(f"both axes vary {x.name}")
         if scene is None or isinstance(scene, Mapping):
@@ -179,6 +190,7 @@ class MapSpec:
                 if bad:
                     kind = "non-negative" if axis.name == "delay" else "positive"
                     raise InputFormatError(f"{axis.name} must be a {kind} integer, got {bad[0]}")
+                check(axis.name, int(max(axis.values)), axis.name)
                 continue
             if axis.name not in known:
                 import difflib
@@ -806,11 +818,15 @@ def _number(value: Fraction) -> str:
 
 
 class MapWriter:
-    """Streams lines to CSV (``.csv``) or Parquet (``.parquet``, needs pyarrow) in line order."""
+    """Streams lines to CSV (``.csv``) or Parquet (``.parquet``, needs pyarrow) in line order,
+    into a temporary file beside the target: :meth:`close` renames it over the target when the
+    map is complete (``ok``), and removes it otherwise (an error, Ctrl-C), so that the target is
+    never a partial or torn map, and two maps writing the same file each leave a whole one."""
 
     def __init__(self, path: str | Path, spec: MapSpec):
+        from hapticproof.core.files import AtomicOutput
+
         self.path = Path(path)
-        self.path.parent.mkdir(parents=True, exist_ok=True)
         self.header = [spec.x.name, spec.y.name, _label(spec)]
         self.parquet = self.path.suffix.lower() in (".parquet", ".pq")
         if self.parquet:
@@ -821,10 +837,11 @@ class MapWriter:
                 raise InputFormatError("Parquet output needs pyarrow: pip install 'hapticproof[parquet]'") from None
             self._pa = pa
             self.schema = pa.schema([(spec.x.name, pa.string()), (spec.y.name, pa.string()), (self.header[2], pa.int8())])
-            self._writer = pq.ParquetWriter(str(self.path), self.schema)
+        self._out = AtomicOutput(self.path, "--output", binary=self.parquet).__enter__()
+        if self.parquet:
+            self._writer = pq.ParquetWriter(self._out.stream, self.schema)
         else:
-            self._file = open(self.path, "w", encoding="utf-8", newline="")
-            self._csv = csv.writer(self._file, lineterminator="\n")
+            self._csv = csv.writer(self._out.stream, lineterminator="\n")
             self._csv.writerow(self.header)
 
     def write(self, spec: MapSpec, line: int, verdicts: np.ndarray) -> None:
@@ -836,13 +853,19 @@ class MapWriter:
             self._writer.write_table(table)
         else:
             self._csv.writerows(rows)
-            self._file.flush()
 
-    def close(self) -> None:
-        if self.parquet:
-            self._writer.close()
-        else:
-            self._file.close()
+    def close(self, ok: bool = True) -> None:
+        """Finish the file: renamed over the target when ``ok``, else removed (the target is left as it was)."""
+        if self._out.done:
+            return
+        try:
+            if self.parquet and ok:
+                self._writer.close()
+        finally:
+            if ok:
+                self._out.commit()
+            else:
+                self._out.__exit__(None, None, None)
 
 
 def write_map(result: MapResult, path: str | Path | None = None) -> str:
@@ -863,7 +886,9 @@ def write_map(result: MapResult, path: str | Path | None = None) -> str:
         writer.writerows(_line_rows(spec, line, np.array(along)))
     text = buf.getvalue()
     if path is not None:
-        Path(path).write_text(text, encoding="utf-8")
+        from hapticproof.core.files import write_atomic
+
+        write_atomic(path, text)
     return text
 
 
@@ -886,7 +911,9 @@ def plot_map(result: MapResult, path: str | Path, title: str = "") -> Path:
     ax.set_ylabel(spec.y.name)
     fixed = ", ".join(f"{k} = {_number(v)}" for k, v in spec.fixed)
     ax.set_title(title or f"exact {spec.quantity} map ({fixed}); light: {_label(spec)}", fontsize=9)
+    from hapticproof.core.files import atomic_path
+
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=110, bbox_inches="tight")
+    with atomic_path(path, "--plot") as temp:     # whole or not at all, no folder created
+        fig.savefig(temp, dpi=110, bbox_inches="tight", format=path.suffix.lstrip(".").lower() or "png")
     return path

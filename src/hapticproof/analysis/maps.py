@@ -709,9 +709,9 @@ def _csv(header: list[str], rows: Iterable[list[Any]], path: str | Path | None) 
 
 
 def _write(path: str | Path, text: str) -> None:
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(text, encoding="utf-8")
+    from hapticproof.core.files import write_atomic
+
+    write_atomic(path, text)        # whole or not at all; no folder created
 
 
 def _boundary_task(args: tuple) -> Boundary:
@@ -735,7 +735,10 @@ def _run(func: Callable[[Any], Any], tasks: list, workers: int, progress: Progre
             if progress:
                 progress(i + 1, len(tasks))
         return results
-    with concurrent.futures.ProcessPoolExecutor(max_workers=workers) as pool:
+    from hapticproof.core.processes import die_with_parent
+
+    with concurrent.futures.ProcessPoolExecutor(max_workers=workers, initializer=die_with_parent,
+                                                initargs=(os.getpid(),)) as pool:
         futures = {pool.submit(func, task): i for i, task in enumerate(tasks)}
         for done, fut in enumerate(concurrent.futures.as_completed(futures), 1):
             results[futures[fut]] = fut.result()
@@ -941,9 +944,16 @@ def plot_curves(
     ax.set_title(title)
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=7)
+    return _save(fig, path)
+
+
+def _save(fig: Any, path: str | Path) -> Path:
+    """Save a figure whole or not at all (a temporary file beside ``path``, renamed)."""
+    from hapticproof.core.files import atomic_path
+
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=110, bbox_inches="tight")
+    with atomic_path(path, "--plot") as temp:
+        fig.savefig(temp, dpi=110, bbox_inches="tight", format=path.suffix.lstrip(".").lower() or "png")
     return path
 
 
@@ -976,7 +986,4 @@ def plot_map(
     ax.set_title(title)
     if curves:
         ax.legend(fontsize=7, loc="upper right")
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=110, bbox_inches="tight")
-    return path
+    return _save(fig, path)

@@ -118,7 +118,10 @@ def ordered_map(func: Callable[[Any], Any], tasks: Sequence[Any], *, workers: in
         return
     method = "fork" if "fork" in multiprocessing.get_all_start_methods() else None
     context = multiprocessing.get_context(method)
-    with concurrent.futures.ProcessPoolExecutor(max_workers=min(workers, total), mp_context=context) as pool:
+    from hapticproof.core.processes import die_with_parent
+
+    with concurrent.futures.ProcessPoolExecutor(max_workers=min(workers, total), mp_context=context,
+                                                initializer=die_with_parent, initargs=(os.getpid(),)) as pool:
         futures = {pool.submit(func, task): i for i, task in enumerate(tasks)}
         yield from _in_order(((futures[f], f.result()) for f in concurrent.futures.as_completed(futures)), total, progress)
 

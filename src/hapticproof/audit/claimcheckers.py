@@ -508,8 +508,11 @@ def _hermitian_matrix(state: State) -> Finding:
             if f.verdict == Verdict.CONFIRMED:
                 return f
         return _compare_one(printed, (M / 2).applyfunc(sp.expand), "the printed Hermitian part (G + G^H)/2")
+    from hapticproof.core.limits import check_minors
+
     value = _to_c(printed, state)
     m = M.rows
+    check_minors(m, "the principal minors of G + G^H")
     for size in range(1, m + 1):
         for rows in combinations(range(m), size):
             minor = M.extract(list(rows), list(rows)).det()
@@ -543,6 +546,9 @@ def _teleoperator_bounds(state: State, is_condition: bool) -> Finding:
 def _principal_minors(M: sp.Matrix) -> list[tuple[str, sp.Expr]]:
     from itertools import combinations
 
+    from hapticproof.core.limits import check_minors
+
+    check_minors(M.rows, "the principal minors of G + G^H")
     out = []
     for size in range(1, M.rows + 1):
         for rows in combinations(range(M.rows), size):

@@ -944,7 +944,12 @@ def mutate_paper(
         from concurrent.futures import ProcessPoolExecutor
 
         order = sorted(groups, key=lambda e: -len(groups[e]))
-        with ProcessPoolExecutor(jobs, mp_context=multiprocessing.get_context("fork")) as pool:
+        import os
+
+        from hapticproof.core.processes import die_with_parent
+
+        with ProcessPoolExecutor(jobs, mp_context=multiprocessing.get_context("fork"), initializer=die_with_parent,
+                                 initargs=(os.getpid(),)) as pool:
             for batch in pool.map(_run_group, [(paper.id, e, groups[e]) for e in order]):
                 for r in batch:
                     results.append(r)

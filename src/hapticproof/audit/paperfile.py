@@ -74,7 +74,6 @@ from __future__ import annotations
 import difflib
 import functools
 import re
-import tomllib
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from decimal import Decimal
@@ -85,6 +84,7 @@ import sympy as sp
 
 from hapticproof.audit.runner import Equation, Paper
 from hapticproof.core.errors import HapticproofError, InputFormatError, LatexParseError
+from hapticproof.core.limits import LimitError
 
 __all__ = [
     "CLAIMS",
@@ -211,28 +211,22 @@ def _key_pattern(key: str) -> re.Pattern:
 
 def _blocks(text: str, name: str) -> list[tuple[int, int]]:
     """First and last line (1-based) of each ``[[name]]`` entry."""
-    lines = text.splitlines()
-    starts = [k + 1 for k, line in enumerate(lines) if re.match(r"\s*\[\[\s*" + re.escape(name) + r"\s*\]\]", line)]
-    headers = [k + 1 for k, line in enumerate(lines) if re.match(r"\s*\[", line)]
-    out = []
-    for start in starts:
-        later = [h for h in headers if h > start]
-        out.append((start, (later[0] - 1) if later else len(lines)))
-    return out
+    from hapticproof.core.tomltext import toml_lines
+
+    return toml_lines(text).entries(name)
 
 
 def _line_in(text: str, key: str, block: tuple[int, int] | None) -> int | None:
+    from hapticproof.core.tomltext import toml_lines
+
     if block is None:
         return None
-    pattern = _key_pattern(key)
-    for number, line in enumerate(text.splitlines()[block[0] - 1:block[1]], block[0]):
-        if pattern.match(line):
-            return number
-    return block[0]
+    found = toml_lines(text).line_between(key, block[0], block[1])
+    return found if found is not None else block[0]
 
 
 def _table_line(text: str, key: str, table: str) -> int | None:
-    from hapticproof.systems.scene import line_of
+    from hapticproof.core.tomltext import line_of
 
     return line_of(text, key, table)
 
@@ -336,6 +330,8 @@ def _read_symbols(raw: Mapping[str, Any], path: str, text: str) -> tuple[Any, di
     for printed, name, value, line in definitions:
         try:
             expr = _parse_value(value, table)
+        except LimitError as err:
+            raise PaperFileError(f"{_at(path, line)}: symbols: {printed}: {err}") from None
         except LatexParseError as err:
             raise PaperFileError(f"{_at(path, line)}: symbols: {printed}: the definition does not read: {err}") from None
         table = table.with_symbols({printed: expr})
@@ -363,7 +359,7 @@ def _read_scenes(raw: Any, path: str, text: str, words: Mapping[str, str]) -> di
 
     if not isinstance(raw, Mapping):
         raise PaperFileError(f"{path}: [scenes] must hold tables [scenes.NAME]")
-    base = Path(path).parent if path not in ("", "-") else None
+    base = Path(path).parent if path not in ("", "-", "<stdin>") else None
     scenes: dict[str, Any] = {}
     for name, table in raw.items():
         prefix = f"scenes.{name}"
@@ -391,10 +387,9 @@ def _read_scenes(raw: Any, path: str, text: str, words: Mapping[str, str]) -> di
 
 
 def _header_line(text: str, table: str) -> int | None:
-    for number, line in enumerate(text.splitlines(), 1):
-        if re.match(r"\s*\[\s*" + re.escape(table) + r"\s*\]", line):
-            return number
-    return None
+    from hapticproof.core.tomltext import toml_lines
+
+    return toml_lines(text).header(table)
 
 
 def _scene_table(paper: PaperFile, scene_name: str | None) -> Any:
@@ -569,6 +564,9 @@ def _read_equations(raw: Any, path: str, text: str, table: Any, scenes: Mapping[
                 raise PaperFileError(f"{_at(path, start)}: {label}: a same-as claim needs the field 'other'")
             other = _text_field(entry["other"], where("other"), "other", allow_numbers=True).strip()
             fields["other"] = other
+            if other == eq_id:
+                raise PaperFileError(f"{where('other')}: equation {eq_id!r} is the same as itself (a same-as claim "
+                                     "names another equation)")
             pending_other.append((other, where("other")))
             if "under" in entry:
                 fields["under"] = _substitutions(_text_field(entry["under"], where("under"), "under"), table, where("under"))
@@ -590,6 +588,8 @@ def _read_equations(raw: Any, path: str, text: str, table: Any, scenes: Mapping[
             if err.reason.startswith("unknown name"):
                 raise PaperFileError(f"{where('printed')}: {err.reason} at position {err.position} "
                                      f"(declare it in [symbols])") from None
+        except LimitError as err:      # work the display would ask for: refused with its place
+            raise PaperFileError(f"{where('printed')}: {err}") from None
         specs.append(ClaimSpec(**fields))
     for other, where_text in pending_other:
         _check_other(other, ids, where_text)
@@ -603,14 +603,9 @@ def _read_equations(raw: Any, path: str, text: str, table: Any, scenes: Mapping[
 
 def loads(text: str, path: str = "paper.toml") -> PaperFile:
     """A paper file from its text (``path`` names it in errors and resolves matrix files)."""
-    try:
-        data = tomllib.loads(text, parse_float=Decimal)
-    except tomllib.TOMLDecodeError as err:
-        message = str(err)
-        match = re.search(r"\(at line (\d+), column \d+\)", message)
-        line = int(match.group(1)) if match else None
-        reason = re.sub(r"\s*\(at line \d+, column \d+\)", "", message)
-        raise PaperFileError(f"{_at(path, line)}: TOML syntax: {reason}") from None
+    from hapticproof.systems.scene import read_toml
+
+    data = read_toml(text, path, PaperFileError)
     for key in data:
         if key not in ("paper", "symbols", "scenes", "equations"):
             close = difflib.get_close_matches(key, ["paper", "symbols", "scenes", "equations"], n=1)
@@ -658,15 +653,13 @@ def read_paper(path: str | Path) -> PaperFile:
     ...
     hapticproof.audit.paperfile.PaperFileError: cannot read no/such/paper.toml: No such file or directory
     """
-    import sys
+    from hapticproof.core.files import FileAccessError, read_text
 
-    if str(path) == "-":
-        return loads(sys.stdin.read(), "<stdin>")
     try:
-        text = Path(path).read_text(encoding="utf-8")
-    except OSError as err:
-        raise PaperFileError(f"cannot read {path}: {err.strerror}") from None
-    return loads(text, str(path))
+        text = read_text(path, "<stdin>" if str(path) == "-" else str(path))
+    except FileAccessError as err:
+        raise PaperFileError(str(err)) from None
+    return loads(text, "<stdin>" if str(path) == "-" else str(path))
 
 
 # ---------------------------------------------------------------------------------------------

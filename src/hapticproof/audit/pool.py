@@ -32,6 +32,7 @@ from dataclasses import replace
 from typing import Any
 from hapticproof.audit.runner import AuditReport, EquationResult, Paper, audit_paper, run_equation
 from hapticproof.core.evidence import Evidence
+from hapticproof.core.processes import die_with_parent
 
 __all__ = ["audit_reports", "default_jobs", "COST_HINTS", "CHUNK"]
 
@@ -99,11 +100,20 @@ def _chunks(papers: Sequence[Paper], selected: Mapping[str, list], size: int) ->
     return out
 
 
-def _worker(conn: Any) -> None:
-    """A forked worker: run the chunks it is sent until ``None``; an exception goes back to the
-    parent (which raises it, as the serial run would)."""
+def _worker(conn: Any, inherited: Sequence[Any] = (), parent: int | None = None) -> None:
+    """A forked worker: run the chunks it is sent until ``None`` (or the end of the pipe: the
+    parent is gone); an exception goes back to the parent (which raises it, as the serial run
+    would). ``inherited`` are the parent's ends of the other workers' pipes, which the fork
+    copied: closed here, so that each pipe ends when the parent does."""
+    for other in inherited:
+        other.close()
+    if parent is not None:
+        die_with_parent(parent)
     while True:
-        task = conn.recv()
+        try:
+            task = conn.recv()
+        except (EOFError, OSError):     # the parent closed its end or died
+            os._exit(0)
         if task is None:
             conn.close()
             return
@@ -169,9 +179,11 @@ def audit_reports(papers: Sequence[Paper], only: Mapping[str, Sequence[str] | No
     queues = _Queues(tasks)
     results: dict[tuple[str, str], EquationResult] = {}
     workers = []
+    finished = False
     for _ in range(min(jobs, len(tasks))):
         parent, child = context.Pipe()
-        process = context.Process(target=_worker, args=(child,), daemon=True)
+        process = context.Process(target=_worker, args=(child, [w[1] for w in workers] + [parent], os.getpid()),
+                                  daemon=True)
         process.start()
         child.close()
         workers.append([process, parent, None])          # process, pipe, paper in hand
@@ -206,15 +218,20 @@ def audit_reports(papers: Sequence[Paper], only: Mapping[str, Sequence[str] | No
                     continue
                 worker[2] = task[0]
                 pipe.send(task)
+        finished = True
     finally:
         for process, pipe, _ in workers:
             try:
-                pipe.send(None)
+                if finished:
+                    pipe.send(None)
+                else:           # an error or Ctrl-C: the workers' work is of no use any more
+                    process.terminate()
             except (BrokenPipeError, OSError):
                 pass
         for process, pipe, _ in workers:
             process.join(timeout=5)
             if process.is_alive():
-                process.terminate()
+                process.kill()
+                process.join(timeout=5)
             pipe.close()
     return [AuditReport(p.id, p.title, tuple(results[(p.id, eq.id)] for eq in selected[p.id])) for p in papers]

@@ -3,7 +3,8 @@
 Each subcommand lives in its own module of this package and exposes ``register(subparsers)``,
 which adds its parser and sets ``handler`` to a function ``handler(args) -> int``.
 User mistakes (:class:`~hapticproof.core.errors.HapticproofError`) become one line on stderr and exit
-code 2; nothing else is caught.
+code 2; Ctrl-C is one line and exit code 130. ``--limit NAME=N`` (anywhere, repeatable) raises one
+of the bounds of :mod:`hapticproof.core.limits` for the run.
 """
 
 from __future__ import annotations
@@ -15,7 +16,7 @@ from collections.abc import Sequence
 
 from hapticproof.core.errors import HapticproofError
 
-__all__ = ["main", "build_parser"]
+__all__ = ["main", "build_parser", "take_limits"]
 
 #: Subcommand modules, in the order they appear in ``--help``.
 COMMANDS = ("audit", "new-paper", "derive", "check", "export", "boundary", "map", "bench")
@@ -32,28 +33,104 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
     from hapticproof.core.version import VERSION
 
     parser.add_argument("--version", action="version", version=f"hapticproof {VERSION}")
+    parser.add_argument("--limit", action="append", default=[], metavar="NAME=N",
+                        help="raise one of the bounds checked before any work (anywhere on the command line, "
+                        "repeatable): file_size, depth, digits, exponent, degree, delay, users, minors, grid; "
+                        "see the README")
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
     for name in (command,) if command in COMMANDS else COMMANDS:
         importlib.import_module(f"hapticproof.cli.{name.replace('-', '_')}").register(sub)
     return parser
 
 
+def take_limits(argv: list[str]) -> tuple[list[str], list[str]]:
+    """``--limit NAME=N`` options (anywhere on the command line) taken out of ``argv``.
+
+    >>> take_limits(["derive", "--limit", "delay=200000", "single-user", "--limit=users=5"])
+    (['derive', 'single-user'], ['delay=200000', 'users=5'])
+    """
+    rest, limits = [], []
+    k = 0
+    while k < len(argv):
+        arg = argv[k]
+        if arg == "--":
+            rest += argv[k:]
+            break
+        if arg == "--limit":
+            if k + 1 >= len(argv):
+                raise HapticproofError("--limit expects NAME=N (e.g. --limit delay=200000)")
+            limits.append(argv[k + 1])
+            k += 2
+            continue
+        if arg.startswith("--limit="):
+            limits.append(arg[len("--limit="):])
+        else:
+            rest.append(arg)
+        k += 1
+    return rest, limits
+
+
+def _refuse_foreign_digits(argv: list[str]) -> None:
+    """Numbers are written with the digits 0-9: ``int()`` (argparse's ``type=int``) and
+    ``Fraction()`` would read Arabic-Indic and other decimal digits silently."""
+    import os
+    import unicodedata
+
+    for arg in argv:
+        if arg.isascii() or os.path.exists(arg):
+            continue
+        for ch in arg:
+            if not ch.isascii() and unicodedata.category(ch) == "Nd":
+                raise HapticproofError(f"argument {arg!r}: {ch!r} (U+{ord(ch):04X}) is not one of the digits 0-9; "
+                                       "write numbers with the digits 0-9")
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
     try:
-        if argv and argv[0] in ("derive", "boundary") and "--scene" in " ".join(argv):
-            from hapticproof.cli.derive import complete_argv
-
-            argv = complete_argv(argv)
+        return _main(argv)
     except HapticproofError as err:
         print(f"hapticproof: error: {err}", file=sys.stderr)
         return 2
+    except KeyboardInterrupt:       # Ctrl-C: one line, no traceback; no output was replaced
+        print("hapticproof: interrupted", file=sys.stderr)
+        return 130
+    except BrokenPipeError:  # e.g. piped into `head`
+        _quiet_stdout()
+        return 0
+    except OSError as err:          # standard output itself failed (a full disk, /dev/full)
+        if getattr(err, "filename", None) is None and err.errno is not None:
+            _quiet_stdout()
+            print(f"hapticproof: error: cannot write the output: {err.strerror}", file=sys.stderr)
+            return 2
+        raise
+
+
+def _quiet_stdout() -> None:
+    """Standard output is gone: point it at /dev/null so that the interpreter's final flush
+    does not print a second error."""
+    import os
+
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+    except (OSError, ValueError):
+        pass
+
+
+def _main(argv: list[str]) -> int:
+    from hapticproof.core.limits import parse_limits, set_limits
+
+    argv, limits = take_limits(argv)
+    if limits:
+        set_limits(parse_limits(limits))
+    _refuse_foreign_digits(argv)
+    if argv and argv[0] in ("derive", "boundary") and "--scene" in " ".join(argv):
+        from hapticproof.cli.derive import complete_argv
+
+        argv = complete_argv(argv)
     parser = build_parser(argv[0] if argv else None)
     args = parser.parse_args(argv)
-    try:
-        return int(args.handler(args) or 0)
-    except HapticproofError as err:
-        print(f"hapticproof: error: {err}", file=sys.stderr)
-        return 2
-    except BrokenPipeError:  # e.g. piped into `head`
-        return 0
+    status = int(args.handler(args) or 0)
+    sys.stdout.flush()              # a failed write is reported here, not at exit
+    return status

@@ -9,7 +9,7 @@ import sys
 import time
 
 from hapticproof.audit.pool import audit_reports
-from hapticproof.cli.common import write_text
+from hapticproof.cli.common import check_output, input_files, write_text
 from hapticproof.cli.terminal import colour_verdict, progress_bar, summary_line, use_colour
 from hapticproof.audit.registry import get_paper, papers
 
@@ -54,6 +54,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    check_output(args.output, "--output", inputs=input_files(args))     # before any work
     files = _paper_files(args.paper)
     if args.all or not (args.papers or files):
         selected = list(papers().values())

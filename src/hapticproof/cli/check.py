@@ -9,17 +9,17 @@ printed display as given, the scene at the witness) is judged against the defini
 re-derived from what it carries: a tampered verdict, witness or certificate number is refused
 with a line saying what does not match. Entries without a certificate are listed as not
 re-verifiable. Exit code 0 when everything holds, 1 when something fails or is refused, 2 for
-a file that cannot be read.
+a file that cannot be read or is not a report (its shape is checked first:
+:mod:`hapticproof.core.shapes`).
 """
 
 from __future__ import annotations
 
 import argparse
-import json
 import sys
-from pathlib import Path
 
-from hapticproof.core.errors import InputFormatError
+from hapticproof.core.files import read_json, read_text
+from hapticproof.core.shapes import check_report as check_shape
 
 __all__ = ["register"]
 
@@ -42,14 +42,9 @@ def register(sub: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     from hapticproof.exact.checker import check_report
 
-    try:
-        text = sys.stdin.read() if args.report == "-" else Path(args.report).read_text(encoding="utf-8")
-    except OSError as err:
-        raise InputFormatError(f"cannot read {args.report}: {err.strerror}") from None
-    try:
-        report = json.loads(text)
-    except json.JSONDecodeError as err:
-        raise InputFormatError(f"{args.report} is not JSON: {err.msg} at line {err.lineno}") from None
+    name = "<stdin>" if args.report == "-" else args.report
+    report = read_json(read_text(args.report, name), name)
+    check_shape(report, name)      # a number, null or a table of another form is no report
     result = check_report(report)
     lines = result.summary().splitlines()
     print("\n".join(lines[-1:] if args.quiet else lines))

@@ -13,10 +13,11 @@ import sympy as sp
 
 from hapticproof.core.errors import InputFormatError
 from hapticproof.core.evidence import exact
+from hapticproof.core.limits import LimitError
 
 __all__ = ["parse_params", "param_items", "add_param_option", "add_role_option", "role_items", "write_text", "add_output_option", "check_output",
            "write_output", "add_scene_options", "scene_from_args", "add_any_scene_options", "scene_from_any_args",
-           "build_model", "refuse"]
+           "build_model", "refuse", "input_files"]
 
 
 def add_param_option(parser: argparse.ArgumentParser) -> None:
@@ -94,6 +95,8 @@ def parse_params(items: list[str]) -> dict[str, sp.Rational]:
     for name, value in param_items(items).items():
         try:
             out[name] = exact(value)
+        except LimitError as err:     # "number: a number of ... digits ..." named by its option
+            raise LimitError(f"--param {name}: {str(err).split(': ', 1)[-1]}") from None
         except (ValueError, ZeroDivisionError) as err:
             raise InputFormatError(f"--param {name}: {value!r} is not a number") from err
     return out
@@ -109,40 +112,42 @@ def add_output_option(parser: argparse.ArgumentParser, default: str | None = "-"
                         help="write the report to FILE ('-', the default, is standard output)")
 
 
-def check_output(path: str | None, option: str, suffixes: tuple[str, ...] = ()) -> None:
-    """Fail before any work if ``path`` cannot be an output: a wrong suffix, a directory, or a
-    parent that is a file. ``-`` (standard output) is always fine.
+def check_output(path: str | None, option: str, suffixes: tuple[str, ...] = (), inputs: Any = ()) -> None:
+    """Fail before any work if ``path`` cannot be an output: a wrong suffix, a directory, a
+    missing folder (none is created), a parent that is a file, a read-only file or folder, or
+    one of the command's ``inputs``. ``-`` (standard output) is always fine.
 
     >>> check_output("-", "--csv"); check_output("out.csv", "--csv", (".csv",))
     >>> check_output("out.txt", "--plot", (".png", ".pdf", ".svg"))
     Traceback (most recent call last):
     ...
-    hapticproof.core.errors.InputFormatError: --plot out.txt: the file name must end in .png, .pdf or .svg
+    hapticproof.core.files.OutputError: --plot out.txt: the file name must end in .png, .pdf or .svg
     """
-    if path is None or path == "-":
-        return
-    target = Path(path)
-    if suffixes and target.suffix.lower() not in suffixes:
-        shown = ", ".join(suffixes[:-1]) + (" or " if len(suffixes) > 1 else "") + suffixes[-1]
-        raise InputFormatError(f"{option} {path}: the file name must end in {shown}")
-    if target.is_dir():
-        raise InputFormatError(f"{option} {path}: is a directory")
-    for parent in target.parents:
-        if parent.exists():
-            if not parent.is_dir():
-                raise InputFormatError(f"{option} {path}: {parent} is not a directory")
-            break
+    from hapticproof.core.files import check_output as check
+
+    check(path, option, suffixes, [inputs] if isinstance(inputs, str) else list(inputs or ()))
+
+
+def input_files(args: argparse.Namespace) -> list[str]:
+    """The files a command reads (an output may not be one of them)."""
+    out: list[str] = []
+    for name in ("scene", "matrix", "from_audit", "report"):
+        value = getattr(args, name, None)
+        if isinstance(value, str):
+            out.append(value)
+    out += [p for p in getattr(args, "paper", None) or [] if isinstance(p, str)]
+    return out
 
 
 def write_text(path: str | Path, text: str) -> Path | None:
-    """Write ``text`` to ``path`` (``-``: standard output, returns ``None``)."""
+    """Write ``text`` to ``path`` (``-``: standard output, returns ``None``): whole or not at
+    all (a temporary file beside it, renamed when complete); no folder is created."""
+    from hapticproof.core.files import write_atomic
+
     if str(path) == "-":
         sys.stdout.write(text if text.endswith("\n") else text + "\n")
         return None
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(text, encoding="utf-8")
-    return path
+    return write_atomic(path, text)
 
 
 def write_output(path: str | None, text: str) -> None:
@@ -242,6 +247,9 @@ def scene_from_args(args: argparse.Namespace, system: str) -> Any:
     fields: dict[str, Any] = {}
     params: dict[str, Any] = {}
     roles: dict[str, Any] = {}
+    for option in ("output", "csv", "json", "plot"):     # an output may not replace an input
+        if isinstance(getattr(args, option, None), str):
+            check_output(getattr(args, option), f"--{option}", inputs=input_files(args))
     if getattr(args, "scene", None):
         base = read_scene(args.scene)
         if base.system != system:

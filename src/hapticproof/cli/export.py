@@ -6,7 +6,7 @@ import argparse
 import sys
 import time
 
-from hapticproof.cli.common import write_text
+from hapticproof.cli.common import check_output, input_files, write_text
 from hapticproof.cli.terminal import progress_bar, summary_line, use_colour
 from hapticproof.core.errors import InputFormatError
 from hapticproof.report.export import export_document, reports_from_json
@@ -32,6 +32,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    check_output(args.output, "--output", inputs=input_files(args))     # before any work
     selected = [get_paper(p) for p in args.papers] if args.papers else list(papers().values())
     if args.jobs is not None and args.jobs < 1:
         raise InputFormatError("--jobs must be at least 1")
@@ -56,11 +57,14 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _saved(path: str, selected: list) -> list:
-    import json
+    from hapticproof.core.files import read_json, read_text
+    from hapticproof.core.shapes import check_audit
 
+    data = read_json(read_text(path), path)
+    check_audit(data, path)          # the shape first: a number or null is one line, not a KeyError
     try:
-        reports = {r.paper: r for r in reports_from_json(json.loads(open(path, encoding="utf-8").read()), selected)}
-    except (OSError, ValueError, KeyError, TypeError) as err:
+        reports = {r.paper: r for r in reports_from_json(data, selected)}
+    except (ValueError, KeyError, TypeError) as err:
         raise InputFormatError(f"--from-audit {path}: not a saved audit ({type(err).__name__}: {err})") from None
     missing = [p.id for p in selected if p.id not in reports]
     if missing:

@@ -68,27 +68,30 @@ def run(args: argparse.Namespace) -> int:
     from hapticproof.analysis import designmap
     from hapticproof.analysis.scaleout import ProgressBar
 
+    check_output(args.output, "--output", (".csv", ".parquet", ".pq"))     # before any work
+    check_output(args.plot, "--plot", (".png", ".pdf", ".svg"))
     if args.workers < 1:
         raise InputFormatError("--workers must be at least 1")
     if args.chunk_lines is not None and args.chunk_lines < 1:
         raise InputFormatError("--chunk-lines must be at least 1")
-    check_output(args.output, "--output", (".csv", ".parquet", ".pq"))
-    check_output(args.plot, "--plot", (".png", ".pdf", ".svg"))
     scene = scene_from_any_args(args, LOOP_SYSTEMS, default="single-user")
     spec = designmap.MapSpec.build(args.quantity, args.x, args.y, scene)
-    sink = designmap.MapWriter(args.output, spec) if args.output else None
+    to_file = bool(args.output) and args.output != "-"           # "-" is standard output, as everywhere
+    sink = designmap.MapWriter(args.output, spec) if to_file else None
     bar = ProgressBar(1, f"{args.quantity} map")
+    complete = False
     try:
         result = designmap.compute(spec, workers=args.workers, scheduler=args.scheduler,
                                    lines_per_chunk=args.chunk_lines, progress=bar, sink=sink)
+        complete = True
     finally:
         bar.close()
         if sink is not None:
-            sink.close()
+            sink.close(ok=complete)     # an incomplete map never replaces the target
     counts = ", ".join(f"{k}: {v}" for k, v in result.counts.items())
     print(f"{spec.points} points ({spec.lines} lines along {spec.x.name if spec.line_axis == 'x' else spec.y.name}) "
           f"in {result.seconds:.2f} s [{result.settings['mode']}]; {counts}", file=sys.stderr)
-    if args.output:
+    if to_file:
         print(f"wrote {args.output}", file=sys.stderr)
     else:
         sys.stdout.write(designmap.write_map(result))

@@ -19,6 +19,7 @@ __all__ = [
     "UnknownPaperError",
     "UnknownEquationError",
     "InputFormatError",
+    "SceneFileError",
     "DerivationError",
 ]
 
@@ -70,6 +71,10 @@ class UnknownEquationError(HapticproofError, KeyError):
 
 class InputFormatError(HapticproofError, ValueError):
     """A user file or command-line value is not in the documented format."""
+
+
+class SceneFileError(InputFormatError):
+    """A scene file (or scene table) that cannot be read: names the file, line and field."""
 
 
 class DerivationError(HapticproofError, ArithmeticError):

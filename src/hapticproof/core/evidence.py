@@ -80,7 +80,14 @@ def exact(value: Any) -> sp.Expr:
         num, den = value.as_integer_ratio()
         return sp.Rational(num, den)
     if isinstance(value, str):
-        return sp.Rational(fractions.Fraction(value.strip()))
+        from hapticproof.core.limits import check_number_text
+
+        text = value.strip()
+        if not text.isascii():      # Fraction() reads Arabic-Indic and other digits too
+            raise ValueError(f"{text!r} is not a number (write digits 0-9)")
+        for part in text.split("/"):
+            check_number_text(part, "number")       # 1e999999999 is never built
+        return sp.Rational(fractions.Fraction(text))
     return sp.sympify(value)
 
 

@@ -114,7 +114,15 @@ _DOMAIN = {"z": "a discrete-time expression in z", "s": "a continuous-time expre
 
 
 class ExpressionError(InputFormatError):
-    """A user expression that cannot be read (one line: where, what, position)."""
+    """A user expression that cannot be read (one line: where, what, position).
+
+    ``reason`` and ``position`` are the message's parts without the expression's text (for
+    files whose content must not be shown)."""
+
+    def __init__(self, message: str, reason: str | None = None, position: int | None = None):
+        super().__init__(message)
+        self.reason = reason if reason is not None else message
+        self.position = position
 
 
 def parameter_symbol(name: str, assumption: str | None = None) -> sp.Symbol:
@@ -155,8 +163,15 @@ def read_number(text: str, where: str = "") -> sp.Rational:
     >>> read_number("0.015"), read_number("1e-3"), read_number("-2/3")
     (3/200, 1/1000, -2/3)
     """
+    from hapticproof.core.limits import check_number_text
+
+    text = str(text).strip()
+    if not text.isascii():   # int() and Fraction() read Arabic-Indic and other digits too
+        raise ExpressionError(f"{where + ': ' if where else ''}{text!r} is not a number (write digits 0-9)")
+    for part in text.split("/"):
+        check_number_text(part, where or "number")
     try:
-        value = Fraction(str(text).strip())
+        value = Fraction(text)
     except (ValueError, ZeroDivisionError):
         raise ExpressionError(f"{where + ': ' if where else ''}{text!r} is not a number") from None
     return sp.Rational(value.numerator, value.denominator)
@@ -169,7 +184,7 @@ def read_number(text: str, where: str = "") -> sp.Rational:
 _NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 _TOKEN = re.compile(
     r"\s*(?:(?P<number>(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)|(?P<name>[A-Za-z_][A-Za-z0-9_]*)"
-    r"|(?P<op>\*\*|[-+*/^()]))"
+    r"|(?P<op>\*\*|[-+*/^()]))", re.ASCII     # digits 0-9 only: no Arabic-Indic or other digits
 )
 
 
@@ -180,15 +195,18 @@ class _Token:
     position: int
 
 
+_BLANK = re.compile(r"\s*")
+
+
 def _tokens(text: str, fail: Callable[[str, int], None]) -> list[_Token]:
     out: list[_Token] = []
     position = 0
-    while position < len(text):
-        if text[position:].strip() == "":
+    while position < len(text):       # linear: no copy of the rest of the text per token
+        start = _BLANK.match(text, position).end()
+        if start == len(text):
             break
         match = _TOKEN.match(text, position)
         if match is None or match.end() == position:
-            start = position + len(text[position:]) - len(text[position:].lstrip())
             fail(f"unexpected character {text[start]!r}", start)
         kind = match.lastgroup
         out.append(_Token(kind, match.group(kind), match.start(kind)))
@@ -207,10 +225,12 @@ class _Parser:
         self.text, self.variable, self.where, self.symbol = text, variable, where, symbol
         self.tokens = _tokens(text, self.fail)
         self.index = 0
+        self.depth = 0
 
     def fail(self, message: str, position: int, hint: str = "") -> None:
         prefix = f"{self.where}: " if self.where else ""
-        raise ExpressionError(f"{prefix}{message} at position {position} in {self.text!r}{hint}")
+        shown = self.text if len(self.text) <= 200 else self.text[max(0, position - 40):position + 40]
+        raise ExpressionError(f"{prefix}{message} at position {position} in {shown!r}{hint}", message + hint, position)
 
     @property
     def token(self) -> _Token:
@@ -228,7 +248,10 @@ class _Parser:
         value = self.expr()
         if self.token.kind != "end":
             self._unexpected()
-        return value
+        from hapticproof.core.limits import check
+
+        check("degree", max(value.num, value.den), self.where or "expression")
+        return value.expr
 
     def _unexpected(self) -> None:
         token = self.token
@@ -239,50 +262,80 @@ class _Parser:
             self.fail("the expression ends too early", token.position)
         self.fail(f"unexpected {token.text!r}", token.position)
 
-    def expr(self) -> sp.Expr:
-        value = self.term()
+    # Each rule returns the expression with bounds on the degrees of its numerator and
+    # denominator in the transform variable, so that a power is refused before it is built
+    # when the degree it would reach is above the limit (``z**10**9``, ``(z**1000)**1000``).
+    def expr(self) -> _Value:
+        first = self.term()
+        terms, num, den = [first.expr], first.num, first.den
         while self.token.text in ("+", "-"):
             op = self.take().text
             right = self.term()
-            value = value + right if op == "+" else value - right
-        return value
+            terms.append(right.expr if op == "+" else -right.expr)
+            num, den = max(num + right.den, right.num + den), den + right.den
+        # one Add of all the terms: adding them one by one sorts the growing sum each time
+        return first if len(terms) == 1 else _Value(sp.Add(*terms), num, den)
 
-    def term(self) -> sp.Expr:
-        value = self.unary()
+    def term(self) -> _Value:
+        first = self.unary()
+        factors, num, den = [first.expr], first.num, first.den
         while self.token.text in ("*", "/"):
             op = self.take()
             right = self.unary()
             if op.text == "*":
-                value = value * right
+                factors.append(right.expr)
+                num, den = num + right.num, den + right.den
             else:
-                if right == 0:
+                if right.expr == 0:
                     self.fail("division by zero", op.position)
-                value = value / right
-        return value
+                factors.append(sp.Pow(right.expr, -1))
+                num, den = num + right.den, den + right.num
+        return first if len(factors) == 1 else _Value(sp.Mul(*factors), num, den)
 
-    def unary(self) -> sp.Expr:
-        if self.token.text in ("+", "-"):
-            op = self.take().text
-            value = self.unary()
-            return -value if op == "-" else value
-        return self.power()
+    def unary(self) -> _Value:
+        negative = False
+        while self.token.text in ("+", "-"):      # a loop: a run of signs is no recursion
+            negative ^= self.take().text == "-"
+        value = self.power()
+        return _Value(-value.expr, value.num, value.den) if negative else value
 
-    def power(self) -> sp.Expr:
+    def power(self) -> _Value:
+        from hapticproof.core.limits import check_power
+
         base = self.atom()
         if self.token.text in ("^", "**"):
             op = self.take()
-            exponent = self.unary()
+            self.enter(op)
+            exponent = self.unary().expr
+            self.depth -= 1
             if not (exponent.is_Integer):
                 self.fail(f"the exponent must be an integer constant, got {sp.sstr(exponent)}", op.position)
-            if base == 0 and exponent < 0:
+            if base.expr == 0 and exponent < 0:
                 self.fail("division by zero", op.position)
-            return base ** exponent
+            k = int(exponent)
+            check_power(base.expr if base.expr.is_Rational else None, k, self.place(op),
+                        degree=max(base.num, base.den))
+            num, den = (base.num * k, base.den * k) if k >= 0 else (base.den * -k, base.num * -k)
+            return _Value(base.expr ** exponent, num, den)
         return base
 
-    def atom(self) -> sp.Expr:
+    def enter(self, token: _Token) -> None:
+        """One level deeper (a parenthesis, an exponent): within the depth limit."""
+        from hapticproof.core.limits import check
+
+        self.depth += 1
+        check("depth", self.depth, self.place(token))
+
+    def place(self, token: _Token) -> str:
+        if self.where:
+            return f"{self.where}: position {token.position}"
+        shown = self.text if len(self.text) <= 60 else self.text[:57] + "..."
+        return f"{shown!r} at position {token.position}"
+
+    def atom(self) -> _Value:
         token = self.take()
         if token.kind == "number":
-            return read_number(token.text, self.where)
+            return _Value(read_number(token.text, self.place(token)), 0, 0)
         if token.kind == "name":
             if self.token.text == "(":
                 self.fail(f"unknown function {token.text!r}", token.position,
@@ -292,23 +345,35 @@ class _Parser:
                     self.fail(f"{token.text!r} is a transform variable; a parameter value has none", token.position)
                 if token.text != self.variable:
                     self.fail(f"{token.text!r} in {_DOMAIN[self.variable]}", token.position)
-                return _VARIABLES[token.text]
+                return _Value(_VARIABLES[token.text], 1, 0)
             if token.text.startswith("_"):
                 self.fail(f"names may not start with '_': {token.text!r}", token.position)
             if not_a_name(token.text):
                 if len(self.tokens) == 2:            # the whole text: no position to point at
                     raise ExpressionError(f"{self.where + ': ' if self.where else ''}{token.text!r} {not_a_name(token.text)}")
                 self.fail(f"{token.text!r} {not_a_name(token.text)}", token.position)
-            return self.symbol(token.text)
+            return _Value(self.symbol(token.text), 0, 0)
         if token.text == "(":
+            self.enter(token)
             value = self.expr()
             if self.token.text != ")":
                 self.fail("missing ')'", self.token.position)
             self.take()
+            self.depth -= 1
             return value
         self.index -= 1
         self._unexpected()
         raise AssertionError  # pragma: no cover
+
+
+@dataclass(frozen=True, slots=True)
+class _Value:
+    """A parsed expression and bounds on the degrees of its numerator and denominator in the
+    transform variable."""
+
+    expr: sp.Expr
+    num: int
+    den: int
 
 
 def read_expression(text: str, variable: str | None = "z", *, where: str = "",

@@ -46,15 +46,35 @@ def max_degree() -> int:
     return int(os.environ.get("HAPTICPROOF_CHECK_MAX_DEGREE", MAX_DEGREE))
 
 
+#: Rows of a constant matrix whose characteristic coefficients the checker recomputes
+#: (Faddeev-LeVerrier over exact rationals costs m^4 operations: a report from anyone may hold
+#: a matrix of any size); a larger one is "not re-verified".
+MAX_MATRIX = 32
+
+
+def max_matrix() -> int:
+    return int(os.environ.get("HAPTICPROOF_CHECK_MAX_MATRIX", MAX_MATRIX))
+
+
 # ---------------------------------------------------------------------------------------------
 # exact numbers
 # ---------------------------------------------------------------------------------------------
 
 
 def exact_q(text: Any) -> Fraction:
-    if isinstance(text, (int, Fraction)):
+    """An exact number as a report writes it (``"3/7"``, ``"1e-3"``), within the digit limit:
+    ``1e999999999`` from a stranger's file is never built."""
+    if isinstance(text, (int, Fraction)) and not isinstance(text, bool):
         return Fraction(text)
-    return Fraction(str(text))
+    if not isinstance(text, str):
+        raise TypeError(f"expected an exact number as text, got {type(text).__name__}")
+    from hapticproof.core.limits import check_number_text
+
+    if not text.isascii():
+        raise ValueError("not a number (digits 0-9)")
+    for part in text.split("/"):
+        check_number_text(part, "certificate")
+    return Fraction(text)
 
 
 def json_poly(coeffs: list) -> flint.fmpq_poly:

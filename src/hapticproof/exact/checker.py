@@ -52,7 +52,7 @@ from hapticproof.exact.checkarith import MAX_DEGREE, CheckFailed as _Fail, Check
 from hapticproof.exact.checkarith import as_fmpq as _fq, axis_gcd as _axis_gcd, bilinear as _bilinear
 from hapticproof.exact.checkarith import charpoly_coefficients as _charpoly_coefficients, count_with_multiplicity as _count_with_multiplicity
 from hapticproof.exact.checkarith import determinant as _det, eval_transfer as _eval_transfer, exact_q as _q
-from hapticproof.exact.checkarith import json_poly as _poly, max_degree as _max_degree
+from hapticproof.exact.checkarith import json_poly as _poly, max_degree as _max_degree, max_matrix as _max_matrix
 from hapticproof.exact.checkarith import routh_hurwitz as _routh_hurwitz, Sturm as _Sturm, value_at as _val
 
 __all__ = ["CheckResult", "certificates", "check_certificate", "check_certificates", "check_report", "ReportCheck",
@@ -326,6 +326,9 @@ def _check_residue(cert: dict) -> list[str]:
 
 
 def _check_constant_psd(cert: dict) -> list[str]:
+    if len(cert["matrix"]) > _max_matrix():      # bounded before any work
+        raise _Skip(f"a {len(cert['matrix'])} x {len(cert['matrix'])} matrix is above the checker's limit of "
+                    f"{_max_matrix()} rows (HAPTICPROOF_CHECK_MAX_MATRIX)")
     M = [[_G(_q(a), _q(b)) for a, b in row] for row in cert["matrix"]]
     m = len(M)
     if any(M[i][j].re != M[j][i].re or M[i][j].im != -M[j][i].im for i in range(m) for j in range(m)):
@@ -519,8 +522,8 @@ def check_certificate(cert: dict) -> CheckResult:
         return CheckResult(True, f"not re-verified: {skip}", verified=False)
     except _Fail as fail:
         return CheckResult(False, f"FAILED: {fail}")
-    except (KeyError, TypeError, ValueError, ZeroDivisionError) as err:
-        return CheckResult(False, f"FAILED: malformed certificate ({type(err).__name__}: {err})")
+    except (KeyError, TypeError, ValueError, ZeroDivisionError, IndexError, AttributeError, OverflowError) as err:
+        return CheckResult(False, f"FAILED: malformed certificate ({type(err).__name__}: {str(err)[:200]})")
     return CheckResult(True, "; ".join(notes))
 
 

@@ -288,6 +288,10 @@ def _unit_circle_poles(G: sp.Matrix, z: sp.Symbol) -> list[tuple[sp.Expr, int]]:
 def psd_outcome(matrix: sp.Matrix, what: str) -> Outcome:
     """PSD decision of a constant matrix: exact when numeric, principal minors otherwise."""
     M = sp.Matrix(matrix)
+    if M.free_symbols:
+        from hapticproof.core.limits import check_minors
+
+        check_minors(M.rows, what)    # symbolic: decided by its principal minors, counted first
     if any(sp.simplify(M[i, j] - sp.conjugate(M[j, i])) != 0 for i in range(M.rows) for j in range(M.rows)):
         return Outcome(Decision.DISPROVED, Evidence(Method.CANONICAL_FORM, facts={"matrix": M}), f"{what} is not Hermitian")
     if not M.free_symbols:
@@ -612,9 +616,12 @@ def principal_minors(
     >>> [(k, m.expr()) for k, m in principal_minors(hermitian_part_matrix(G)).items()]
     [((0,), 4), ((1,), 4), ((0, 1), 15)]
     """
+    from hapticproof.core.limits import check_minors
+
     m = H.size
     if subsets is None:
         wanted = sorted(set(sizes)) if sizes is not None else range(1, m + 1)
+        check_minors(m, "principal minors", wanted)     # counted before one is computed
         subsets = [s for k in wanted for s in itertools.combinations(range(m), k)]
     alg, minor = _minor_engine(H)
     out: dict[tuple[int, ...], Minor] = {}

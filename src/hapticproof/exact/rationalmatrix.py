@@ -470,8 +470,11 @@ def principal_minors(
     >>> [(k, str(v)) for k, v in sorted(m.items())]
     [((0,), '2'), ((0, 1), '3'), ((1,), '2')]
     """
+    from hapticproof.core.limits import check_minors
+
     n = len(rows)
     orders = range(1, n + 1) if orders is None else orders
+    check_minors(n, "principal minors", orders)         # counted before one is computed
     out = {}
     for k in orders:
         for subset in itertools.combinations(range(n), k):
@@ -667,7 +670,10 @@ def matrix_psd(M: sp.Matrix) -> tuple[bool, dict[str, Any]]:
             return True, {}
         minor = out.evidence.facts.get("negative_principal_minor")
         return False, ({str([i - 1 for i in minor["rows"]]): minor["value"]} if minor else {"hermitian": False})
+    from hapticproof.core.limits import check_minors
+
     n = M.rows
+    check_minors(n, "principal minors")
     bad = {}
     for k in range(1, n + 1):
         for subset in itertools.combinations(range(n), k):

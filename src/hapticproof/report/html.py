@@ -33,6 +33,7 @@ from typing import Any
 from hapticproof.core.version import VERSION
 from hapticproof.report import latex as tex
 from hapticproof.core.evidence import Plot, Verdict, to_jsonable
+from hapticproof.report.sanitize import CSP_META, clean_mathml, latex_to_mathml
 
 __all__ = [
     "normalise",
@@ -158,15 +159,13 @@ def mathml(latex: str, display: bool = False) -> str | None:
     >>> mathml(r"\foo x") is None
     True
     """
-    from latex2mathml.converter import convert
-
-    try:
-        out = convert(normalise(latex), display="block" if display else "inline")
+    try:  # latex2mathml's tree, serialised with its texts escaped (\text{<script>} is text)
+        out = latex_to_mathml(normalise(latex), display="block" if display else "inline")
     except Exception:  # noqa: BLE001 - any failure means: show the source instead
         return None
     if "merror" in out or re.search(r">\\[A-Za-z]", out):
         return None
-    out = _compact(_postprocess(out))
+    out = clean_mathml(_compact(_postprocess(out)))  # last: only allowed MathML leaves this function
     return out.replace("<math>", '<math display="block">', 1) if display else out
 
 
@@ -424,15 +423,17 @@ def report_html(reports: Iterable[Any], title: str | None = None, timings: bool 
 
     >>> from hapticproof.audit.runner import AuditReport
     >>> page = report_html([AuditReport("demo", "Demo", ())])
-    >>> page.startswith("<!DOCTYPE html>") and "<script" not in page and "http" not in page.split("</title>")[0]
+    >>> page.startswith("<!DOCTYPE html>") and "<script" not in page and "://" not in page.split("</title>")[0]
+    True
+    >>> "Content-Security-Policy" in page.split("</title>")[0]
     True
     """
     reports = list(reports)
     single = len(reports) == 1
     if title is None:
         title = f"Audit of {reports[0].title} ({reports[0].paper})" if single and reports else "hapticproof audit"
-    return ("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
-            '<meta name="viewport" content="width=device-width, initial-scale=1">'
+    return ("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">" + CSP_META
+            + '<meta name="viewport" content="width=device-width, initial-scale=1">'
             f"<title>{escape(title)}</title></head>\n<body>\n"
             + report_fragment(reports, timings, title) + "\n</body></html>\n")
 

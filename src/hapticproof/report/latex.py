@@ -26,6 +26,7 @@ from typing import Any
 import sympy as sp
 
 from hapticproof.core.notation import default_name, to_latex
+from hapticproof.core.texsafe import check_tex, escape_tex_text
 
 __all__ = ["escape_text", "verbatim_block", "document", "display", "fit_display", "safe_math", "is_typesettable", "display_lines", "display_pieces", "prose_with_math", "labelled", "verdict_badge", "witness_math", "equation_block", "audit_document", "longtable", "scene_latex", "derivation_document", "derivation_fragment", "VERDICT_COLOURS"]
 
@@ -46,69 +47,21 @@ VERDICT_COLOURS = {
 # --------------------------------------------------------------------------------------------
 # prose
 # --------------------------------------------------------------------------------------------
-_TEXT_SPECIALS = {
-    "\\": r"\textbackslash{}",
-    "{": r"\{",
-    "}": r"\}",
-    "$": r"\$",
-    "&": r"\&",
-    "#": r"\#",
-    "%": r"\%",
-    "_": r"\_",
-    "^": r"\textasciicircum{}",
-    "~": r"$\sim$",
-    "<": r"$<$",
-    ">": r"$>$",
-    "|": r"$|$",
-}
-
-
-#: relations written with several characters in plain text, set as mathematics
-_TEXT_RELATIONS = (
-    ("<=>", r"$\Leftrightarrow$"),
-    ("<=", r"$\leq$"),
-    (">=", r"$\geq$"),
-    ("!=", r"$\neq$"),
-    ("=>", r"$\Rightarrow$"),
-    ("->", r"$\rightarrow$"),
-)
-
-
-_UNICODE = {
-    "\u2264": r"$\leq$", "\u2265": r"$\geq$", "\u2260": r"$\neq$", "\u2212": "-", "\u00d7": r"$\times$",
-    "\u2192": r"$\rightarrow$", "\u21d2": r"$\Rightarrow$", "\u21d4": r"$\Leftrightarrow$", "\u2248": r"$\approx$",
-    "\u03c9": r"$\omega$", "\u03b8": r"$\theta$", "\u03b1": r"$\alpha$", "\u03b2": r"$\beta$", "\u03b4": r"$\delta$",
-    "\u03bb": r"$\lambda$", "\u03c4": r"$\tau$", "\u221e": r"$\infty$", "\u00b1": r"$\pm$", "\u2026": r"\dots{}",
-}
-
-
-_TEXT_TOKEN = re.compile("|".join(re.escape(k) for k, _ in _TEXT_RELATIONS) + r"|.", re.S)
-
-
-#: characters after which a long word (an expression written as text) may break
-_WORD_BREAKS = set(",;:/=+*)_")
+# the escaping tables live in core.texsafe.escape_tex_text, which checks its own output
 
 
 def escape_text(text: str, breakable: bool = True) -> str:
     r"""Escape plain text for LaTeX (T1 fonts): relations become mathematics, so no ``<`` is
     ever printed as an inverted exclamation mark; long words (expressions written as text)
-    may break after punctuation.
+    may break after punctuation. No ``^^`` code, comment, line end or control character gets
+    through (:func:`hapticproof.core.texsafe.escape_tex_text` checks what it writes).
 
     >>> escape_text("b_1 > 50% & {x}")
     'b\\_1 $>$ 50\\% \\& \\{x\\}'
     >>> escape_text("b >= B + K*T/2, |B|")
     'b $\\geq$ B + K*T/2, $|$B$|$'
     """
-    out: list[str] = []
-    for word in re.split(r"(\s+)", text):
-        long_word = breakable and len(word) > 20
-        for match in _TEXT_TOKEN.finditer(word):
-            tok = match.group(0)
-            rel = dict(_TEXT_RELATIONS).get(tok)
-            out.append(rel or _TEXT_SPECIALS.get(tok) or _UNICODE.get(tok) or tok)
-            if long_word and tok in _WORD_BREAKS and match.end() < len(word):
-                out.append(r"\allowbreak{}")
-    return "".join(out)
+    return escape_tex_text(text, breakable)
 
 
 def verbatim_block(text: str) -> str:
@@ -414,6 +367,9 @@ _KNOWN = set(
 )
 
 
+_ENVIRONMENTS = _INLINE_ENVIRONMENTS | _LINE_ENVIRONMENTS
+
+
 def _known_commands(latex: str) -> bool:
     if not all(cmd in _KNOWN for cmd in re.findall(r"\\([A-Za-z]+)", latex)):
         return False
@@ -455,7 +411,8 @@ def is_typesettable(latex: str | None) -> bool:
     body, _ = strip_tag(latex)
     if r"\tag" in body:
         return False
-    return is_balanced(body) and _known_commands(body)
+    # what TeX reads (^^ codes, \csname ...), the whole text with its tag, before the layout
+    return is_balanced(body) and _known_commands(body) and check_tex(latex, _KNOWN, _ENVIRONMENTS) is None
 
 
 def safe_math(latex: str | None, fit: bool = True) -> str:
@@ -467,8 +424,22 @@ def safe_math(latex: str | None, fit: bool = True) -> str:
     amsmath display.
     """
     if is_typesettable(latex):
-        return fit_display(latex) if fit else display(latex)
+        out = fit_display(latex) if fit else display(latex)
+        if _laid_out_safely(out):  # the layout drops & and \\: check what it made
+            return out
     return verbatim_block(latex or "(empty)")
+
+
+#: the commands and environment of the layout (:func:`fit_display`, :func:`math_cell`) and
+#: those :func:`escape_text` writes
+_LAYOUT = frozenset({"hpfit", "hpline", "hptag", "hpcell", "penalty", "allowbreak", "textbackslash",
+                     "textasciicircum", "sim", "dots", "leq", "geq", "neq", "Rightarrow", "rightarrow",
+                     "Leftrightarrow", "times", "approx", "omega", "theta", "alpha", "beta", "delta", "lambda",
+                     "tau", "infty", "pm"})
+
+
+def _laid_out_safely(out: str) -> bool:
+    return check_tex(out, _KNOWN | _LAYOUT, _ENVIRONMENTS | {"hpdisplay"}) is None
 
 
 def labelled(label: str, body: str) -> str:
@@ -631,10 +602,12 @@ def math_cell(latex: str) -> str:
     >>> math_cell("a + b")
     '\\hpcell{\\hpfit{a}\\penalty200 \\hpfit{{}+ b}}'
     """
-    if not is_typesettable(latex):
-        return r"{\small\ttfamily " + escape_text(latex) + "}"
-    lines, _ = display_lines(latex)
-    return r"\hpcell{" + r"\allowbreak".join(_joined_pieces(line) for line in lines) + "}"
+    if is_typesettable(latex):
+        lines, _ = display_lines(latex)
+        out = r"\hpcell{" + r"\allowbreak".join(_joined_pieces(line) for line in lines) + "}"
+        if _laid_out_safely(out):
+            return out
+    return r"{\small\ttfamily " + escape_text(latex) + "}"
 
 
 def derivation_document(title: str, items: Sequence[tuple[str, str]], notes: Sequence[tuple[str, str]] = (),
@@ -664,6 +637,12 @@ def derivation_fragment(items: Sequence[tuple[str, str]]) -> str:
     % condition
     \begin{equation*}b > 0\end{equation*}
     """
+    for label, latex in items:
+        if not (is_typesettable(latex) and _laid_out_safely(display(latex))):
+            from hapticproof.core.errors import DerivationError
+
+            raise DerivationError(f"derived display {' '.join(label.split())[:60]!r} is not safe to typeset "
+                                  "as a fragment (a bug, or symbol names TeX would read as commands)")
     return "\n".join("% " + " ".join(label.split()) + "\n" + display(latex) for label, latex in items)
 
 

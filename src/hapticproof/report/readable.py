@@ -36,6 +36,8 @@ def _degree_terms(expr: sp.Expr, var: sp.Symbol | None) -> tuple[int | None, int
         return None, len(terms)
     degree = 0
     for term in terms:
+        if not isinstance(term, sp.Expr):
+            continue
         powers = term.as_powers_dict()
         exp = sp.sympify(powers.get(var, 0))
         if exp.is_Integer:
@@ -82,6 +84,16 @@ def brief(expr: Any, limit: int = LIMIT, verbose: bool = False) -> str:
 
 def _summary(expr: Any, text: str | None) -> str:
     expr = sp.sympify(expr)
+    if isinstance(expr, sp.Rel):        # a long condition: each side summarised (``--delay 16``)
+        sides = [brief(side, LIMIT // 2).replace(" [full text: --verbose or --format json]", "")
+                 for side in (expr.lhs, expr.rhs)]
+        return f"{sides[0]} {expr.rel_op} {sides[1]} [full text: --verbose or --format json]"
+    if isinstance(expr, sp.core.function.AppliedUndef) and len(expr.args) == 1:   # min_c(...)
+        inner = brief(expr.args[0], LIMIT // 2).replace(" [full text: --verbose or --format json]", "")
+        return f"{expr.func}({inner}) [full text: --verbose or --format json]"
+    if isinstance(expr, sp.logic.boolalg.BooleanFunction):
+        return (f"{type(expr).__name__} of {len(expr.args)} conditions ({len(sp.sstr(expr))} characters) "
+                "[full text: --verbose or --format json]")
     names = {s.name: s for s in getattr(expr, "free_symbols", set())}
     var = next((names[v] for v in _VARIABLES if v in names), None)
     if isinstance(expr, sp.MatrixBase):

@@ -39,7 +39,7 @@ the file, the line and the field (:class:`SceneFileError`).
 >>> loads('system = "single-user"\nenviroment = "K"\n', "wall.toml")
 Traceback (most recent call last):
 ...
-hapticproof.systems.scene.SceneFileError: wall.toml:2: unknown field 'enviroment' (fields: system, approximation, environment, controller, discretize, delay, users, graph, uniform, active, operator, matrix, ports, roles, params)
+hapticproof.core.errors.SceneFileError: wall.toml:2: unknown field 'enviroment' (fields: system, approximation, environment, controller, discretize, delay, users, graph, uniform, active, operator, matrix, ports, roles, params)
 """
 
 from __future__ import annotations
@@ -55,17 +55,19 @@ from hapticproof.core.evidence import exact
 from hapticproof.core.symbols import n as N_SYM
 from hapticproof.core.symbols import z as Z_SYM
 from hapticproof.systems.singleuser import APPROXIMATIONS, SingleUserScene, delay_ratio, virtual_wall
-from hapticproof.systems.values import check_declared, check_positive_roles, param_value
+from hapticproof.systems.matrixfile import read_matrix
+from hapticproof.systems.values import check_declared, check_positive_roles, param_value, refuse_cycles
 import json
 import re
 import sys
-import tomllib
 from decimal import Decimal
 from pathlib import Path
-from hapticproof.core.errors import HapticproofError, InputFormatError
+from hapticproof.core.errors import HapticproofError, SceneFileError
 from hapticproof.core.expr import write_expression
+from hapticproof.core.tomltext import line_of, read_toml as _read_toml
 
-__all__ = ["SYSTEMS", "Scene", "FIELDS", "SceneFileError", "loads", "dumps", "read_scene", "write_scene", "scene_from_table",            "read_matrix", "toml_value", "line_of"]
+__all__ = ["SYSTEMS", "Scene", "FIELDS", "SceneFileError", "loads", "dumps", "read_scene", "write_scene", "scene_from_table",            "read_matrix", "toml_value", "line_of",
+           "read_toml"]
 
 
 #: Systems a :class:`Scene` describes.
@@ -200,6 +202,9 @@ class Scene:
             users = 2 if self.users is None else self.users
             if isinstance(users, bool) or not isinstance(users, int) or users < 1:
                 raise SceneError(f"users must be a positive integer, got {users!r}")
+            from hapticproof.core.limits import check
+
+            check("users", users, "users")
             set_("users", users)
             check_members(self.roles, users, self.uniform)
         # parameters first: their assumptions decide the symbols of every expression
@@ -254,6 +259,7 @@ class Scene:
                 set_(name, self._normalise(value, name, params, assumptions))
         params = {k: (self._normalise(v, k, params, assumptions) if isinstance(v, sp.Basic) and not v.is_Rational else v)
                   for k, v in params.items()}
+        refuse_cycles(params)
         set_("params", tuple(sorted(params.items())))
         # delays, users, graph
         set_("delay", self._delay(self.delay))
@@ -278,7 +284,11 @@ class Scene:
                 raise SceneError("the impedance matrix must be square and not empty")
             set_("matrix", tuple(tuple(self._normalise(e, "matrix", params, assumptions) for e in row) for row in rows))
             if self.ports is not None:
-                ports = tuple(int(p) for p in self.ports)
+                items = self.ports if isinstance(self.ports, (list, tuple)) else [self.ports]
+                if not all((isinstance(p, int) and not isinstance(p, bool))
+                           or (isinstance(p, str) and p.strip().isascii() and p.strip().isdigit()) for p in items):
+                    raise SceneError(f"ports must be port sizes (positive integers such as 3,3), got {self.ports!r}")
+                ports = tuple(int(p) for p in items)
                 if sum(ports) != len(rows) or any(p < 1 for p in ports):
                     raise SceneError(f"ports {list(ports)} must be positive sizes adding up to {len(rows)}")
                 set_("ports", ports)
@@ -341,6 +351,8 @@ class Scene:
 
     @staticmethod
     def _delay(delay: Any) -> Any:
+        from hapticproof.core.limits import check
+
         if isinstance(delay, (list, tuple)):
             values = tuple(Scene._delay(d) for d in delay)
             if any(not isinstance(v, int) for v in values):
@@ -353,13 +365,19 @@ class Scene:
         if isinstance(delay, str):
             if "," in delay:
                 return Scene._delay([d for d in delay.split(",")])
-            try:
-                delay = sp.Rational(delay.strip())
-            except (TypeError, ValueError):
-                raise SceneError(f"the delay n = t_d/T must be a non-negative integer or 'n', got {delay!r}") from None
+            text = delay.strip()
+            # digits 0-9 only (int() reads Arabic-Indic digits too); "1/0", "2.5", "1e9" are refused
+            if not (text.isascii() and text.isdigit()):
+                raise SceneError(f"the delay n = t_d/T must be a non-negative integer or 'n', got {delay!r}")
+            if len(text) > 30:
+                check("delay", 10**30, "delay")
+            delay = int(text)
+        if isinstance(delay, bool) or not isinstance(delay, (int, sp.Basic)):
+            raise SceneError(f"the delay n = t_d/T must be a non-negative integer or 'n', got {delay!r}")
         value = sp.sympify(delay)
         if not (value.is_Integer and value >= 0):
             raise SceneError(f"the delay n = t_d/T must be a non-negative integer or 'n', got {delay}")
+        check("delay", int(value), "delay")
         return int(value)
 
     # -- roles ---------------------------------------------------------------------------------
@@ -731,67 +749,16 @@ _TYPES: dict[str, tuple[type, ...]] = {
 }
 
 
-class SceneFileError(InputFormatError):
-    """A scene file (or scene table) that cannot be read: names the file, line and field."""
-
-
-def line_of(text: str | None, key: str, table: str = "") -> int | None:
-    """The line (1-based) of ``key = ...`` in ``[table]`` of a TOML text (``None`` if not found).
-
-    >>> line_of('a = 1\\n[params]\\nK = 2\\n', "K", "params")
-    3
-    """
-    if not text:
-        return None
-    current = ""
-    pattern = re.compile(r"\s*(?:\"" + re.escape(key) + r"\"|'" + re.escape(key) + r"'|" + re.escape(key) + r")\s*=")
-    for number, line in enumerate(text.splitlines(), 1):
-        header = re.match(r"\s*\[+\s*([^\]]+?)\s*\]+", line)
-        if header:
-            current = header.group(1).strip()
-            continue
-        if current == table and pattern.match(line):
-            return number
-    return None
-
-
 def _where(source: str, text: str | None, key: str, table: str = "") -> str:
     line = line_of(text, key, table)
     return f"{source}:{line}" if line is not None else source
 
 
-def read_matrix(path: str | Path) -> tuple[list[list[str]], tuple[int, ...] | None]:
-    """Entries (text) and port sizes of a matrix file: rows of comma-separated entries ('#'
-    comments) or JSON (``{"matrix": [[...]], "ports": [..]}`` or a list of rows)."""
-    path = Path(path)
-    try:
-        content = path.read_text(encoding="utf-8")
-    except OSError as err:
-        raise SceneFileError(f"cannot read {path}: {err.strerror}") from None
-    ports = None
-    if path.suffix.lower() == ".json":
-        try:
-            data = json.loads(content)
-        except json.JSONDecodeError as err:
-            raise SceneFileError(f"{path}:{err.lineno}: invalid JSON ({err.msg})") from None
-        rows, ports = (data.get("matrix"), data.get("ports")) if isinstance(data, dict) else (data, None)
-        if not isinstance(rows, list) or not all(isinstance(r, list) for r in rows):
-            raise SceneFileError(f"{path}: expected a list of rows (or {{'matrix': [...]}})")
-        table = [[str(e) for e in r] for r in rows]
-    else:
-        table = []
-        for line in content.splitlines():
-            line = line.split("#", 1)[0].strip()
-            if line:
-                table.append([e.strip() for e in line.split(",")])
-    if not table:
-        raise SceneFileError(f"{path}: no matrix rows")
-    return table, (tuple(int(p) for p in ports) if ports else None)
-
-
 def _plain(value: Any) -> Any:
     """TOML values as the scene expects them (decimals as exact text)."""
     if isinstance(value, Decimal):
+        if not value.is_finite():
+            raise ValueError(f"{value} is not a number")
         return str(value)
     if isinstance(value, list):
         return [_plain(v) for v in value]
@@ -803,7 +770,8 @@ def _plain(value: Any) -> Any:
 def scene_from_table(table: Mapping[str, Any], where: str = "scene", base: str | Path | None = None,
                      assumptions: Mapping[str, str] | None = None, text: str | None = None, prefix: str = ""):
     """A :class:`~hapticproof.systems.scene.Scene` from a table of fields (a parsed scene file, or a
-    paper file's ``[scenes.X]``). ``base`` resolves a relative matrix file; ``assumptions``
+    paper file's ``[scenes.X]``). ``base`` is the folder of the file (default: the current
+    folder): a ``matrix`` file is read there only (relative, no ``..``, a regular file); ``assumptions``
     adds parameter assumptions from outside (a paper's ``[symbols]``), the table's own
     ``[params]`` winning; ``text`` and ``prefix`` (the table's TOML path, ``'scenes.wall'``)
     let errors name the line.
@@ -821,22 +789,40 @@ def scene_from_table(table: Mapping[str, Any], where: str = "scene", base: str |
         if not isinstance(value, _TYPES[key]) or (isinstance(value, bool) and bool not in _TYPES[key]):
             kinds = " or ".join(t.__name__.replace("Decimal", "number").replace("dict", "table").replace("str", "text")
                                 .replace("int", "integer").replace("list", "list") for t in _TYPES[key])
-            raise SceneFileError(f"{_where(where, text, key, prefix)}: field {key!r} must be {kinds}, got {value!r}")
-        fields[key] = _plain(value)
+            raise SceneFileError(f"{_where(where, text, key, prefix)}: field {key!r} must be {kinds}, got {_shown(value)}")
+        if key in ("delay", "ports") and isinstance(value, list):
+            allowed = (int,) if key == "ports" else (int, str)
+            bad = [v for v in value if isinstance(v, bool) or not isinstance(v, allowed)]
+            if bad:
+                what = "integers (port sizes)" if key == "ports" else "integers (one delay per user)"
+                raise SceneFileError(f"{_where(where, text, key, prefix)}: field {key!r} must be a list of {what}, "
+                                     f"got {_shown(bad[0])} in it")
+        if key == "params":       # each value is checked below, with its own line
+            fields[key] = dict(value)
+            continue
+        try:
+            fields[key] = _plain(value)
+        except ValueError as err:
+            raise SceneFileError(f"{_where(where, text, key, prefix)}: field {key!r}: {err}") from None
     if "system" not in fields:
         raise SceneFileError(f"{where}: missing field 'system' (single-user, multi-user, teleoperator or network)")
     params = dict(fields.pop("params", {}))
     for name, value in (assumptions or {}).items():
         params.setdefault(name, value)
     for name, value in params.items():
+        here = _where(where, text, name, (prefix + '.params').lstrip('.'))
         if isinstance(value, (list, dict)):
-            raise SceneFileError(f"{_where(where, text, name, (prefix + '.params').lstrip('.'))}: parameter {name!r} "
-                                 "must be a number, an expression or an assumption")
+            raise SceneFileError(f"{here}: parameter {name!r} must be a number, an expression or an assumption")
+        if isinstance(value, Decimal) and not value.is_finite():
+            raise SceneFileError(f"{here}: parameter {name!r}: '{value}' is not a number (a value is a "
+                                 "finite number, an expression or an assumption)")
+        params[name] = _plain(value)
     if isinstance(fields.get("matrix"), str):
-        path = Path(fields["matrix"])
-        if base is not None and not path.is_absolute():
-            path = Path(base) / path
-        rows, ports = read_matrix(path)
+        from hapticproof.core.files import file_in_folder
+
+        path = file_in_folder(base, fields["matrix"], f"{_where(where, text, 'matrix', prefix)}: field 'matrix'",
+                              owner=where if base is not None else None)
+        rows, ports = read_matrix(path, named_in=where)
         fields["matrix"] = rows
         if ports and "ports" not in fields:
             fields["ports"] = list(ports)
@@ -867,6 +853,19 @@ def _table_header(text: str | None, table: str) -> int | None:
     return None
 
 
+def _shown(value: Any, limit: int = 60) -> str:
+    """A value for an error message, shortened (a file's table may be large)."""
+    text = repr(_plain_safe(value))
+    return text if len(text) <= limit else text[:limit - 3] + "..."
+
+
+def _plain_safe(value: Any) -> Any:
+    try:
+        return _plain(value)
+    except ValueError:
+        return value
+
+
 def _field_in(message: str, keys: list[str]) -> str | None:
     for key in sorted(keys, key=len, reverse=True):
         if message.startswith(key) or f" {key}" in message or f"{key}:" in message or f"{key!r}" in message:
@@ -874,25 +873,29 @@ def _field_in(message: str, keys: list[str]) -> str | None:
     return None
 
 
+def read_toml(text: str, where: str, error: type[Exception] | None = None) -> dict[str, Any]:
+    """:func:`hapticproof.core.tomltext.read_toml`, its errors :class:`SceneFileError` by default."""
+    return _read_toml(text, where, error or SceneFileError)
+
+
 def loads(text: str, where: str = "scene", base: str | Path | None = None):
-    """A scene from the text of a scene file."""
-    try:
-        table = tomllib.loads(text, parse_float=Decimal)
-    except tomllib.TOMLDecodeError as err:
-        raise SceneFileError(f"{where}: {err}") from None
+    """A scene from the text of a scene file (``base``: the folder its ``matrix`` file is in;
+    default the current folder)."""
+    table = read_toml(text, where)
     return scene_from_table(table, where=where, base=base, text=text)
 
 
 def read_scene(path: str | Path):
     """A scene from a scene file (``-``: standard input)."""
-    if str(path) == "-":
-        return loads(sys.stdin.read(), "<stdin>")
-    path = Path(path)
+    from hapticproof.core.files import FileAccessError, read_text
+
     try:
-        text = path.read_text(encoding="utf-8")
-    except OSError as err:
-        raise SceneFileError(f"cannot read {path}: {err.strerror}") from None
-    return loads(text, str(path), base=path.parent)
+        text = read_text(path, "<stdin>" if str(path) == "-" else str(path))
+    except FileAccessError as err:
+        raise SceneFileError(str(err)) from None
+    if str(path) == "-":
+        return loads(text, "<stdin>")
+    return loads(text, str(path), base=Path(path).parent)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -991,7 +994,6 @@ def write_scene(scene, path: str | Path) -> Path | None:
     if str(path) == "-":
         sys.stdout.write(text)
         return None
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(text, encoding="utf-8")
-    return path
+    from hapticproof.core.files import write_atomic
+
+    return write_atomic(path, text)          # whole or not at all; no folder created

@@ -39,7 +39,7 @@ import sympy as sp
 
 from hapticproof.core.errors import HapticproofError, SceneError
 
-__all__ = ["check_declared", "check_positive_roles", "param_value"]
+__all__ = ["refuse_cycles", "check_declared", "check_positive_roles", "param_value"]
 
 
 def param_value(name: str, value: Any, where: str) -> Any:
@@ -118,3 +118,36 @@ def check_positive_roles(scene: Any, mapping: Mapping[sp.Symbol, Any]) -> None:
             if value is not None and value.is_number and not value > 0:
                 what = role.meaning.replace(" (stability only)", "")
                 raise SceneError(f"{what} {name} must be positive, got {sp.sstr(value)}")
+
+
+def refuse_cycles(params: Mapping[str, Any]) -> None:
+    """Parameters defined in terms of each other (``K = "B*2"``, ``B = "K/2"``; ``K = "K/2"``)
+    define nothing: one line naming the cycle.
+
+    >>> refuse_cycles({"K": sp.Symbol("B") * 2, "B": sp.Symbol("K") / 2})
+    Traceback (most recent call last):
+    ...
+    hapticproof.core.errors.SceneError: parameters defined in a cycle: B = K/2, K = 2*B (give one of them a value or an assumption)
+    """
+    defined = {k: v for k, v in params.items() if isinstance(v, sp.Basic) and not v.is_Number}
+    uses = {k: sorted(s.name for s in v.free_symbols if s.name in defined) for k, v in defined.items()}
+    state: dict[str, int] = {}      # 1: on the path, 2: done
+
+    for root in sorted(uses):
+        if state.get(root):
+            continue
+        path, stack = [root], [iter(uses[root])]
+        state[root] = 1
+        while stack:
+            following = next(stack[-1], None)
+            if following is None:
+                state[path.pop()] = 2
+                stack.pop()
+            elif state.get(following) == 1:
+                cycle = path[path.index(following):]
+                shown = ", ".join(f"{name} = {sp.sstr(defined[name])}" for name in cycle)
+                raise SceneError(f"parameters defined in a cycle: {shown} (give one of them a value or an assumption)")
+            elif not state.get(following):
+                state[following] = 1
+                path.append(following)
+                stack.append(iter(uses[following]))

@@ -12,6 +12,7 @@ from dataclasses import replace
 from typing import Any
 
 import sympy as sp
+from hapticproof.core.limits import check_power, degree_bound
 from hapticproof.audit.reader.lexer import ALIGN_ENVS, DELIMITER_PAIRS, GREEK, MATRIX_ENVS, MULTIPLY, OPENERS, Token, is_relation
 from hapticproof.audit.reader.names import Script, index_symbol, sympy_name
 from hapticproof.audit.reader.statements import Elision, IndexedMax, IndexedMin, Norm, PrintedLimit, RELATION_CLASSES, Relation, is_matrix
@@ -164,7 +165,7 @@ class ConstructRules:
         t = self.peek()
         if t.kind == "op" and t.value == "{":
             return self.parse_group(context)
-        if t.kind == "number" and t.value.isdigit():
+        if t.kind == "number" and t.value.isascii() and t.value.isdigit():
             if len(t.value) == 1:
                 self.next()
             else:  # TeX reads one digit per argument: \frac12 is 1/2
@@ -244,6 +245,8 @@ class ConstructRules:
         if is_matrix(argument):
             raise self.error(f"{cmd.value} of a matrix", cmd)
         value = self.combine(lambda: func(argument), cmd, cmd.value)
+        if power is not None and getattr(power, "is_Integer", False):
+            check_power(None, int(power), f"printed display, position {cmd.pos}", degree=degree_bound(value))
         return value if power is None else value**power
 
     def parse_part(self) -> Any:

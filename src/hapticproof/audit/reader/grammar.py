@@ -341,11 +341,17 @@ class Parser(NameRules, ConstructRules):
     # -- expressions ------------------------------------------------------------------------------
     def parse_sum(self) -> Any:
         value = self.parse_signed()
+        terms: list[Any] = []       # scalar terms, added at once (one by one, a long sum is sorted n times)
         while True:
             t = self.peek()
             if t.kind == "op" and t.value in "+-":
                 self.next()
                 rhs = self.parse_signed()
+                if isinstance(value, sp.Expr) and isinstance(rhs, sp.Expr):
+                    terms.append(rhs if t.value == "+" else -rhs)
+                    continue
+                if terms:
+                    value, terms = sp.Add(value, *terms), []
                 if t.value == "+":
                     value = self.combine(lambda v=value, r=rhs: v + r, t, "a sum")
                 else:
@@ -353,7 +359,7 @@ class Parser(NameRules, ConstructRules):
             elif t.kind == "cmd" and t.value in ("\\pm", "\\mp"):
                 raise self.error(f"{t.value} stands for two statements; write them separately")
             else:
-                return value
+                return sp.Add(value, *terms) if terms else value
 
     def parse_signed(self) -> Any:
         t = self.peek()

@@ -9,6 +9,7 @@ from dataclasses import dataclass, replace
 
 
 from hapticproof.core.errors import LatexParseError
+from hapticproof.core.limits import check_number_text
 
 
 
@@ -226,14 +227,15 @@ def tokenize(text: str, start: int = 0, stop: int | None = None) -> list[Token]:
         if ch.isascii() and ch.isalpha():
             emit("letter", ch, i + 1)
             i += 1
-        elif ch.isdigit():
+        elif "0" <= ch <= "9":      # digits 0-9 only (str.isdigit takes ² and Arabic-Indic digits)
             j = i
-            while j < stop and text[j].isdigit():
+            while j < stop and "0" <= text[j] <= "9":
                 j += 1
-            if j + 1 < stop and text[j] == "." and text[j + 1].isdigit():
+            if j + 1 < stop and text[j] == "." and "0" <= text[j + 1] <= "9":
                 j += 1
-                while j < stop and text[j].isdigit():
+                while j < stop and "0" <= text[j] <= "9":
                     j += 1
+            check_number_text(text[i:j], f"printed display, position {i}")
             emit("number", text[i:j], j)
             i = j
         elif text.startswith("...", i):

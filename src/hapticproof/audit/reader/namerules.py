@@ -11,6 +11,7 @@ from collections.abc import Callable
 from typing import Any
 
 import sympy as sp
+from hapticproof.core.limits import check_power, degree_bound
 from hapticproof.audit.reader.lexer import DECORATIONS, GREEK, PROSE_WORDS, Token
 from hapticproof.audit.reader.names import FamilySpec, Script, canonical_name, compose_name, index_symbol, read_name_base, split_commas, subscript_slots
 from hapticproof.audit.reader.statements import IndexedCall, is_matrix
@@ -256,7 +257,7 @@ class NameRules:
                 literals += 1
             elif text in self.table.indices:
                 indices.append(self.bound(text) or index_symbol(text))
-            elif text.isdigit():
+            elif text.isascii() and text.isdigit():
                 indices.append(sp.Integer(text))
             else:
                 return None
@@ -291,6 +292,9 @@ class NameRules:
                 f"add '{name}^{{{canon}}}' to the table",
                 sup.op,
             )
+        if getattr(exponent, "is_Integer", False):   # bounded before it is built (K^{99999999})
+            check_power(value if getattr(value, "is_Rational", False) else None, int(exponent),
+                        f"printed display, position {sup.op.pos}", degree=degree_bound(value))
         return self.combine(lambda: value**exponent, sup.op, "a power")
 
     def apply(self, func: Callable[..., Any], name: str, start: Token) -> Any:

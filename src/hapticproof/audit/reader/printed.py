@@ -94,6 +94,7 @@ from typing import Any
 
 
 from hapticproof.core.errors import LatexParseError
+from hapticproof.core.limits import LimitError, check_depth
 from hapticproof.audit.reader.grammar import Parser
 from hapticproof.audit.reader.lexer import ALIGN_ENVS, LABEL, Token, closer_key, demote_separators, is_binary, is_relation, matching_close, opener_key, tokenize
 from hapticproof.audit.reader.names import SymbolTable
@@ -287,6 +288,16 @@ def parse_printed(text: str, table: SymbolTable) -> Statement:
     >>> parse_printed(r'b > KT - 2B \cos \omega T \quad (34)', t2).rhs
     -2*B*cos(T*omega) + K*T
     """
+    try:
+        return _parse_printed(text, table)
+    except RecursionError:    # a construct nested in a way the depth check does not count
+        raise LimitError("printed display: nested too deeply") from None
+
+
+def _parse_printed(text: str, table: SymbolTable) -> Statement:
+    # bounded before the recursive parser starts: nesting, and (in the lexer and the grammar)
+    # the size of numbers and exponents
+    check_depth(text, "printed display")
     lo, hi = strip_math_delimiters(text)
     toks = demote_separators(tokenize(text, lo, hi))
     matching_close(text, toks)
