@@ -397,7 +397,7 @@ def test_export_refuses_what_is_not_a_saved_audit(tmp_path, capsys, content, exp
 @pytest.mark.parametrize("field, expected", [
     ('delay = "1/0"', "must be a non-negative integer"), ('delay = [[1]]', "must be a list of integers"),
     ('delay = "\u0661\u0666"', "must be a non-negative integer"), ("users = 2.5", "must be integer"),
-    ("[params]\nK = \"\u0662\"", "unexpected character"), ("[params]\nK = inf", "infinity is not a number"),
+    ("[params]\nK = \"\u0662\"", "unexpected character"), ("[params]\nK = inf", "'Infinity' is not a finite number"),
     ("delay = [" * 200 + "]" * 200, "levels of nesting"),
 ])
 def test_scene_fields_of_the_wrong_form_are_one_line(tmp_path, capsys, field, expected):

@@ -813,10 +813,8 @@ def scene_from_table(table: Mapping[str, Any], where: str = "scene", base: str |
         here = _where(where, text, name, (prefix + '.params').lstrip('.'))
         if isinstance(value, (list, dict)):
             raise SceneFileError(f"{here}: parameter {name!r} must be a number, an expression or an assumption")
-        if isinstance(value, Decimal) and not value.is_finite():
-            raise SceneFileError(f"{here}: parameter {name!r}: '{value}' is not a number (a value is a "
-                                 "finite number, an expression or an assumption)")
-        params[name] = _plain(value)
+        # a non-finite TOML float (nan, inf) goes on as its text: systems.values refuses it
+        params[name] = str(value) if isinstance(value, Decimal) and not value.is_finite() else _plain(value)
     if isinstance(fields.get("matrix"), str):
         from hapticproof.core.files import file_in_folder
 
