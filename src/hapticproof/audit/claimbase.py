@@ -43,6 +43,10 @@ class State:
     #: set by a checker when its verdict rests on exact symbolic comparisons (a repair search is cheap)
     repairable: bool = False
     cache: dict = field(default_factory=dict)
+    #: the change of variables of the region the scene is restricted to (None: none)
+    chart: Any = None
+    #: the claim and paper file as written, before any region restricted the scene
+    origin: Any = None
 
     @functools.cached_property
     def scene(self) -> Any:

@@ -123,9 +123,10 @@ class PaperFileError(InputFormatError):
 class ClaimSpec:
     """One ``[[equations]]`` entry: a printed display and what it claims.
 
-    ``under`` holds the substitutions of a same-as claim and ``assumption`` those of a
-    condition's stated assumption, each as ``((name, LaTeX value), ...)`` read with the file's
-    symbols; ``line`` is the entry's first line in the file.
+    ``under`` holds the substitutions of a same-as claim as ``((name, value), ...)`` and
+    ``assumption`` a condition's stated assumption as a :class:`~hapticproof.audit.regions.Region`
+    (equalities, inequalities, intervals, relations), each read with the file's symbols;
+    ``line`` is the entry's first line in the file.
     """
 
     id: str
@@ -137,7 +138,7 @@ class ClaimSpec:
     under: tuple[tuple[sp.Symbol, sp.Expr], ...] = ()
     order: str = "exact"
     form: str = "auto"
-    assumption: tuple[tuple[sp.Symbol, sp.Expr], ...] = ()
+    assumption: Any = None                 # a hapticproof.audit.regions.Region (None: no assumption)
     solve_for: str | None = None
     notes: str = ""
     line: int | None = None
@@ -171,6 +172,8 @@ class PaperFile:
     scenes: Mapping[str, Any]
     claims: tuple[ClaimSpec, ...]
     text: str = field(repr=False, default="")
+    #: the relations of ``[symbols]`` (``0 <= a < 1``): a region every claim is decided in
+    region: Any = None
     paper: Any = field(repr=False, default=None)
     _tables: dict = field(repr=False, compare=False, default_factory=dict)
 
@@ -278,8 +281,14 @@ def _assumption_kwargs(word: str) -> dict[str, bool]:
     return dict(ASSUMPTIONS[word])
 
 
-def _read_symbols(raw: Mapping[str, Any], path: str, text: str) -> tuple[Any, dict[str, str]]:
-    """The symbol table of ``[symbols]`` and the word of each declared name."""
+#: An assumption in ``[symbols]`` rather than a word or a definition: a relation.
+_RELATION = re.compile(r"<|>|\\(?:le|ge|leq|geq|leqslant|geqslant|lt|gt|in)(?![A-Za-z])")
+
+
+def _read_symbols(raw: Mapping[str, Any], path: str,
+                  text: str) -> tuple[Any, dict[str, str], Any, dict[str, int | None]]:
+    """The symbol table of ``[symbols]``, the word of each declared name, the region of the
+    relations it states (``a = "0 <= a < 1"``) and the line of each."""
     from hapticproof.audit.reader.names import IndexedFamily, SymbolTable, sympy_name, normalise_name
     from hapticproof.core.symbols import s as S_SYM
     from hapticproof.core.symbols import z as Z_SYM
@@ -289,6 +298,7 @@ def _read_symbols(raw: Mapping[str, Any], path: str, text: str) -> tuple[Any, di
     families: list[Any] = []
     words: dict[str, str] = {}
     definitions: list[tuple[str, str, str, int | None]] = []
+    relations: list[tuple[str, str, str, int | None]] = []
     for key, value in raw.items():
         line = _table_line(text, key, "symbols")
         where = f"{_at(path, line)}: symbols: {key}"
@@ -302,6 +312,10 @@ def _read_symbols(raw: Mapping[str, Any], path: str, text: str) -> tuple[Any, di
         name = sympy_name(canonical)
         if name in ("z", "s"):
             raise PaperFileError(f"{where}: z and s are the transform variables; they need no declaration")
+        if _RELATION.search(value):
+            relations.append((printed, name, value, line))
+            symbols[printed] = sp.Symbol(name, real=True)
+            continue
         parts = [w for w in re.split(r"[\s,]+", value.strip().lower()) if w]
         if re.fullmatch(r"[a-z]+(?:[\s,]+[a-z]+)*", value.strip()):
             unknown = [w for w in parts if w not in WORDS and w != "symmetric"]
@@ -333,6 +347,11 @@ def _read_symbols(raw: Mapping[str, Any], path: str, text: str) -> tuple[Any, di
             continue
         definitions.append((printed, name, value, line))
     table = SymbolTable(symbols=symbols, functions=functions, families=families)
+    region, lines = _read_relations(relations, table, words, path)
+    if relations:
+        table = table.with_symbols({printed: sp.Symbol(name, **_assumption_kwargs(words[name]))
+                                    for printed, name, _value, _line in relations})
+        region, lines = _read_relations(relations, table, words, path)
     for printed, name, value, line in definitions:
         try:
             expr = _parse_value(value, table)
@@ -340,7 +359,33 @@ def _read_symbols(raw: Mapping[str, Any], path: str, text: str) -> tuple[Any, di
             raise PaperFileError(f"{_at(path, line)}: symbols: {printed}: the definition does not read: {err}") from None
         table = table.with_symbols({printed: expr})
         words[name] = "definition"
-    return table, words
+    return table, words, region, lines
+
+
+def _read_relations(relations: list[tuple[str, str, str, int | None]], table: Any, words: dict[str, str],
+                    path: str) -> tuple[Any, dict[str, int | None]]:
+    """The region of the ``[symbols]`` relations; each restricted name gets the sign the
+    relation implies (``0 <= a < 1``: nonnegative), else ``real``."""
+    from hapticproof.audit.regions import Region, RegionError, read_region
+
+    restrictions = []
+    lines: dict[str, int | None] = {}
+    for printed, name, value, line in relations:
+        try:
+            region = read_region(value, table, key=name)
+        except RegionError as err:
+            raise PaperFileError(f"{_at(path, line)}: symbols: {printed}: {err}") from None
+        (restriction,) = region.restrictions
+        if restriction.is_equality():
+            raise PaperFileError(f"{_at(path, line)}: symbols: {printed}: an equality is a definition: write the value "
+                                 f"alone ({printed} = '...'), or make it an equation's assumption")
+        words[name] = restriction.sign_word() or "real"
+        restrictions.append(restriction)
+        lines[name] = line
+    try:
+        return Region(tuple(restrictions)), lines
+    except RegionError as err:
+        raise PaperFileError(f"{path}: symbols: {err}") from None
 
 
 def _parse_value(text: str, table: Any) -> sp.Expr:
@@ -358,7 +403,8 @@ def _parse_value(text: str, table: Any) -> sp.Expr:
 # ---------------------------------------------------------------------------------------------
 
 
-def _read_scenes(raw: Any, path: str, text: str, words: Mapping[str, str]) -> dict[str, Any]:
+def _read_scenes(raw: Any, path: str, text: str, words: Mapping[str, str], region: Any = None,
+                 region_lines: Mapping[str, int | None] | None = None) -> dict[str, Any]:
     from hapticproof.systems.scene import SceneFileError, scene_from_table
 
     if not isinstance(raw, Mapping):
@@ -371,6 +417,7 @@ def _read_scenes(raw: Any, path: str, text: str, words: Mapping[str, str]) -> di
         where = f"{_at(path, header)}: scene {name!r}"
         if not isinstance(table, Mapping):
             raise PaperFileError(f"{where}: a scene is a table of fields ([scenes.{name}])")
+        _check_declarations(table, name, path, text, prefix, words, region, region_lines or {})
         try:
             first = scene_from_table(table, where=path, base=base, text=text, prefix=prefix)
             used = first.names() | set(first.assumptions)
@@ -388,6 +435,45 @@ def _read_scenes(raw: Any, path: str, text: str, words: Mapping[str, str]) -> di
             raise PaperFileError(f"{_at(path, line or header)}: scene {name!r}: {err}") from None
         scenes[name] = scene
     return scenes
+
+
+_SIGNS = ("positive", "nonnegative", "real", "integer", "negative", "nonpositive")
+
+
+def _check_declarations(table: Mapping[str, Any], name: str, path: str, text: str, prefix: str,
+                        words: Mapping[str, str], region: Any, region_lines: Mapping[str, int | None]) -> None:
+    """A scene parameter must not contradict ``[symbols]``: another sign word (``B = "real"``
+    in the scene, ``B = "nonnegative"`` in ``[symbols]``: is ``|B|`` then ``B``?) or a value
+    outside the declared region is one error naming both lines."""
+    params = table.get("params", {}) if isinstance(table, Mapping) else {}
+    if not isinstance(params, Mapping):
+        return
+    for key, value in params.items():
+        here = _at(path, _table_line(text, key, f"{prefix}.params"))
+        declared = words.get(key)
+        there = _at(path, region_lines.get(key) or _table_line(text, key, "symbols"))
+        if isinstance(value, str) and value.strip() in _SIGNS and declared in _SIGNS and value.strip() != declared:
+            raise PaperFileError(f"{here}: scene {name!r}: params: {key} = {value.strip()!r} contradicts [symbols] "
+                                 f"({there}: {key} is {declared!r}); declare it once, in [symbols] or in the scene")
+        restriction = region.get(key) if region else None
+        if restriction is None:
+            continue
+        if isinstance(value, str) and value.strip() in _SIGNS:
+            if value.strip() != declared:
+                raise PaperFileError(f"{here}: scene {name!r}: params: {key} = {value.strip()!r} contradicts [symbols] "
+                                     f"({there}: {restriction.text_form()}); declare it once")
+            continue
+        number = None
+        if isinstance(value, (int, Decimal)) and not isinstance(value, bool):
+            number = sp.Rational(str(value))
+        elif isinstance(value, str):
+            try:
+                number = sp.Rational(value.strip())
+            except (TypeError, ValueError):
+                number = None
+        if number is not None and restriction.contains(number) is False:
+            raise PaperFileError(f"{here}: scene {name!r}: params: {key} = {value} lies outside [symbols] "
+                                 f"({there}: {restriction.text_form()})")
 
 
 def _header_line(text: str, table: str) -> int | None:
@@ -488,7 +574,22 @@ def _check_other(other: str, ids: set[str], where: str) -> None:
         raise PaperFileError(f"{where}: paper {paper.id!r} has no equation {eq_id!r} (it has {len(ids)}: {shown})") from None
 
 
-def _read_equations(raw: Any, path: str, text: str, table: Any, scenes: Mapping[str, Any]) -> tuple[ClaimSpec, ...]:
+def _assumption(text: str, table: Any, where: str, region: Any) -> Any:
+    """An equation's ``assumption``: a region (``"B = 0"``, ``'B \\leq \\frac{KT}{2}'``, ``"0 <= a < 1/2"``)
+    that must not contradict the file's ``[symbols]``."""
+    from hapticproof.audit.regions import RegionError, read_region
+
+    try:
+        stated = read_region(text, table)
+        if region:
+            region & stated                      # contradicts [symbols]? (RegionError)
+    except RegionError as err:
+        raise PaperFileError(f"{where}: {err}") from None
+    return stated
+
+
+def _read_equations(raw: Any, path: str, text: str, table: Any, scenes: Mapping[str, Any],
+                    region: Any = None) -> tuple[ClaimSpec, ...]:
     from hapticproof.audit.reader.printed import parse_printed
 
     if not isinstance(raw, list):
@@ -571,8 +672,8 @@ def _read_equations(raw: Any, path: str, text: str, table: Any, scenes: Mapping[
         if "assumption" in entry:
             if claim not in CONDITION_CLAIMS:
                 raise PaperFileError(f"{where('assumption')}: assumption applies to condition claims")
-            fields["assumption"] = _substitutions(_text_field(entry["assumption"], where("assumption"), "assumption"),
-                                                  table, where("assumption"))
+            fields["assumption"] = _assumption(_text_field(entry["assumption"], where("assumption"), "assumption"),
+                                               table, where("assumption"), region)
         # names: an unknown name is the file's mistake (declare it); other parse errors are the
         # paper's (the audit calls them malformed)
         check_table = table
@@ -630,14 +731,14 @@ def loads(text: str, path: str = "paper.toml") -> PaperFile:
     raw_symbols = data.get("symbols", {})
     if not isinstance(raw_symbols, Mapping):
         raise PaperFileError(f"{path}: [symbols] must be a table of names")
-    table, words = _read_symbols(raw_symbols, path, text)
-    scenes = _read_scenes(data.get("scenes", {}), path, text, words)
-    claims = _read_equations(data.get("equations", []), path, text, table, scenes)
+    table, words, region, region_lines = _read_symbols(raw_symbols, path, text)
+    scenes = _read_scenes(data.get("scenes", {}), path, text, words, region, region_lines)
+    claims = _read_equations(data.get("equations", []), path, text, table, scenes, region)
     if not claims:
         raise PaperFileError(f"{path}: no [[equations]] to audit")
     result = PaperFile(path=path, id=values["id"], title=values["title"], authors=values.get("authors", ""),
                        source=values.get("source", "") or path, symbols=table, words=words, scenes=scenes,
-                       claims=claims, text=text)
+                       claims=claims, text=text, region=region)
     object.__setattr__(result, "paper", _register(result))
     return result
 
