@@ -82,11 +82,24 @@ def inverse_transfer(state: State) -> Finding:
         from hapticproof.systems.multiuser import inverse_transfer_matrix
 
         derived = inverse_transfer_matrix(state.model)
-    members = claimed_members(state, display_members(state.statement))
+    written = display_members(state.statement)
+    members = claimed_members(state, written)
     if not members:
         return malformed_finding("no member of the display states G^-1(z): every member is a signal, a name or an unknown function",
                           derived=derived)
+    if _names_g(written):
+        # G(z) = ... states G itself: its inverse is compared
+        members = [m.inv() if isinstance(m, sp.MatrixBase) else sp.cancel(1 / m) for m in members]
+        return _compare_members(state, members, derived, "G(z) (inverted)")
     return _compare_members(state, members, derived, "G^-1(z)")
+
+
+def _names_g(members: list[Any]) -> bool:
+    """Whether the display names ``G(z)`` (not ``G^{-1}(z)``) as one of its members."""
+    for member in members:
+        if isinstance(member, sp.core.function.AppliedUndef) and member.func.__name__ == "G":
+            return True
+    return False
 
 
 def residue(state: State) -> Finding:

@@ -249,7 +249,7 @@ def _at(path: str, line: int | None) -> str:
 # ---------------------------------------------------------------------------------------------
 
 
-def _printed_key(key: str) -> str:
+def printed_key(key: str) -> str:
     r"""The printed name of a ``[symbols]`` key: ``omega`` is ``\omega``, ``mathcal{M}`` is
     ``\mathcal{M}``; other keys are printed names already."""
     from hapticproof.audit.reader.lexer import DECORATIONS, GREEK
@@ -294,7 +294,10 @@ def _read_symbols(raw: Mapping[str, Any], path: str,
     from hapticproof.core.symbols import z as Z_SYM
 
     symbols: dict[str, Any] = {"z": Z_SYM, "s": S_SYM}
-    functions: dict[str, Any] = {"H": sp.Function("H"), "C": sp.Function("C")}
+    # what everybody writes without declaring it: G(z), G^{-1}(z), H(z), C(z) are functions
+    # (H and C bound to the scene's environment and controller), \Re and \operatorname{Re} real parts
+    functions: dict[str, Any] = {"H": sp.Function("H"), "C": sp.Function("C"), "G": sp.Function("G"),
+                                 "G^{-1}": sp.Function(sympy_name(normalise_name("G^{-1}")))}
     families: list[Any] = []
     words: dict[str, str] = {}
     definitions: list[tuple[str, str, str, int | None]] = []
@@ -304,7 +307,7 @@ def _read_symbols(raw: Mapping[str, Any], path: str,
         where = f"{_at(path, line)}: symbols: {key}"
         if not isinstance(value, str) or not value.strip():
             raise PaperFileError(f"{where}: expected a word ({', '.join(WORDS)}) or a definition in LaTeX, got {value!r}")
-        printed = _printed_key(key.strip())
+        printed = printed_key(key.strip())
         try:
             canonical = normalise_name(printed)
         except LatexParseError as err:
@@ -346,6 +349,13 @@ def _read_symbols(raw: Mapping[str, Any], path: str,
                 symbols[printed] = sp.Symbol(name, **_assumption_kwargs(word))
             continue
         definitions.append((printed, name, value, line))
+    from hapticproof.core.symbols import n as N_SYM
+    from hapticproof.core.symbols import omega as OMEGA
+
+    # the toolkit's fixed names, unless declared: the frequency, the delay time t_d = n T, n
+    for printed, symbol in (("\\omega", OMEGA), ("t_d", sp.Symbol("t_d", nonnegative=True)), ("n", N_SYM)):
+        if normalise_name(printed) not in {normalise_name(k) for k in symbols}:
+            symbols[printed] = symbol
     table = SymbolTable(symbols=symbols, functions=functions, families=families)
     region, lines = _read_relations(relations, table, words, path)
     if relations:
@@ -499,7 +509,7 @@ def bound_table(paper: PaperFile, scene: Any, key: Any) -> Any:
     """
     if key in paper._tables:
         return paper._tables[key]
-    table = paper.symbols
+    table = with_scene_names(paper.symbols, scene)
     if scene is not None:
         from hapticproof.core.symbols import z as Z_SYM
 
@@ -513,6 +523,37 @@ def bound_table(paper: PaperFile, scene: Any, key: Any) -> Any:
                 table = table.with_functions({name: bound})
     paper._tables[key] = table
     return table
+
+
+def with_scene_names(table: Any, scene: Any) -> Any:
+    """The table with the scene's parameters a display may name without declaring them
+    (``[scenes.X.params] b_v = "positive"``: ``b_v`` in a display is that parameter, with the
+    scene's assumption); names ``[symbols]`` declares keep their declaration."""
+    if scene is None:
+        return table
+    from hapticproof.audit.reader.names import normalise_name
+
+    known = set(table.symbols) | set(table.functions)
+    extra = {}
+    for name in sorted(scene.names()):
+        try:
+            printed = normalise_name(printed_key(name))
+        except LatexParseError:
+            continue
+        if printed not in known and not _family_member(table, printed):
+            extra[printed] = scene.symbol(name)
+    return table.with_symbols(extra) if extra else table
+
+
+def _family_member(table: Any, printed: str) -> bool:
+    """Whether a declared indexed family (``K_{ij}``) already reads the name."""
+    from hapticproof.audit.reader.names import name_parts
+
+    try:
+        parts = name_parts(printed)
+    except LatexParseError:
+        return False
+    return parts.sub is not None and any(name_parts(pattern).base == parts.base for pattern in table.families)
 
 
 def _substitution(scene: Any) -> dict[sp.Symbol, Any]:
@@ -676,7 +717,7 @@ def _read_equations(raw: Any, path: str, text: str, table: Any, scenes: Mapping[
                                                table, where("assumption"), region)
         # names: an unknown name is the file's mistake (declare it); other parse errors are the
         # paper's (the audit calls them malformed)
-        check_table = table
+        check_table = with_scene_names(table, scenes.get(fields.get("scene")))
         try:
             parse_printed(printed, check_table)
         except LatexParseError as err:
