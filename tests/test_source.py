@@ -11,7 +11,7 @@ import pytest
 
 from hapticproof.audit.source import displays as texsource
 from hapticproof.audit.source import guess
-from hapticproof.audit.source.displays import read_source, read_text
+from hapticproof.audit.source.read import read_source, read_text
 from hapticproof.audit.source.tex import SourceError
 from hapticproof.core.errors import InputFormatError
 

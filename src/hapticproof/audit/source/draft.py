@@ -16,7 +16,7 @@ names (``K_{01}``, ``b_i``) ``m`` users; ``t_d`` or ``n`` a delayed wall; else t
 ``K + B(z - 1)/(Tz)`` on the HVE device model. Each is one ``[scenes.X]`` table the reviewer
 edits into the paper's system.
 
->>> from hapticproof.audit.source.displays import read_text
+>>> from hapticproof.audit.source.read import read_text
 >>> src = read_text(r'''\section{Wall}
 ... \begin{equation} b > \frac{KT}{2} + B \label{eq:wall} \end{equation}
 ... \begin{equation} x_h(k+1) = x_h(k) + T v_h(k) \end{equation}''', "wall.tex")

@@ -409,14 +409,13 @@ def symbol_guesses(display_text: str) -> dict[str, tuple[str, str]]:
             sub, k = _group(tokens, k + 1)
             sub = " ".join(sub.split())
         inverse = False
-        star = False
         while k < len(tokens) and tokens[k] == "^":
             sup, after = _group(tokens, k + 1)
             sup_clean = sup.replace(" ", "")
             if sup_clean == "-1":
                 inverse, k = True, after
-            elif sup_clean in _MARKS:
-                star, k = sup_clean == "*", after
+            elif sup_clean in _MARKS:          # a transpose, conjugate or star: a mark, not a power
+                k = after
             else:
                 break
         argument = _parenthesised(tokens, k)
