@@ -393,6 +393,9 @@ def compare_conditions(printed: Any, exact: Any, state: State, *, claim: str, wh
     exact = _drop_trivial(exact)
     if exact in (sp.true, sp.false):
         return _constant_exact(printed, exact, state, claim, what, derived)
+    paired = _compare_conjunctions(printed, exact, state, claim, what, verify, derived)
+    if paired is not None:
+        return paired
     var = _variable(printed, exact, state)
     if state.repairing:
         quick = _quick_reject(printed, exact, var, claim)
@@ -430,6 +433,103 @@ def compare_conditions(printed: Any, exact: Any, state: State, *, claim: str, wh
                    Evidence(Method.INSTANCES, instances=count,
                             witness=witness_json(stronger) if stronger is not None else None, facts={"exact": exact}),
                    derived=derived)
+
+
+def _pairs(printed: Any, exact: Any) -> list[tuple[Any, Any, sp.Symbol]] | None:
+    """Printed and exact conjunctions that bound the same parameters from below, one conjunct
+    each (``b_m > KT + 2B, b_s > KT + 2B`` against ``b_m >= ..., b_s >= ...``), matched by
+    parameter; None when they are not."""
+    p_parts, e_parts = conjuncts(printed), conjuncts(exact)
+    if len(e_parts) < 2 or len(p_parts) != len(e_parts):
+        return None
+    out = []
+    used: set[int] = set()
+    for e in e_parts:
+        match = None
+        for var in sorted(sp.sympify(e).free_symbols - {C_SYM}, key=str):
+            eb = _bound(e, var)
+            if eb is None or not eb.lower or eb.bound.has(*[v for *_x, v in out]):
+                continue
+            for k, p in enumerate(p_parts):
+                pb = _bound(p, var) if k not in used else None
+                if pb is not None and pb.lower:
+                    match = (k, p, var)
+                    break
+            if match:
+                break
+        if match is None:
+            return None
+        used.add(match[0])
+        out.append((match[1], e, match[2]))
+    variables = [v for *_x, v in out]
+    if len(set(variables)) != len(variables):
+        return None
+    return out
+
+
+def _compare_conjunctions(printed: Any, exact: Any, state: State, claim: str, what: str,
+                          verify: Callable | None, derived: Any) -> Finding | None:
+    """Conjunctions of bounds on distinct parameters, compared bound by bound; a witness of one
+    bound is completed with the others' parameters above both their bounds (so the rest of both
+    conditions holds there) and re-checked by ``verify``."""
+    if not (isinstance(printed, sp.And) and isinstance(exact, sp.And)):
+        return None
+    pairs = _pairs(printed, exact)
+    if pairs is None:
+        return None
+    findings = []
+    for p, e, var in pairs:
+        try:
+            f = compare_bounds(e, p, var, what=what) if claim == "necessary" else compare_bounds(p, e, var, what=what)
+        except (TypeError, ValueError, AssertionError):
+            return None
+        findings.append((f, p, e, var))
+    state.repairable = True
+    verdicts = {f.verdict for f, *_ in findings}
+    if verdicts == {Verdict.CONFIRMED}:
+        return Finding(Verdict.CONFIRMED, f"{what} is equivalent to the exact condition {sp.sstr(exact)}, bound by bound "
+                       f"({', '.join(str(v) for *_x, v in findings)})", Evidence(Method.CANONICAL_FORM, facts={"exact": exact}),
+                       derived=derived)
+    if verdicts <= {Verdict.CONFIRMED, Verdict.CONSERVATIVE}:
+        if claim == "necessary":
+            return Finding(Verdict.CONFIRMED, f"{what} is necessary: the exact condition implies it bound by bound",
+                           Evidence(Method.ENDPOINT_ANALYSIS, facts={"exact": exact}), derived=derived)
+        return Finding(Verdict.CONSERVATIVE, f"{what} implies the exact condition bound by bound (a bound exceeds the exact "
+                       "one) but not conversely", Evidence(Method.ENDPOINT_ANALYSIS, facts={"exact": exact}), derived=derived)
+    bad = next(((f, p, e, var) for f, p, e, var in findings if f.verdict == Verdict.WRONG and f.evidence.witness), None)
+    if bad is None or state.repairing:
+        if state.repairing:
+            return Finding(Verdict.WRONG, f"{what} differs from the exact condition", Evidence(Method.INSTANCES))
+        return None
+    f, _p, _e, var = bad
+    point = {sp.Symbol(k) if isinstance(k, str) else k: v for k, v in f.evidence.witness.items()}
+    by_name = {getattr(k, "name", k): v for k, v in point.items()}
+    for _f2, p2, e2, var2 in findings:
+        if var2 == var:
+            continue
+        levels = []
+        for cond in (p2, e2):
+            bound = _bound(cond, var2)
+            value = sp.sympify(bound.bound).xreplace({s: by_name[s.name] for s in bound.bound.free_symbols
+                                                      if s.name in by_name})
+            if not value.is_Rational:
+                return None
+            levels.append(value)
+        by_name[var2.name] = max(levels) + 1
+    witness = dict(by_name)
+    facts: dict[str, Any] = {"exact": exact, "differs_in": var.name}
+    expected = Decision.PROVED if claim == "necessary" else Decision.DISPROVED
+    if verify is not None:
+        check = verify(witness)
+        facts["recheck"] = check.to_json()
+        if check.decision != expected:
+            return Finding(Verdict.UNDECIDED, f"{what}: the witness {witness_json(witness)} was not confirmed by the exact "
+                           f"decision ({check.reason})", Evidence(Method.COUNTEREXAMPLE, witness=witness_json(witness),
+                                                                   facts=facts), derived=derived)
+    how = ("it fails at the witness where the exact condition holds (not necessary)" if claim == "necessary"
+           else "it holds at the witness where the exact condition fails")
+    return Finding(Verdict.WRONG, f"{what}: its bound on {var} is weaker than the exact one; {how}",
+                   Evidence(Method.COUNTEREXAMPLE, witness=witness_json(witness), facts=facts), derived=derived)
 
 
 def numerically_different(a: Any, b: Any, tries: int = 2) -> bool:

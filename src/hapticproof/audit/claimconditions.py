@@ -43,6 +43,21 @@ def _printed_condition(state: State) -> Any:
     return state.prepare(links[0] if len(links) == 1 else sp.And(*links))
 
 
+def _indexed(state: State) -> bool:
+    """Whether the display names users by an index (``b_i``, ``\\min_i``, ``i = 1, 2``)."""
+    from hapticproof.audit.reader.statements import IndexedExtremum, Qualified
+
+    statement = state.statement
+    if isinstance(statement, Qualified):
+        return True
+    for relation in statement.relations():
+        for term in relation.terms:
+            term = sp.sympify(term)
+            if term.atoms(sp.Indexed) or term.atoms(IndexedExtremum):
+                return True
+    return False
+
+
 def _symbolic_condition(outcome: Outcome) -> Any:
     condition = outcome.evidence.facts.get("condition") if outcome.evidence.facts else None
     return condition if isinstance(condition, sp.Basic) else None
@@ -178,11 +193,30 @@ def _verify_pr(state: State):
 
 def condition(state: State, claim: str) -> Finding:
     """A passivity condition: necessary and sufficient (``passivity``), ``sufficient`` or ``necessary``."""
+    if state.scene.system == "multi-user" and _indexed(state):
+        from hapticproof.audit.claimusers import users_condition
+
+        return users_condition(state, claim=claim, exact=_exact(state))
     printed = _printed_condition(state)
     if printed is None:
         return malformed_finding("the display is not a condition (an inequality) on the parameters")
     exact = _exact(state)
     what = "the printed condition"
+    if state.scene.system == "multi-user" and "decision" not in exact and state.repairing:
+        from hapticproof.audit.claimusers import users_condition
+
+        g = users_condition(state, claim=claim, exact=exact)
+        if g.verdict in (Verdict.CONFIRMED, Verdict.CONSERVATIVE) or "condition" not in exact:
+            return g
+    if state.scene.system == "multi-user" and "decision" not in exact:
+        f = compare_conditions(printed, exact["condition"], state, claim=claim, what=what, verify=_verify_pr(state)) \
+            if "condition" in exact else None
+        if f is not None and f.verdict != Verdict.UNDECIDED:
+            return _noted(f, exact)
+        from hapticproof.audit.claimusers import users_condition
+
+        g = users_condition(state, claim=claim, exact=exact)
+        return _noted(g, exact) if g.verdict != Verdict.UNDECIDED or f is None else _noted(f, exact)
     if "decision" in exact:
         return _numeric_condition(printed, exact["decision"], claim, what)
     if "condition" in exact:

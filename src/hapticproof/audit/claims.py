@@ -240,6 +240,9 @@ def _should_repair(state: State, finding: Finding) -> bool:
         return False
     if finding.verdict == Verdict.WRONG:
         return True
+    if (finding.verdict == Verdict.UNDECIDED and finding.evidence.witness and state.repairable
+            and state.spec.claim in ("passivity-condition", "stability-condition")):
+        return True          # not necessary at the witness: a nearby display may be exactly right
     return finding.verdict == Verdict.CONSERVATIVE and state.spec.claim in ("passivity-condition", "stability-condition",
                                                                             "hermitian-part")
 
@@ -264,7 +267,7 @@ def _repair(state: State, finding: Finding) -> Finding:
         from hapticproof.audit.mutate import generate
     except ImportError:  # pragma: no cover - the mutation operators are not available
         return finding
-    mutants = generate(state.equation, state.source.paper, text=state.printed)[:MAX_EDITS]
+    mutants = generate(state.equation, state.source.paper, text=state.printed, table=state.table, slips=True)[:MAX_EDITS]
     found = []
     for mutant in mutants:
         trial = State(state.spec, state.source, mutant.printed, equation=state.equation, repairing=True,
@@ -297,7 +300,8 @@ def _repair(state: State, finding: Finding) -> Finding:
 
 
 _EDITS = {"sign": "flipping the sign", "scale": "a factor 2", "drop": "dropping a term", "swap": "swapping the indices",
-          "relation": "reversing the relation", "symbol": "another symbol"}
+          "relation": "reversing the relation", "symbol": "another symbol", "index": "another index",
+          "half": "halving a term"}
 
 
 def _describe_edit(mutant: Any) -> str:

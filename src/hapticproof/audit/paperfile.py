@@ -542,7 +542,21 @@ def with_scene_names(table: Any, scene: Any) -> Any:
             continue
         if printed not in known and not _family_member(table, printed):
             extra[printed] = scene.symbol(name)
-    return table.with_symbols(extra) if extra else table
+    table = table.with_symbols(extra) if extra else table
+    if scene.system == "multi-user":
+        from hapticproof.audit.reader.names import IndexedFamily, name_parts
+
+        declared = {name_parts(pattern).base for pattern in table.families}
+        families = [IndexedFamily(pattern, symmetric=symmetric, assumptions=_assumption_kwargs(word))
+                    for pattern, symmetric, word in _USER_FAMILIES if name_parts(pattern).base not in declared]
+        table = table.with_families(*families) if families else table
+    return table
+
+
+#: The indexed names of an m-user scene a display may use without declaring them (``b_i``,
+#: ``K_{0i}``, ``K_{ij}`` = ``K_{ji}``...), with the signs of :func:`hapticproof.systems.multiuser.user_symbols`.
+_USER_FAMILIES = (("b_{i}", False, "positive"), ("K_{0i}", False, "positive"), ("B_{0i}", False, "nonnegative"),
+                  ("K_{ij}", True, "positive"), ("B_{ij}", True, "nonnegative"), ("m_{i}", False, "positive"))
 
 
 def _family_member(table: Any, printed: str) -> bool:
