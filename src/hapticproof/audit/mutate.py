@@ -519,22 +519,12 @@ def generate(equation: Equation, paper: Paper, *, text: str | None = None, table
 
 
 def _index_slips(base: str, sub: str, table: Any) -> list[str]:
-    """Names of the table with the same base and a subscript differing in one index
-    (``K_{02}``: ``K_{01}``, ``K_{12}``...)."""
-    from hapticproof.audit.reader.names import name_parts
-
-    inner = sub.replace(" ", "")
-    out = []
+    """Names of the table with the same base, a subscript differing in one index (``K_{02}``: ``K_{01}``)."""
+    inner, out = sub.replace(" ", ""), []
     for key in _table_names(table):
-        try:
-            parts = name_parts(key)
-        except LatexParseError:
-            continue
-        if parts.base != base or parts.sub is None or parts.sup is not None:
-            continue
-        other = "".join(t.value for t in parts.sub).replace(" ", "")
-        if len(other) == len(inner) and sum(x != y for x, y in zip(other, inner)) == 1:
-            out.append(f"{base}_{{{other}}}")
+        match = re.fullmatch(re.escape(base) + r"_\{?([A-Za-z0-9]+)\}?", key)
+        if match and len(match.group(1)) == len(inner) and sum(x != y for x, y in zip(match.group(1), inner)) == 1:
+            out.append(f"{base}_{{{match.group(1)}}}")
     return out
 
 
