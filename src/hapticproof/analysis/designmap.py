@@ -1,36 +1,41 @@
-r"""Exact design-space maps: passivity and stability over a grid of two parameters.
+r"""Exact design-space maps: passivity and stability over a grid of two parameters of a scene.
 
-Every point of a map is an exact verdict (``1`` passive/stable, ``0`` not, ``-1`` undecided),
-yet a whole line of the grid costs one or a few exact computations, because of structure the
-models have (HVE paper, eqs. 21-27; Gil et al. 2004):
+A map is a :class:`~hapticproof.systems.scene.Scene` -- the one scene model of ``derive`` and
+``boundary``: any environment ``H(z)``, m users, teleoperators, the user's names and roles --
+with two of its parameters (or the fields ``delay`` and ``users``) on a grid. Every point is an
+exact verdict (``1`` passive/stable, ``0`` not, ``-1`` undecided), yet a whole line of the grid
+costs one or a few exact computations where the models have structure (HVE paper, eqs. 21-27;
+Gil et al. 2004):
 
-* **passivity along b or z_a** -- ``Re G^{-1} = (b - z_a) + Re(z^{-n} H X_h/V_h)``: the
-  Hermitian condition holds iff ``b - z_a >= beta`` with ``beta = -min_w Re(z^{-n} H X/V)``, one
-  certified minimum per line (:func:`hapticproof.analysis.fastpath.critical_damping`); the pole and
-  residue conditions do not depend on ``b``. Points inside ``beta``'s enclosure (none, in
+* **passivity along the device damping or z_a** (single user, ``H`` free of it) --
+  ``Re G^{-1} = a + Re(z^{-n} H X_h/V_h)`` with ``a = b - z_a`` affine in the parameter: the
+  Hermitian condition holds iff ``a >= beta`` with ``beta = -min_w Re(z^{-n} H X/V)``, one
+  certified minimum per line (:func:`hapticproof.analysis.fastpath.critical_damping`); the pole
+  and residue conditions do not depend on ``a``. Points inside ``beta``'s enclosure (none, in
   practice) are decided one by one.
-* **passivity along K, B or T** (virtual wall) -- ``G^{-1}`` is affine in each of them, so the
-  set where ``Re G^{-1} >= 0`` for all ``w`` is an interval of the line (an intersection of
-  half-lines), and the poles (``0`` and ``1``, ``Res = KT > 0``) do not move: exact decisions
-  at both ends and a binary search of the line's sorted values classify every point with
-  ``O(log m)`` decisions.
-* **m users** (``users``, with ground ``K0``, ``B0`` and couplings ``K``, ``B`` between every
-  pair, HVE Section 3.2) -- the uniform complete-graph HVE decouples into the walls
-  ``K0 + lambda K``, ``B0 + lambda B`` with ``lambda`` in ``{0, m}``
-  (:func:`hapticproof.analysis.multiuser.uniform_modes`): passive iff both are, and the line tricks apply
-  to each (an intersection of intervals is an interval).
-* **stability along K** -- the loop's characteristic polynomial is affine in ``beta = KT^2/m``;
-  the stiffnesses where a root crosses the unit circle are isolated with certified balls and
-  stability in each gap between them is certified once (:mod:`hapticproof.analysis.boundary`), which
-  classifies the whole line; a point inside a crossing's ball gets its own certified spectral
-  radius.
+* **passivity along a parameter that enters G^{-1} affinely with fixed poles** (``K``, ``B``,
+  ``T`` of the virtual wall; the couplings and dampings of m users; a teleoperator's robot
+  dampings) -- the set where the conditions hold is an intersection of half-lines and of a
+  convex cone's preimages, an interval of the line: exact decisions at both ends and a binary
+  search of the line's sorted values classify every point with ``O(log m)`` decisions. The
+  affinity is checked symbolically once per map.
+* **stability along K** (the virtual wall, no operator) -- the loop's characteristic polynomial
+  is affine in ``beta = KT^2/m``; the stiffnesses where a root crosses the unit circle are
+  isolated with certified balls and stability in each gap between them is certified once
+  (:mod:`hapticproof.analysis.boundary`), which classifies the whole line; a point inside a
+  crossing's ball gets its own certified spectral radius.
 
-Any other line (a delay, a mass) is decided point by point. Lines are grouped into chunks; one
-chunk function (:func:`map_chunk`) runs serially, in local processes or on Dask
-(:mod:`hapticproof.analysis.scaleout`), and the map streams to CSV or Parquet in grid order, identical in
-every mode.
+Any other line is decided point by point: single-user passivity by the numeric fast path
+(:func:`hapticproof.analysis.fastpath.decide`), m users and teleoperators by their exact
+decisions, stability by the spectral radius of the exact ZOH loop
+(:class:`hapticproof.analysis.stability.SceneLoops`; 40 digits, a margin of ``1e-25`` either
+side of 1, else undecided). The virtual damping ``B`` (``B_0``) is 0 unless given, as in
+``boundary``. Lines are grouped into chunks; one chunk function (:func:`map_chunk`) runs
+serially, in local processes or on Dask (:mod:`hapticproof.analysis.scaleout`), and the map
+streams to CSV or Parquet in grid order, identical in every mode.
 
->>> spec = MapSpec.build("passivity", "b=0.001:0.003:3", "K=1:3:3", {"T": "0.001", "B": 0})
+>>> from hapticproof.systems.scene import Scene
+>>> spec = MapSpec.build("passivity", "b=0.001:0.003:3", "K=1:3:3", Scene("single-user", params={"T": "0.001"}))
 >>> compute(spec).values.tolist()          # b >= KT/2 (n = 0, B = 0); K in rows
 [[1, 1, 1], [1, 1, 1], [0, 1, 1]]
 """
@@ -38,6 +43,7 @@ every mode.
 from __future__ import annotations
 
 import csv
+import functools
 import io
 import time
 from collections.abc import Callable, Iterator, Mapping
@@ -47,27 +53,27 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+import sympy as sp
 
-from hapticproof.core.errors import InputFormatError
+from hapticproof.core.errors import InputFormatError, SceneError
 
-__all__ = ["QUANTITIES", "PARAMETERS", "Axis", "MapSpec", "MapResult", "map_chunk", "compute", "stream",
+__all__ = ["QUANTITIES", "FIELD_AXES", "Axis", "MapSpec", "MapResult", "map_chunk", "compute", "stream",
            "line_values", "write_map", "plot_map"]
 
 QUANTITIES = ("passivity", "stability")
-#: Parameter names per quantity (passivity: HVE discrete model; stability: the sampled loop of
-#: the device with mass m on the delayed virtual wall).
-PARAMETERS = {"passivity": ("K", "B", "b", "T", "z_a", "delay", "users", "K0", "B0"),
-              "stability": ("m", "b", "T", "K", "B", "delay")}
-DEFAULTS = {"passivity": {"B": 0, "z_a": 0, "delay": 0}, "stability": {"B": 0, "delay": 0}}
-#: Parameters that only the m-user model has (with ``users``: K, B couple every pair of users).
-MULTI_USER = ("users", "K0", "B0")
-#: Line axes in order of preference (the cheapest structure first).
-LINE_AXES = {"passivity": ("b", "z_a", "K", "B", "T", "K0", "B0"), "stability": ("K",)}
+#: Scene fields a map may vary besides the parameters.
+FIELD_AXES = ("delay", "users")
 
 
 def _exact(text: Any, name: str) -> Fraction:
+    from hapticproof.core.expr import not_a_name
+
+    if isinstance(text, (int, Fraction)) and not isinstance(text, bool):
+        return Fraction(text)
+    if not_a_name(str(text).strip().lstrip("+-")):
+        raise InputFormatError(f"{name}: {str(text).strip()!r} {not_a_name(str(text).strip().lstrip('+-'))}")
     try:
-        return Fraction(str(text).strip()) if not isinstance(text, (int, Fraction)) else Fraction(text)
+        return Fraction(str(text).strip())
     except (ValueError, ZeroDivisionError):
         raise InputFormatError(f"{name}: {text!r} is not a number") from None
 
@@ -107,102 +113,141 @@ class Axis:
         return cls(name, values)
 
 
+def _corners(x: Axis, y: Axis) -> list[dict[str, Fraction]]:
+    xs = sorted({min(x.values), max(x.values)})
+    ys = sorted({min(y.values), max(y.values)})
+    return [{x.name: a, y.name: b} for a in xs for b in ys]
+
+
 @dataclass(frozen=True)
 class MapSpec:
-    """What to map: ``quantity`` over ``x`` (columns) and ``y`` (rows) with ``fixed`` parameters.
+    """What to map: ``quantity`` over ``x`` (columns) and ``y`` (rows) of ``scene`` (a
+    :class:`~hapticproof.systems.scene.Scene` whose other parameters are numbers).
 
     Build with :meth:`build`, which validates names and values (a user mistake is a
-    :class:`~hapticproof.core.errors.InputFormatError` with one clear line).
+    :class:`~hapticproof.core.errors.HapticproofError` with one clear line).
     """
 
     quantity: str
     x: Axis
     y: Axis
-    fixed: tuple[tuple[str, Fraction], ...]
-    approximation: str = "forward"
+    scene: Any
 
     @classmethod
-    def build(cls, quantity: str, x: str | Axis, y: str | Axis, fixed: Mapping[str, Any] | None = None,
-              approximation: str = "forward") -> MapSpec:
-        """Validated spec: axes ``NAME=start:stop:count``, fixed parameters by name.
+    def build(cls, quantity: str, x: str | Axis, y: str | Axis, scene: Any = None) -> MapSpec:
+        """Validated spec: axes ``NAME=start:stop:count`` (a parameter of the scene, ``delay``,
+        or ``users`` of m users), the scene (a mapping is the parameters of a single-user one).
 
-        >>> spec = MapSpec.build("passivity", "b=0.001:0.01:10", "K=1:2:3", {"T": "0.001"})
-        >>> spec.points, spec.line_axis, dict(spec.fixed)["B"]
-        (30, 'x', Fraction(0, 1))
+        >>> from hapticproof.systems.scene import Scene
+        >>> spec = MapSpec.build("passivity", "b=0.001:0.01:10", "K=1:2:3", Scene("single-user", params={"T": "0.001"}))
+        >>> spec.points, spec.line_axis, spec.scene.param_values["B"]
+        (30, 'x', 0)
         """
+        from hapticproof.systems.scene import Scene
+
         if quantity not in QUANTITIES:
             raise InputFormatError(f"unknown map {quantity!r}; choose one of {', '.join(QUANTITIES)}")
         x = Axis.parse(x) if isinstance(x, str) else x
         y = Axis.parse(y) if isinstance(y, str) else y
-        names = PARAMETERS[quantity]
         if x.name == y.name:
             raise InputFormatError(f"both axes vary {x.name}")
-        values = {k: Fraction(v) for k, v in DEFAULTS[quantity].items()}
-        for name, value in (fixed or {}).items():
-            values[name] = _exact(value, name)
+        if scene is None or isinstance(scene, Mapping):
+            scene = Scene("single-user", params=dict(scene or {}))
+        if not isinstance(scene, Scene):
+            raise InputFormatError("a map takes a Scene (or the parameters of a single-user scene)")
+        if scene.system == "network":
+            raise InputFormatError("maps apply to single-user, multi-user and teleoperator scenes")
+        axes = [a.name for a in (x, y)]
+        scene.check_names()                     # a misspelt --param first
+        scene = scene.with_params({name: None for name in axes if name not in FIELD_AXES})
+        if "z_a" in axes and scene.system in ("single-user", "multi-user"):
+            scene = scene.replace(active=True)  # the operator's shortage of passivity as a parameter
+        names = scene.names()
+        # the virtual damping is 0 unless given (as the papers' stability studies and boundary)
+        unset = ({"B", "B_0"} & names) - set(dict(scene.params)) - set(axes)
+        if unset:
+            scene = scene.with_params({name: 0 for name in unset})
+        groups = ({"K_0", "B_0", "K", "B", "z_a", scene.role("device_damping")} - {None}
+                  if scene.system == "multi-user" else set())
+        known = names | set(scene.reserved()) | groups
         for axis in (x, y):
-            values.pop(axis.name, None)
-        for name in list(values) + [x.name, y.name]:
-            if name not in names:
-                raise InputFormatError(f"unknown parameter {name!r} for a {quantity} map (known: {', '.join(names)})")
-        given = set(values) | {x.name, y.name}
-        if quantity == "passivity":
-            if given & {"K0", "B0"} and "users" not in given:
-                raise InputFormatError("K0 and B0 (ground coupling) need users (the m-user HVE)")
-            if "users" in given:
-                values.setdefault("K0", Fraction(0))
-                values.setdefault("B0", Fraction(0))
-            else:
-                names = tuple(n for n in names if n not in MULTI_USER)
-        missing = [n for n in names if n not in values and n not in (x.name, y.name)]
-        if missing:
-            raise InputFormatError(f"a {quantity} map needs --param {', '.join(f'{m}=...' for m in missing)}")
-        spec = cls(quantity, x, y, tuple(sorted(values.items())), approximation)
-        spec._validate()
+            if axis.name in FIELD_AXES:
+                if axis.name == "users" and scene.system != "multi-user":
+                    raise InputFormatError("the users axis applies to multi-user scenes")
+                least = 0 if axis.name == "delay" else 1
+                bad = [v for v in axis.values if v.denominator != 1 or v < least]
+                if bad:
+                    kind = "non-negative" if axis.name == "delay" else "positive"
+                    raise InputFormatError(f"{axis.name} must be a {kind} integer, got {bad[0]}")
+                continue
+            if axis.name not in known:
+                import difflib
+
+                close = difflib.get_close_matches(axis.name, sorted(names | set(FIELD_AXES)), n=1, cutoff=0.6)
+                hint = f"; did you mean {close[0]!r}?" if close else ""
+                raise InputFormatError(f"unknown parameter {axis.name!r} for a {quantity} map of this {scene.system} "
+                                       f"scene (it has {', '.join(sorted(names))}; or delay"
+                                       f"{', users' if scene.system == 'multi-user' else ''}){hint}")
+            if quantity == "passivity" and axis.name not in names | groups:
+                raise InputFormatError(f"{axis.name} ({scene.reserved().get(axis.name, 'this name')}) does not enter "
+                                       "the passivity decision")
+        spec = cls(quantity, x, y, scene)
+        for corner in _corners(x, y):       # every value is checked where it is extreme: signs are per parameter
+            spec._check_point(corner)
         return spec
 
-    def _validate(self) -> None:
-        for axis in (self.x, self.y):
-            for v in axis.values:
-                self._check(axis.name, v)
-        for name, v in self.fixed:
-            self._check(name, v)
-        if self.approximation not in ("forward", "backward", "tustin"):
-            raise InputFormatError(f"unknown approximation {self.approximation!r}")
-        if self.quantity == "stability" and self.approximation != "forward":
-            raise InputFormatError("stability maps model the forward-difference virtual wall only")
+    def at(self, values: Mapping[str, Fraction]) -> Any:
+        """The scene with axis values set (parameters, ``delay``, ``users``)."""
+        scene = self.scene
+        fields = {k: int(v) for k, v in values.items() if k in FIELD_AXES}
+        if fields:
+            scene = scene.replace(**fields)
+        params = {k: sp.Rational(v.numerator, v.denominator) for k, v in values.items() if k not in FIELD_AXES}
+        return scene.with_params(params) if params else scene
 
-    @staticmethod
-    def _check(name: str, v: Fraction) -> None:
-        if name == "delay" and (v.denominator != 1 or v < 0):
-            raise InputFormatError(f"delay must be a non-negative integer, got {v}")
-        if name == "users" and (v.denominator != 1 or v < 1):
-            raise InputFormatError(f"users must be a positive integer, got {v}")
-        if name in ("T", "m", "K") and v <= 0:
-            raise InputFormatError(f"{name} must be positive, got {v}")
-        if name in ("b", "B", "z_a") and v < 0:
-            raise InputFormatError(f"{name} must be non-negative, got {v}")
+    def _check_point(self, values: Mapping[str, Fraction]) -> None:
+        scene = self.at(values)
+        model = scene.build()
+        free = sorted(s.name for s in getattr(model, "parameters", set()) if s.name != "n")
+        if free:
+            raise InputFormatError(f"a {self.quantity} map needs numbers for {', '.join(free)} "
+                                   f"(--param {free[0]}=VALUE)")
+        if sp.sympify(getattr(model, "delay", 0)).is_Symbol:
+            raise InputFormatError("a map needs an integer delay (--delay N, or an axis delay=start:stop:count)")
+        if self.quantity == "stability":
+            from hapticproof.analysis.stability import SceneLoops
+
+            SceneLoops(scene).scene()
 
     @property
+    def fixed(self) -> tuple[tuple[str, Any], ...]:
+        """The scene's parameters with a number (for titles)."""
+        return tuple((k, Fraction(int(v.p), int(v.q))) for k, v in sorted(self.scene.param_values.items())
+                     if isinstance(v, sp.Basic) and v.is_Rational)
+
+    @functools.cached_property
     def line_axis(self) -> str:
         """``'x'`` or ``'y'``: the axis a line varies (the one with the cheapest structure)."""
-        for name in LINE_AXES[self.quantity]:
-            if self.x.name == name:
-                return "x"
-            if self.y.name == name:
-                return "y"
-        return "x"
+        scene = self.scene
+        if self.quantity == "stability":
+            order = ["K"]
+        else:
+            damping = scene.role("device_damping") if scene.system == "single-user" else None
+            order = [damping, "z_a", "K", "B", scene.role("period"), "K_0", "B_0"]
+
+        def rank(name: str) -> int:
+            return 100 if name in FIELD_AXES else order.index(name) if name in order else 50
+
+        return "x" if rank(self.x.name) <= rank(self.y.name) else "y"
 
     @property
     def lines(self) -> int:
         return len(self.y.values) if self.line_axis == "x" else len(self.x.values)
 
-    def line(self, index: int) -> tuple[str, tuple[Fraction, ...], dict[str, Fraction]]:
-        """``(varied name, its values, the other parameters)`` of line ``index``."""
+    def line(self, index: int) -> tuple[str, tuple[Fraction, ...], str, Fraction]:
+        """``(varied name, its values, the other axis' name, its value)`` of line ``index``."""
         along, across = (self.x, self.y) if self.line_axis == "x" else (self.y, self.x)
-        params = dict(self.fixed)
-        params[across.name] = across.values[index]
-        return along.name, along.values, params
+        return along.name, along.values, across.name, across.values[index]
 
     @property
     def points(self) -> int:
@@ -210,76 +255,178 @@ class MapSpec:
 
 
 # ---------------------------------------------------------------------------------------------
+# exact rational functions of the axes, evaluated with fractions (no SymPy per point)
+# ---------------------------------------------------------------------------------------------
+
+
+class _Rational:
+    """A rational function of a few symbols with rational coefficients, evaluated exactly."""
+
+    def __init__(self, expr: Any, gens: tuple[sp.Symbol, ...]):
+        num, den = sp.fraction(sp.cancel(sp.together(sp.sympify(expr))))
+        self.gens = gens
+        self.names = tuple(g.name for g in gens)
+        self.num, self.den = self._terms(num), self._terms(den)
+
+    def _terms(self, poly: Any) -> tuple[tuple[tuple[int, ...], Fraction], ...]:
+        if not self.gens:
+            value = sp.Rational(poly)
+            return (((), Fraction(int(value.p), int(value.q))),)
+        terms = sp.Poly(poly, *self.gens).terms()
+        return tuple((tuple(int(e) for e in monom), Fraction(int(sp.Rational(c).p), int(sp.Rational(c).q)))
+                     for monom, c in terms)
+
+    def degree(self, name: str, part: str = "num") -> int:
+        if name not in self.names:
+            return 0
+        k = self.names.index(name)
+        return max((m[k] for m, _ in getattr(self, part)), default=0)
+
+    @staticmethod
+    def _eval(terms: tuple, values: tuple[Fraction, ...]) -> Fraction:
+        total = Fraction(0)
+        for monom, c in terms:
+            term = c
+            for v, e in zip(values, monom):
+                if e:
+                    term *= v**e
+            total += term
+        return total
+
+    def __call__(self, values: Mapping[str, Fraction]) -> Fraction:
+        args = tuple(values[name] for name in self.names)
+        den = self._eval(self.den, args)
+        if den == 0:
+            shown = ", ".join(f"{n} = {v}" for n, v in zip(self.names, args))
+            raise SceneError(f"the scene divides by zero at {shown}")
+        return self._eval(self.num, args) / den
+
+
+def _axis_symbols(spec: MapSpec) -> tuple[sp.Symbol, ...]:
+    return tuple(spec.scene.symbol(a.name) for a in (spec.x, spec.y) if a.name not in FIELD_AXES)
+
+
+@dataclass(frozen=True)
+class _SingleUserForm:
+    """A single-user scene with the map's parameters symbolic: ``b``, ``T``, ``z_a`` and the
+    coefficients of ``H(z)`` as exact rational functions of them, and which lines have the
+    damping (additive) or the affine (convex) structure."""
+
+    b: _Rational
+    T: _Rational
+    z_a: _Rational
+    H_num: tuple[_Rational, ...]
+    H_den: tuple[_Rational, ...]
+    approximation: str
+    delay: int
+    additive: frozenset         # a = b - z_a affine in it, H and T free of it
+    convex: frozenset           # G^-1 affine in it with fixed poles
+
+    @classmethod
+    def of(cls, spec: MapSpec) -> _SingleUserForm:
+        from hapticproof.core.symbols import z as Z_SYM
+        from hapticproof.systems.models import environment_path
+
+        gens = _axis_symbols(spec)
+        model = spec.scene.build()
+        H = sp.cancel(sp.together(sp.sympify(model.H)))
+        num, den = sp.fraction(H)
+        H_num = tuple(_Rational(c, gens) for c in sp.Poly(num, Z_SYM).all_coeffs()[::-1])
+        H_den = tuple(_Rational(c, gens) for c in sp.Poly(den, Z_SYM).all_coeffs()[::-1])
+        a = _Rational(model.b - model.z_a, gens)
+        b, z_a = _Rational(model.b, gens), _Rational(model.z_a, gens)
+        additive, convex = set(), set()
+        path = sp.fraction(sp.cancel(sp.together(environment_path(model))))
+        for g in gens:
+            linear_a = a.degree(g.name) <= 1 and a.degree(g.name, "den") == 0
+            parts_linear = all(f.degree(g.name) <= 1 and f.degree(g.name, "den") == 0 for f in (b, z_a))
+            if linear_a and parts_linear and a.degree(g.name) == 1 and not H.has(g) and not sp.sympify(model.T).has(g):
+                additive.add(g.name)
+            if linear_a and not path[1].has(g) and sp.Poly(path[0], g).degree() <= 1:
+                convex.add(g.name)
+        delay = sp.sympify(model.delay)
+        return cls(b, _Rational(model.T, gens), z_a, H_num, H_den,
+                   model.approximation, int(delay) if delay.is_Integer else 0, frozenset(additive), frozenset(convex))
+
+    def line(self, along: str, fixed: Mapping[str, Fraction]) -> Callable[[Fraction], Any]:
+        """``v -> NumericScene`` along ``along`` with ``fixed`` (the other axis): what does not
+        depend on ``along`` is evaluated once."""
+        from hapticproof.analysis.fastpath import NumericScene
+
+        parts = [self.b, self.T, self.z_a, *self.H_num, *self.H_den]
+        known = [None if along in f.names else f(fixed) for f in parts]
+        n_num = len(self.H_num)
+
+        def point(v: Fraction) -> Any:
+            values = {**fixed, along: v}
+            b, T, z_a, *H = (k if k is not None else f(values) for f, k in zip(parts, known))
+            delay = int(values.get("delay", self.delay))
+            return NumericScene(b=b, T=T, H=(tuple(H[:n_num]), tuple(H[n_num:])), approximation=self.approximation,
+                                delay=delay, z_a=z_a)
+
+        return point
+
+
+_FORMS: dict[Any, _SingleUserForm] = {}
+
+
+def _form(spec: MapSpec) -> _SingleUserForm:
+    """The spec's symbolic analysis, once per process (every line of a chunk, every chunk)."""
+    key = (spec.quantity, spec.x.name, spec.y.name, spec.scene)
+    if key not in _FORMS:
+        if len(_FORMS) > 16:
+            _FORMS.clear()
+        _FORMS[key] = _SingleUserForm.of(spec)
+    return _FORMS[key]
+
+
+# ---------------------------------------------------------------------------------------------
 # passivity lines
 # ---------------------------------------------------------------------------------------------
 
 
-def _wall(params: Mapping[str, Fraction], approximation: str, **override: Any):
-    from hapticproof.analysis.fastpath import NumericScene
-
-    p = dict(params, **override)
-    return NumericScene.virtual_wall(K=p["K"], B=p["B"], b=p.get("b", 1), T=p["T"], approximation=approximation,
-                                     delay=int(p["delay"]), z_a=p.get("z_a", 0))
-
-
-def _modes(params: Mapping[str, Fraction], approximation: str, **override: Any) -> list:
-    """The single-user walls whose passivity is the scene's: the wall itself, or for ``users = m``
-    the uniform complete-graph m-user HVE's decoupled modes ``K0 + lambda K``, ``B0 + lambda B``
-    with ``lambda`` in ``{0, m}`` (:func:`hapticproof.analysis.multiuser.uniform_modes`)."""
-    p = dict(params, **override)
-    if "users" not in p:
-        return [_wall(p, approximation)]
-    m = int(p["users"])
-    return [_wall(dict(p, K=p["K0"] + lam * p["K"], B=p["B0"] + lam * p["B"]), approximation)
-            for lam in ((0, m) if m > 1 else (0,))]
-
-
-def _passive(scenes) -> int:
+def _verdict(decision: Any) -> int:
     from hapticproof.core.evidence import Decision
+
+    return 1 if decision == Decision.PROVED else 0 if decision == Decision.DISPROVED else -1
+
+
+def _passive(scene: Any) -> int:
     from hapticproof.analysis.fastpath import decide
 
-    verdicts = []
-    for scene in scenes if isinstance(scenes, list) else [scenes]:
-        d = decide(scene, minimum=False).decision
-        verdicts.append(1 if d == Decision.PROVED else 0 if d == Decision.DISPROVED else -1)
-    return 0 if 0 in verdicts else -1 if -1 in verdicts else 1
+    return _verdict(decide(scene, minimum=False).decision)
 
 
-def _passivity_damping_line(name: str, values: tuple[Fraction, ...], params: dict, approximation: str) -> np.ndarray:
-    """``b`` or ``z_a`` varies: one certified ``beta`` for the whole line."""
+def _damping_line(name: str, values: tuple[Fraction, ...], point: Callable[[Fraction], Any],
+                  form: _SingleUserForm, fixed: Mapping[str, Fraction]) -> np.ndarray:
+    """The device damping or ``z_a`` varies (``a = b - z_a`` affine in it): one certified
+    ``beta`` for the whole line (``a`` itself is all a point needs outside beta's enclosure)."""
+    from hapticproof.analysis.fastpath import (
+        critical_damping,
+        hermitian_outcome,
+        transfer,
+    )
     from hapticproof.core.evidence import Decision
-    from hapticproof.analysis.fastpath import critical_damping, hermitian_outcome, transfer
     from hapticproof.exact.conditions import pole_conditions
 
-    bases = _modes(params, approximation, **{name: values[0]})
-    poles_ok = all(c.decision == Decision.PROVED for base in bases for c in pole_conditions(*transfer(base)))
+    base = point(values[0])
     out = np.zeros(len(values), dtype=np.int8)
-    if not poles_ok:
-        return out
-    bounds = [critical_damping(base) for base in bases]      # passive iff b - z_a >= every beta
-    lo, hi = max(b[0] for b in bounds), max(b[1] for b in bounds)
-    # a = b - z_a is monotone along the line: passive iff a >= beta, beta in [lo, hi]
-    if name == "b":
-        passive_from, failing_below = hi + params.get("z_a", 0), lo + params.get("z_a", 0)
-    else:
-        passive_from, failing_below = None, None
+    if not all(c.decision == Decision.PROVED for c in pole_conditions(*transfer(base))):
+        return out                              # the poles and residues do not depend on a
+    lo, hi = critical_damping(base)             # passive iff a >= beta, beta in [lo, hi]
+    b0, b1 = form.b({**fixed, name: values[0]}), form.b({**fixed, name: values[-1]})
+    z0, z1 = form.z_a({**fixed, name: values[0]}), form.z_a({**fixed, name: values[-1]})
+    for bound, what in ((min(b0, b1), "the device damping"), (min(z0, z1), "the shortage of passivity z_a")):
+        if bound < 0:                           # a and its parts are affine: the ends are the extremes
+            raise SceneError(f"{what} must be non-negative, got {bound} on the line {name}")
+    a0 = b0 - z0
+    slope = ((b1 - z1) - a0) / (values[-1] - values[0]) if len(values) > 1 and values[-1] != values[0] else 0
     for i, v in enumerate(values):
-        if name == "b":
-            if v >= passive_from:
-                out[i] = 1
-                continue
-            if v < failing_below:
-                continue
-        else:
-            a = params["b"] - v
-            if a >= hi:
-                out[i] = 1
-                continue
-            if a < lo:
-                continue
-        # inside the certified enclosure of beta: decide this point exactly
-        ds = [hermitian_outcome(w, minimum=False).decision for w in _modes(params, approximation, **{name: v})]
-        out[i] = 0 if Decision.DISPROVED in ds else 1 if all(d == Decision.PROVED for d in ds) else -1
+        a = a0 + slope * (v - values[0])
+        if a >= hi:
+            out[i] = 1
+        elif a >= lo:                           # inside the certified enclosure: decide this point
+            out[i] = _verdict(hermitian_outcome(point(v), minimum=False).decision)
     return out
 
 
@@ -327,12 +474,76 @@ def _convex_line(values: tuple[Fraction, ...], verdict: Callable[[int], int]) ->
     return out
 
 
-def _passivity_line(name: str, values: tuple[Fraction, ...], params: dict, approximation: str) -> np.ndarray:
-    if name in ("b", "z_a"):
-        return _passivity_damping_line(name, values, params, approximation)
-    if name in ("K", "B", "T", "K0", "B0"):
-        return _convex_line(values, lambda i: _passive(_modes(params, approximation, **{name: values[i]})))
-    return np.array([_passive(_modes(params, approximation, **{name: v})) for v in values], dtype=np.int8)
+def _single_user_passivity(spec: MapSpec, along: str, values: tuple[Fraction, ...], fixed: dict) -> np.ndarray:
+    form = _form(spec)
+    point = form.line(along, fixed)
+    if along in form.additive:
+        return _damping_line(along, values, point, form, fixed)
+    if along in form.convex:
+        return _convex_line(values, lambda i: _passive(point(values[i])))
+    return np.array([_passive(point(v)) for v in values], dtype=np.int8)
+
+
+def _affine_entries(entries: Any, p: sp.Symbol) -> bool:
+    """Every entry a rational function whose denominator is free of ``p`` and numerator affine in it."""
+    for entry in entries:
+        num, den = sp.fraction(sp.cancel(sp.together(entry)))
+        if den.has(p) or (num.has(p) and sp.Poly(num, p).degree() > 1):
+            return False
+    return True
+
+
+def _model_line(scene: Any, along: str, values: tuple[Fraction, ...], decide: Callable[[Any], Any],
+                affine: Callable[[Any, sp.Symbol], bool]) -> np.ndarray:
+    """An m-user or teleoperator line: the model once with the parameter symbolic, each point its
+    exact decision; convex lines (``affine``) by the binary search."""
+    if along in FIELD_AXES:
+        return np.array([_verdict(decide(scene.replace(**{along: int(v)}).build()).decision) for v in values],
+                        dtype=np.int8)
+    model = scene.build()
+    p = scene.symbol(along)
+    groups = {"K_0", "B_0", "K", "B", "z_a", scene.role("device_damping")} if scene.system == "multi-user" else set()
+    direct = p in model.parameters and (along not in groups or scene.uniform)
+    if direct:
+        at = lambda v: model.with_values(**{p.name: sp.Rational(v.numerator, v.denominator)})  # noqa: E731
+    else:                                       # a group name of per-user parameters: the scene sets them
+        at = lambda v: scene.with_params({along: sp.Rational(v.numerator, v.denominator)}).build()  # noqa: E731
+    verdict = lambda i: _verdict(decide(at(values[i])).decision)  # noqa: E731
+    if direct and affine(model, p):
+        return _convex_line(values, verdict)
+    return np.array([verdict(i) for i in range(len(values))], dtype=np.int8)
+
+
+def _multi_user_affine(model: Any, p: sp.Symbol) -> bool:
+    from hapticproof.systems.multiuser import inverse_transfer_matrix
+
+    return _affine_entries(list(inverse_transfer_matrix(model)), p)
+
+
+def _teleoperator_affine(model: Any, p: sp.Symbol) -> bool:
+    """A robot damping: the conditions are ``b_m >= bound_m(c)``, ``b_s >= bound_s(c)`` with
+    bounds free of it."""
+    from hapticproof.analysis.teleoperator import bounds
+
+    if p not in (model.b_m, model.b_s):
+        return False
+    bd = bounds(model)
+    return not (sp.sympify(bd.master).has(p) or sp.sympify(bd.slave).has(p) or sp.sympify(model.C).has(p))
+
+
+def _passivity_line(spec: MapSpec, along: str, values: tuple[Fraction, ...], across: str,
+                    across_value: Fraction) -> np.ndarray:
+    fixed = {across: across_value}
+    if spec.scene.system == "single-user":
+        return _single_user_passivity(spec, along, values, fixed)
+    scene = spec.at(fixed)
+    if spec.scene.system == "multi-user":
+        from hapticproof.analysis.multiuser import positive_real
+
+        return _model_line(scene, along, values, positive_real, _multi_user_affine)
+    from hapticproof.analysis.teleoperator import passivity
+
+    return _model_line(scene, along, values, passivity, _teleoperator_affine)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -433,6 +644,57 @@ def _stability_line(name: str, values: tuple[Fraction, ...], params: dict) -> np
     return out
 
 
+def _radius_verdict(loop: Any) -> int:
+    """The spectral radius of the exact ZOH loop at 40 digits: ``1`` below ``1 - 1e-25``, ``0``
+    above ``1 + 1e-25``, else undecided."""
+    from hapticproof.analysis.sampled import spectral_radius
+
+    try:
+        rho = spectral_radius(loop, precision="mp", dps=40)
+    except (ArithmeticError, ValueError):
+        return -1
+    return 1 if rho < 1 - sp.Float("1e-25") else 0 if rho > 1 + sp.Float("1e-25") else -1
+
+
+def _wall_parameters(scene: Any, skip: str) -> dict[str, Fraction] | None:
+    """``m, b, T, K, B, delay`` (the papers' names; ``skip`` the varied one) of a free device on
+    the virtual wall, or ``None`` when the scene is another one or a value is not a number (an
+    expression of the varied parameter, say)."""
+    if scene.system != "single-user" or scene.environment is not None or scene.discretize is not None \
+            or scene.operator is not None or scene.active or "z_a" in dict(scene.params):
+        return None
+    values = scene.resolved_values()
+    role = scene.role
+    out = {"delay": Fraction(int(scene.delay))}
+    for std, name in (("m", role("mass")), ("b", role("device_damping")), ("T", role("period")), ("K", "K"), ("B", "B")):
+        if std == skip:
+            continue
+        v = values.get(name)
+        if v is None or not v.is_Rational:
+            return None
+        out[std] = Fraction(int(v.p), int(v.q))
+    return out
+
+
+def _stability_of(spec: MapSpec, along: str, values: tuple[Fraction, ...], across: str,
+                  across_value: Fraction) -> np.ndarray:
+    from hapticproof.analysis.stability import SceneLoops
+
+    scene = spec.at({across: across_value})
+    if scene.system == "single-user":
+        role = scene.role
+        std = {role("mass"): "m", role("device_damping"): "b", role("period"): "T", "K": "K", "B": "B",
+               "delay": "delay"}.get(along)
+        wall = _wall_parameters(scene, std) if std is not None else None
+        if wall is not None:
+            return _stability_line(std, values, wall)
+    if along in FIELD_AXES:
+        return np.array([_radius_verdict(SceneLoops(scene.replace(**{along: int(v)})).scene()) for v in values],
+                        dtype=np.int8)
+    loops = SceneLoops(scene)
+    return np.array([_radius_verdict(loops.scene(**{along: v})) for v in values], dtype=np.int8)
+
+
 # ---------------------------------------------------------------------------------------------
 # the chunk function and the runs
 # ---------------------------------------------------------------------------------------------
@@ -440,16 +702,17 @@ def _stability_line(name: str, values: tuple[Fraction, ...], params: dict) -> np
 
 def line_values(spec: MapSpec, index: int) -> np.ndarray:
     """Verdicts along line ``index`` (``1``, ``0``, ``-1`` undecided)."""
-    name, values, params = spec.line(index)
+    along, values, across, across_value = spec.line(index)
     if spec.quantity == "passivity":
-        return _passivity_line(name, values, params, spec.approximation)
-    return _stability_line(name, values, params)
+        return _passivity_line(spec, along, values, across, across_value)
+    return _stability_of(spec, along, values, across, across_value)
 
 
 def map_chunk(task: tuple[MapSpec, tuple[int, ...]]) -> list[tuple[int, np.ndarray]]:
     """The one chunk function of serial, process and Dask runs: the lines of a chunk.
 
-    >>> spec = MapSpec.build("passivity", "b=0.001:0.003:3", "K=1:3:3", {"T": "0.001"})
+    >>> from hapticproof.systems.scene import Scene
+    >>> spec = MapSpec.build("passivity", "b=0.001:0.003:3", "K=1:3:3", Scene("single-user", params={"T": "0.001"}))
     >>> [(i, v.tolist()) for i, v in map_chunk((spec, (2,)))]          # K = 3: b >= 0.0015
     [(2, [0, 1, 1])]
     """
@@ -529,10 +792,9 @@ def _label(spec: MapSpec) -> str:
 
 
 def _line_rows(spec: MapSpec, line: int, verdicts: np.ndarray) -> Iterator[tuple[str, str, int]]:
-    name, values, params = spec.line(line)
-    across = spec.y if spec.line_axis == "x" else spec.x
+    _, values, _, across_value = spec.line(line)
     for v, verdict in zip(values, verdicts):
-        x, y = (v, params[across.name]) if spec.line_axis == "x" else (params[across.name], v)
+        x, y = (v, across_value) if spec.line_axis == "x" else (across_value, v)
         yield _number(x), _number(y), int(verdict)
 
 

@@ -88,24 +88,27 @@ class SceneLoops:
         """The exact sampled-data loop at the scene's values updated with ``values``."""
         exact = {k: sp.Rational(to_fraction(v, k).numerator, to_fraction(v, k).denominator) for k, v in values.items()}
         scene = self.spec.with_params(exact)
-        vals = scene.param_values
         model = scene.build()
         free = getattr(model, "parameters", set())
         free = {s for s in free if s.name != "n"}
         if free:
             raise SceneError(f"the stability boundary needs values for {', '.join(sorted(map(str, free)))}")
-        mass = lambda name: vals.get(name, vals.get("m"))  # noqa: E731
+        masses = scene._substitution()          # a mass may be an expression of others
+        mass = lambda name: masses.get(scene.symbol(name)) if name else None  # noqa: E731
         if self.system == "single-user":
-            if mass("m") is None:
-                raise SceneError("the stability boundary needs the device mass m (--param m=...)")
+            m_name = scene.role("mass")
+            if mass(m_name) is None:
+                raise SceneError(f"the stability boundary needs the device mass {m_name} (--param {m_name}=...)")
             num, den = _tf(model.H, sp.Symbol("z"))
-            return SingleUser(m=mass("m"), b=model.b, T=model.T, delay=int(model.delay),
+            return SingleUser(m=mass(m_name), b=model.b, T=model.T, delay=int(model.delay),
                               operator=self._termination(scene.operator, scene), environment=DiscreteTF(num, den))
         if self.system == "multi-user":
             m = model.users
-            masses = tuple(vals.get(f"m_{i + 1}", vals.get("m")) for i in range(m))
+            group = scene.role("mass")
+            masses = tuple(mass(name) if mass(name) is not None else mass(group) for name in scene.members("mass"))
             if None in masses:
-                raise SceneError("the stability boundary needs the device masses m (or m_1, ..., m_m)")
+                both = f"{group} (or {', '.join(scene.members('mass'))})" if group else ", ".join(scene.members("mass"))
+                raise SceneError(f"the stability boundary needs the device masses {both}")
             op = self._termination(scene.operator, scene)
             W = lambda ws: model.weights(ws).tolist()  # noqa: E731
             return MultiUser(masses=masses, dampings=tuple(model.b), T=model.T, ground_stiffness=tuple(model.K0),
@@ -113,7 +116,8 @@ class SceneLoops:
                              coupling_damping=W(model.B), delays=tuple(model.delays), operators=(op,) * m)
         if self.system == "teleoperator":
             if model.m_m is None or model.m_s is None:
-                raise SceneError("the stability boundary needs the masses m (or m_m and m_s)")
+                raise SceneError(f"the stability boundary needs the masses {scene.role('mass')} (or "
+                                 f"{scene.role('master_mass')} and {scene.role('slave_mass')})")
             tele = model.to_sampled(self._termination(scene.operator, scene), self._termination(scene.environment, scene))
             return replace(tele, delay=int(self.spec.delay))
         raise SceneError("stability boundaries apply to single-user, multi-user and teleoperator scenes")
@@ -121,6 +125,13 @@ class SceneLoops:
     def printed_values(self, **overrides: Any) -> dict[str, float]:
         """Values for a printed condition (the papers' names), as :class:`~hapticproof.analysis.maps.SceneFamily`."""
         v = {k: float(to_fraction(x)) for k, x in self.values(**overrides).items()}
+        # the printed conditions use the papers' names: the roles' parameters by their default names
+        from hapticproof.systems.roles import ROLES
+
+        for field, role in ROLES[self.system].items():
+            name = self.spec.role(field)
+            if name is not None and name != role.default and name in v:
+                v[role.default] = v[name]
         if "z_a" not in v:
             scene = self.spec.with_params({k: sp.Rational(to_fraction(x).numerator, to_fraction(x).denominator)
                                            for k, x in overrides.items()})

@@ -100,10 +100,24 @@ def _model_symbols(scene: Any, model: Any) -> dict[str, sp.Symbol]:
         params = set().union(*(e.free_symbols for e in model)) - {sp.Symbol("s")}
     for sym in params or ():
         out[sym.name] = sym
-    for name in ("b", "K", "B", "T", "z_a"):
-        out.setdefault(name, scene.symbol(name))
+    roles = [scene.role(field) for field in ("device_damping", "period") if field in _roles_of(scene)]
+    for name in [*roles, "K", "B", "z_a"]:
+        if name is not None:
+            out.setdefault(name, scene.symbol(name))
     out.setdefault("n", N_SYM)
     return out
+
+
+def _roles_of(scene: Any) -> tuple[str, ...]:
+    from hapticproof.systems.roles import ROLES
+
+    return tuple(ROLES[scene.system])
+
+
+def _period_name(state: State) -> str:
+    """The scene's sampling period (its role; ``T`` without a scene)."""
+    scene = state.scene
+    return scene.role("period") if scene is not None and "period" in _roles_of(scene) else "T"
 
 
 def _delay_of(state: State) -> Any:
@@ -135,7 +149,8 @@ def _prepare(expr: Any, state: State) -> Any:
     if t_d is not None and state.scene is not None and "t_d" not in values:
         delay = _delay_of(state)
         if delay is not None:
-            T = values.get("T", state.names.get("T"))
+            period = _period_name(state)
+            T = values.get(period, state.names.get(period))
             expr = expr.xreplace({t_d: delay * T})
     return expr
 
@@ -146,7 +161,8 @@ def frequency_symbol(state: State) -> sp.Symbol | None:
 
 
 def period_of(state: State) -> Any:
-    return state.values.get("T", state.names.get("T"))
+    period = _period_name(state)
+    return state.values.get(period, state.names.get(period))
 
 
 def display_members(statement: Any) -> list[Any]:
@@ -310,9 +326,16 @@ def preferred_variables(state: State) -> list[str]:
     order = []
     if state.spec.solve_for:
         order.append(state.spec.solve_for)
-    system = state.scene.system if state.scene is not None else ""
-    order += {"single-user": ["b"], "multi-user": ["b", "b_1"], "teleoperator": ["b", "b_m", "b_s"]}.get(system, ["b"])
-    return order
+    scene = state.scene
+    if scene is None or scene.system == "network":
+        return order + ["b"]
+    # the device damping (its role), then a user's or a robot's
+    role = scene.role
+    if scene.system == "multi-user":
+        return order + [n for n in (role("device_damping"), scene.members("device_damping")[0]) if n is not None]
+    if scene.system == "teleoperator":
+        return order + [role("device_damping"), role("master_damping"), role("slave_damping")]
+    return order + [role("device_damping")]
 
 
 def _variable(printed: Any, exact: Any, state: State) -> sp.Symbol | None:

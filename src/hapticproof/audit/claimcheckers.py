@@ -247,7 +247,8 @@ def _verify_pointwise(state: State):
         if "c" in by_name:
             c_value = by_name["c"]
         else:
-            T = by_name.get("T", period_of(state))
+            period = state.scene.role("period") if state.scene is not None and state.scene.system != "network" else "T"
+            T = by_name.get(period, period_of(state))
             c_value = sp.cos(by_name["omega"] * T)
         numeric = _numeric_model(state, point)
         form = hermitian(numeric)

@@ -408,7 +408,7 @@ def _is_wall(state: State) -> bool:
     if scene.system != "single-user" or scene.discretize is not None:
         return False
     env = scene.environment_z()
-    wall = virtual_wall(scene.symbol("K"), scene.symbol("B"), scene.symbol("T"))
+    wall = virtual_wall(scene.symbol("K"), scene.symbol("B"), scene.role_symbol("period"))
     return is_identically_zero(sp.sympify(env) - wall)
 
 
@@ -438,14 +438,16 @@ def _leading(state: State) -> Any:
     n = state.model.delay
     lo = classics.leading_order_boundary(classics.SYMBOLS["n"] if n.is_Symbol else int(n), operator=damping is not None)
     cond = lo.condition
-    mapping = {classics.SYMBOLS[k]: state.names.get(k, state.scene.symbol(k)) for k in ("b", "K", "B", "T")}
-    mapping[classics.SYMBOLS["t_d"]] = n * state.names.get("T", state.scene.symbol("T"))
+    scene = state.scene
+    # the classic condition's b and T are the scene's device damping and period (their roles)
+    own = {"b": scene.role("device_damping"), "K": "K", "B": "B", "T": scene.role("period")}
+    mapping = {classics.SYMBOLS[k]: state.names.get(name, scene.symbol(name)) for k, name in own.items()}
+    mapping[classics.SYMBOLS["t_d"]] = n * state.names.get(own["T"], scene.symbol(own["T"]))
     if damping is not None:
         mapping[classics.OPERATOR["b_h"]] = damping
     cond = cond.xreplace(mapping)
     values = state.values
-    cond = cond.xreplace({state.names.get(k, state.scene.symbol(k)): v for k, v in values.items()
-                          if k in ("b", "K", "B", "T")})
+    cond = cond.xreplace({state.names.get(k, scene.symbol(k)): v for k, v in values.items() if k in own.values()})
     return sp.Ge(cond.lhs, sp.expand(cond.rhs), evaluate=False), lo
 
 
@@ -475,7 +477,9 @@ def _stable(state: State, values: Mapping[str, Any]) -> Outcome:
 
     delay = values.get("n", state.model.delay)
     if _is_wall(state) and state.scene.operator is None:
-        return bnd.certified_stable(values["m"], values["b"], values["T"], values["K"], values.get("B", 0), int(delay))
+        role = state.scene.role
+        return bnd.certified_stable(values[role("mass")], values[role("device_damping")], values[role("period")],
+                                    values["K"], values.get("B", 0), int(delay))
     from hapticproof.analysis.sampled import spectral_radius
     from hapticproof.analysis.stability import SceneLoops
 
@@ -496,20 +500,21 @@ def _stable(state: State, values: Mapping[str, Any]) -> Outcome:
 def _stability_instances(state: State, printed: Any, count: int = 8) -> Finding:
     scene = state.scene
     names = dict(scene.params)
-    if "m" not in names:
-        raise ClaimError("an exact stability claim needs the device mass m in the scene ([scenes.X.params] m = ... or "
-                         "m = \"positive\")")
+    mass = scene.role("mass")
+    if mass not in names:
+        raise ClaimError(f"an exact stability claim needs the device mass {mass} in the scene ([scenes.X.params] "
+                         f"{mass} = ... or {mass} = \"positive\")")
     symbols = {s.name: s for s in printed.free_symbols}
     var = symbols.get("K") or next((s for n, s in sorted(symbols.items()) if n in state.names), None)
     if var is None:
         return Finding(Verdict.UNDECIDED, "no scene parameter in the display to probe", Evidence(Method.INSTANCES, instances=0))
     model_params = {s.name: s for s in getattr(state.model, "parameters", set())}
-    m_symbol = sp.Symbol("m", positive=True)
+    m_symbol = scene.symbol(mass)
     free = sorted([s for n, s in model_params.items() if n not in (var.name, "n")], key=str)
-    if isinstance(names["m"], str):
+    if isinstance(names[mass], str):
         free.append(m_symbol)
     fixed = {k: v for k, v in state.values.items()}
-    ranges = {s: (sp.Rational(1, 100), sp.Integer(2)) for s in free if s.name in ("T",)}
+    ranges = {s: (sp.Rational(1, 100), sp.Integer(2)) for s in free if s.name == scene.role("period")}
     draws = Sampler(free, seed=5, ranges=ranges).draw(count)
     not_sufficient = not_necessary = None
     decided = 0

@@ -440,7 +440,7 @@ def _read_scenes(raw: Any, path: str, text: str, words: Mapping[str, str], regio
         except SceneFileError as err:
             raise PaperFileError(f"{err} (scene {name!r})") from None
         except HapticproofError as err:
-            named = re.search(r"unknown parameter '([^']+)'", str(err))
+            named = re.search(r"parameter '([^']+)'", str(err))
             line = _table_line(text, named.group(1), f"{prefix}.params") if named else None
             raise PaperFileError(f"{_at(path, line or header)}: scene {name!r}: {err}") from None
         scenes[name] = scene
@@ -712,6 +712,14 @@ def _read_equations(raw: Any, path: str, text: str, table: Any, scenes: Mapping[
                 raise PaperFileError(f"{where('form')}: form is 'expression' or 'condition', got {fields['form']!r}")
         if "solve_for" in fields and claim not in CONDITION_CLAIMS:
             raise PaperFileError(f"{where('solve_for')}: solve_for applies to condition claims")
+        if "solve_for" in fields and fields.get("scene") in scenes:
+            scene = scenes[fields["scene"]]
+            names = scene.names() | set(dict(scene.params))
+            if fields["solve_for"] not in names:
+                close = difflib.get_close_matches(fields["solve_for"], sorted(names), n=1, cutoff=0.6)
+                hint = f" (did you mean {close[0]!r}?)" if close else f" (its parameters: {', '.join(sorted(names))})"
+                raise PaperFileError(f"{where('solve_for')}: {fields['solve_for']!r} is not a parameter of scene "
+                                     f"{fields['scene']!r}{hint}")
         if claim == "same-as":
             if "other" not in entry:
                 raise PaperFileError(f"{_at(path, start)}: {label}: a same-as claim needs the field 'other'")

@@ -334,12 +334,13 @@ def map_study(size: int = 316, delays: Sequence[int] = (0, 3, 10), workers: int 
     and on a Dask ``LocalCluster`` (its start-up included), checking that the three give identical
     values; and an exact stability map (``K`` lines over ``T``) of ``stability_size^2`` points."""
     from hapticproof.analysis import designmap as dm
+    from hapticproof.systems.scene import Scene
 
     rows = []
     first = None
     for n in delays:
         spec = dm.MapSpec.build("passivity", f"b=0.0005:0.05:{size + 1}", f"K=0.1:20:{size}",
-                                {"T": "0.001", "B": "0.001", "delay": n})
+                                Scene("single-user", delay=n, params={"T": "0.001", "B": "0.001"}))
         modes = [("serial", {}), (f"{workers} processes", {"workers": workers})]
         if dask:
             modes.append((f"dask LocalCluster ({workers} workers)", {"scheduler": "dask", "workers": workers}))
@@ -375,7 +376,7 @@ def map_study(size: int = 316, delays: Sequence[int] = (0, 3, 10), workers: int 
             if first is None:
                 first = result
     spec = dm.MapSpec.build("stability", f"T=0.0005:0.004:{stability_size}", f"K=1:80:{stability_size}",
-                            {"m": "0.015", "b": "0.02", "B": "0.002", "delay": 2})
+                            Scene("single-user", delay=2, params={"m": "0.015", "b": "0.02", "B": "0.002"}))
     result = dm.compute(spec)
     rows.append({"quantity": "stability", "delay": 2, "points": spec.points, "mode": "serial",
                  "seconds": result.seconds, "points_per_second": spec.points / result.seconds,

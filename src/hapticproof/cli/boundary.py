@@ -18,12 +18,13 @@ standard error); every output file is checked before the work starts.
 from __future__ import annotations
 
 import argparse
+import math
 import sys
 
 from hapticproof.analysis.borderlines import printed_borderline
 import json
 
-from hapticproof.cli.common import add_param_option
+from hapticproof.cli.common import add_any_scene_options
 from hapticproof.cli.terminal import ProgressBar, progress_bar  # noqa: F401 - ProgressBar re-exported
 from hapticproof.core.errors import InputFormatError
 from hapticproof.analysis.maps import boundary_curve, grid, plot_curves
@@ -35,8 +36,6 @@ SYSTEMS = ("single-user", "multi-user", "teleoperator")
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
-    from hapticproof.systems.discretize import METHODS
-
     parser = subparsers.add_parser(
         "boundary",
         help="exact sampled-data stability boundaries (spectral radius of the exact ZOH loop)",
@@ -46,21 +45,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "condition when the scene is the paper's own. The virtual damping B (B_0) is 0 unless given.",
     )
     parser.add_argument("system", nargs="?", choices=SYSTEMS, help="the system (default: the scene file's)")
-    parser.add_argument("--scene", metavar="FILE", help="read the scene from a scene file (TOML)")
-    add_param_option(parser)
-    parser.add_argument("--environment", "--H", dest="environment",
-                        help="single-user: the virtual environment H(z) (or H(s) with --discretize; default "
-                        "K + B*(z-1)/(T*z)); teleoperator: the slave's termination Z_e(s), 'free' or 'clamped'")
-    parser.add_argument("--controller", help="teleoperator: 'pd', 'filtered-pd', C(z) or C(s) with --discretize; "
-                        "single-user: a synonym of --environment")
-    parser.add_argument("--discretize", choices=METHODS, default=None, help="make a continuous design discrete")
-    parser.add_argument("--operator", help="operator impedance Z_h(s), e.g. '-z_a + 1/s' "
-                        "(teleoperator: master termination; 'clamped' allowed)")
-    parser.add_argument("--delay", default=None, help="delay in samples (multi-user: one per user, n_1,...,n_m)")
-    parser.add_argument("--users", type=int, default=None, help="multi-user: number of users (default 2)")
-    parser.add_argument("--graph", default=None, help="multi-user: coupling graph (complete, path, star, ring, 1-2,2-3)")
-    parser.add_argument("--uniform", action="store_true", default=None,
-                        help="multi-user: one symbol per group (b, K_0, B_0, K, B); else per-user names")
+    add_any_scene_options(parser)
     parser.add_argument("--vary", required=True, help="parameter whose boundary is sought (e.g. K, B_0, K_i)")
     parser.add_argument("--over", metavar="NAME=start:stop:count",
                         help="sweep, e.g. T=0.001:0.02:20 (default: one boundary at the scene's values)")
@@ -82,37 +67,17 @@ def _search(text: str | None) -> tuple[float, float] | None:
         lo, hi = (float(p) for p in parts)
     except ValueError as err:
         raise InputFormatError(f"--search expects lo:hi, got {text!r}") from err
+    if not (math.isfinite(lo) and math.isfinite(hi)):
+        raise InputFormatError(f"--search needs finite numbers, got {text!r}")
     if not hi > lo:
         raise InputFormatError(f"--search needs lo < hi, got {text!r}")
     return lo, hi
 
 
 def _scene(args: argparse.Namespace):
-    from hapticproof.cli.common import param_items
-    from hapticproof.systems.scene import Scene
-    from hapticproof.systems.scene import read_scene
+    from hapticproof.cli.common import scene_from_any_args
 
-    fields: dict = {}
-    params: dict = {}
-    system = args.system
-    if args.scene:
-        base = read_scene(args.scene)
-        if system is not None and base.system != system:
-            raise InputFormatError(f"{args.scene} describes a {base.system} scene, not {system}")
-        system = base.system
-        fields = {k: getattr(base, k) for k in ("approximation", "environment", "controller", "discretize", "delay",
-                                                 "users", "graph", "uniform", "active", "operator")}
-        params = dict(base.params)
-    if system is None:
-        raise InputFormatError("name the system (single-user, multi-user, teleoperator) or give --scene FILE")
-    if system not in SYSTEMS:
-        raise InputFormatError(f"stability boundaries apply to {', '.join(SYSTEMS)}, not {system}")
-    for name in ("environment", "controller", "discretize", "operator", "delay", "users", "graph", "uniform"):
-        value = getattr(args, name)
-        if value is not None:
-            fields[name] = value
-    params.update(param_items(args.param))
-    return Scene(system, **{k: v for k, v in fields.items() if v is not None}, params=params)
+    return scene_from_any_args(args, SYSTEMS)
 
 
 def handler(args: argparse.Namespace) -> int:
@@ -189,5 +154,6 @@ def handler(args: argparse.Namespace) -> int:
         write_text(args.json, json.dumps(curve.to_json(), indent=1))
     if args.plot:
         title = f"{spec.system}: {vary}*({over_name})"
-        plot_curves([curve], args.plot, title=title, scale={"T": 1000} if over_name == "T" else None)
+        period = spec.role("period")
+        plot_curves([curve], args.plot, title=title, scale={period: 1000} if over_name == period else None)
     return 0

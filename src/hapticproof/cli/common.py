@@ -14,8 +14,9 @@ import sympy as sp
 from hapticproof.core.errors import InputFormatError
 from hapticproof.core.evidence import exact
 
-__all__ = ["parse_params", "param_items", "add_param_option", "write_text", "add_output_option", "check_output",
-           "write_output", "add_scene_options", "scene_from_args"]
+__all__ = ["parse_params", "param_items", "add_param_option", "add_role_option", "role_items", "write_text", "add_output_option", "check_output",
+           "write_output", "add_scene_options", "scene_from_args", "add_any_scene_options", "scene_from_any_args",
+           "build_model", "refuse"]
 
 
 def add_param_option(parser: argparse.ArgumentParser) -> None:
@@ -29,6 +30,42 @@ def add_param_option(parser: argparse.ArgumentParser) -> None:
         "(M=positive, nonnegative, real...) that keeps it symbolic; repeat for several. Unset "
         "parameters stay symbolic.",
     )
+
+
+def add_role_option(parser: argparse.ArgumentParser, system: str | None = None) -> None:
+    """``--role ROLE=NAME``: the ``roles`` of the scene (a scene file's ``[roles]`` table)."""
+    from hapticproof.systems.roles import ROLES
+
+    systems = [system] if system else [s for s in ROLES if ROLES[s]]
+    fields = list(dict.fromkeys(f for s in systems for f in ROLES[s]))
+    defaults = {f: ROLES[s][f].default for s in systems for f in ROLES[s]}
+    parser.add_argument(
+        "--role",
+        action="append",
+        default=[],
+        metavar="ROLE=NAME",
+        help="name the parameter that plays a role of the system (default name in parentheses): "
+        + ", ".join(f"{f} ({defaults[f]})" for f in fields)
+        + "; e.g. --role period=Ts makes Ts the sampling period everywhere (--range, --delay-margin, "
+        "boundaries, maps)" + ("; m users: a group name or one name per user, NAME_1,...,NAME_m"
+                               if system in (None, "multi-user") else "") + "; repeat for several",
+    )
+
+
+def role_items(items: list[str]) -> dict[str, str | list[str]]:
+    """``["period=Ts", "device_damping=c_1,c_2"]`` -> ``{"period": "Ts", "device_damping": ["c_1", "c_2"]}``.
+
+    >>> role_items(["period=Ts", "device_damping = c_1, c_2"])
+    {'period': 'Ts', 'device_damping': ['c_1', 'c_2']}
+    """
+    out: dict[str, str | list[str]] = {}
+    for item in items:
+        field, sep, value = item.partition("=")
+        field = field.strip()
+        if not sep or not field or not value.strip():
+            raise InputFormatError(f"--role expects ROLE=NAME, got {item!r}")
+        out[field] = [v.strip() for v in value.split(",")] if "," in value else value.strip()
+    return out
 
 
 def param_items(items: list[str]) -> dict[str, str]:
@@ -115,6 +152,19 @@ def write_output(path: str | None, text: str) -> None:
         print(f"wrote {written}", file=sys.stderr)
 
 
+def refuse(args: argparse.Namespace, message: str, data: dict | None = None) -> None:
+    """A question with no exact answer (a user's choice causes it): with ``--format json`` a JSON
+    document ``{"error": message, ...data}`` on the output, then always the one error line and
+    exit 2 (raises :class:`~hapticproof.core.errors.SceneError`)."""
+    import json
+
+    from hapticproof.core.errors import SceneError
+
+    if getattr(args, "format", None) == "json":
+        write_text(getattr(args, "output", None) or "-", json.dumps({"error": message, **(data or {})}, indent=2))
+    raise SceneError(message)
+
+
 # ---------------------------------------------------------------------------------------------
 # scene options: the fields of a scene file
 # ---------------------------------------------------------------------------------------------
@@ -174,6 +224,8 @@ def add_scene_options(parser: argparse.ArgumentParser, system: str, *, stability
     if system == "network":
         parser.add_argument("--matrix", metavar="FILE", help="impedance matrix file (text or .json)")
         parser.add_argument("--ports", metavar="SIZES", help="port sizes, e.g. 3,3 (default: scalar ports)")
+    else:
+        add_role_option(parser, system)
     add_param_option(parser)
 
 
@@ -189,12 +241,14 @@ def scene_from_args(args: argparse.Namespace, system: str) -> Any:
 
     fields: dict[str, Any] = {}
     params: dict[str, Any] = {}
+    roles: dict[str, Any] = {}
     if getattr(args, "scene", None):
         base = read_scene(args.scene)
         if base.system != system:
             raise InputFormatError(f"{args.scene} describes a {base.system} scene, not {system}")
         fields = {name: getattr(base, name) for name in _FIELDS}
         params = dict(base.params)
+        roles = dict(base.roles)
     for name in _FIELDS:
         value = getattr(args, name, None)
         if value is not None:
@@ -212,5 +266,98 @@ def scene_from_args(args: argparse.Namespace, system: str) -> Any:
     if system == "network" and fields.get("matrix") is None:
         raise InputFormatError("derive network needs --matrix FILE (or a scene file with a matrix)")
     params.update(param_items(getattr(args, "param", []) or []))
+    roles.update(role_items(getattr(args, "role", []) or []))
     fields = {k: v for k, v in fields.items() if v is not None}
-    return Scene(system, **fields, params=params)
+    return Scene(system, **fields, params=params, roles=roles)
+
+
+def build_model(scene: Any, args: argparse.Namespace) -> Any:
+    """``scene.build()``; a mistake about a parameter of the ``--scene`` file names its line."""
+    import re
+
+    from hapticproof.core.errors import SceneError
+
+    try:
+        return scene.build()
+    except SceneError as err:
+        path = getattr(args, "scene", None)
+        named = re.match(r"(?:unknown )?parameter '([^']+)'", str(err))
+        if not path or path == "-" or named is None or named.group(1) in param_items(getattr(args, "param", []) or []):
+            raise
+        from hapticproof.systems.scene import SceneFileError, line_of
+
+        try:
+            text = Path(path).read_text(encoding="utf-8")
+        except OSError:
+            raise err from None
+        line = line_of(text, named.group(1), "params")
+        raise SceneFileError(f"{path}:{line}: {err}" if line else f"{path}: {err}") from None
+
+
+# ---------------------------------------------------------------------------------------------
+# the scene options of every system at once (boundary, map: the system is an argument)
+# ---------------------------------------------------------------------------------------------
+
+#: The systems ``boundary`` and ``map`` take.
+LOOP_SYSTEMS = ("single-user", "multi-user", "teleoperator")
+
+
+def add_any_scene_options(parser: argparse.ArgumentParser) -> None:
+    """The scene options of ``derive`` for every system but networks (``boundary``, ``map``):
+    the same names and meanings; a field that does not apply to the system is an error."""
+    from hapticproof.systems.discretize import METHODS
+    from hapticproof.systems.singleuser import APPROXIMATIONS
+
+    parser.add_argument("--scene", metavar="FILE", help="read the scene from a scene file (TOML; - for standard "
+                        "input); options given here override its fields and --param adds to its [params]")
+    parser.add_argument("--approximation", choices=APPROXIMATIONS, default=None,
+                        help="HVE model: approximation of X_h = Z{v_h/s} (default forward; passivity)")
+    parser.add_argument("--environment", "--H", dest="environment",
+                        help="single-user: the virtual environment H(z) (or H(s) with --discretize; default "
+                        "K + B*(z-1)/(T*z)); teleoperator: the slave's termination Z_e(s), 'free' or 'clamped'")
+    parser.add_argument("--controller", help="teleoperator: 'pd', 'filtered-pd', C(z) or C(s) with --discretize; "
+                        "single-user: a synonym of --environment")
+    parser.add_argument("--discretize", choices=METHODS, default=None, help="make a continuous design discrete")
+    parser.add_argument("--operator", help="operator impedance Z_h(s), e.g. '-z_a + 1/s' "
+                        "(teleoperator: master termination; 'clamped' allowed)")
+    parser.add_argument("--delay", default=None, help="delay in samples (multi-user: one per user, n_1,...,n_m)")
+    parser.add_argument("--users", type=int, default=None, help="multi-user: number of users (default 2)")
+    parser.add_argument("--graph", default=None, help="multi-user: coupling graph (complete, path, star, ring, 1-2,2-3)")
+    parser.add_argument("--uniform", action="store_true", default=None,
+                        help="multi-user: one symbol per group (b, K_0, B_0, K, B); else per-user names")
+    parser.add_argument("--active", action="store_true", default=None,
+                        help="include the operator's shortage of passivity z_a (single- and multi-user)")
+    add_role_option(parser)
+    add_param_option(parser)
+
+
+def scene_from_any_args(args: argparse.Namespace, systems: tuple[str, ...] = LOOP_SYSTEMS,
+                        default: str | None = None) -> Any:
+    """The scene of :func:`add_any_scene_options` and the positional ``args.system`` (else the
+    scene file's, else ``default``)."""
+    from hapticproof.systems.scene import Scene, read_scene
+
+    fields: dict[str, Any] = {}
+    params: dict[str, Any] = {}
+    roles: dict[str, Any] = {}
+    system = getattr(args, "system", None)
+    if getattr(args, "scene", None):
+        base = read_scene(args.scene)
+        if system is not None and base.system != system:
+            raise InputFormatError(f"{args.scene} describes a {base.system} scene, not {system}")
+        system = base.system
+        fields = {name: getattr(base, name) for name in _FIELDS if name not in ("matrix", "ports")}
+        params = dict(base.params)
+        roles = dict(base.roles)
+    system = system or default
+    if system is None:
+        raise InputFormatError(f"name the system ({', '.join(systems)}) or give --scene FILE")
+    if system not in systems:
+        raise InputFormatError(f"this command applies to {', '.join(systems)} scenes, not {system}")
+    for name in _FIELDS:
+        value = getattr(args, name, None)
+        if value is not None:
+            fields[name] = value
+    params.update(param_items(getattr(args, "param", []) or []))
+    roles.update(role_items(getattr(args, "role", []) or []))
+    return Scene(system, **{k: v for k, v in fields.items() if v is not None}, params=params, roles=roles)

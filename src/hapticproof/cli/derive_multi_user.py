@@ -23,7 +23,7 @@ from typing import Any
 import sympy as sp
 
 from hapticproof.report import latex as tex
-from hapticproof.cli.common import add_output_option, add_scene_options, check_output, scene_from_args, write_output
+from hapticproof.cli.common import add_output_option, build_model, add_scene_options, check_output, scene_from_args, write_output
 from hapticproof.cli.derive_single_user import add_design_options, design_answers
 from hapticproof.core.errors import InputFormatError
 from hapticproof.core.evidence import to_jsonable
@@ -178,7 +178,7 @@ def run(args: argparse.Namespace) -> int:
         raise InputFormatError("--fragment needs --format latex")
     check_output(args.output, "--output")
     spec = scene_from_args(args, "multi-user")
-    scene = spec.build()
+    scene = build_model(spec, args)
     data = derive(scene, args.minors)
     extra, lines = design_answers(spec, args, args.delay_margin)
     if fmt == "json":

@@ -42,7 +42,7 @@ from typing import Any
 import sympy as sp
 
 from hapticproof.report import latex as tex
-from hapticproof.cli.common import add_output_option, add_scene_options, check_output, scene_from_args, write_output
+from hapticproof.cli.common import add_output_option, build_model, add_scene_options, check_output, scene_from_args, write_output
 from hapticproof.core.errors import InputFormatError
 from hapticproof.core.evidence import Decision, to_jsonable
 from hapticproof.analysis.networks import absolute_stability, llewellyn, port_blocks, symmetrization_conditions
@@ -248,7 +248,7 @@ def run(args: argparse.Namespace) -> int:
         raise InputFormatError("--fragment needs --format latex")
     check_output(args.output, "--output")
     spec = scene_from_args(args, "network")
-    Z = spec.build()
+    Z = build_model(spec, args)
     ports = spec.ports
     if ports is not None:
         port_blocks(Z.rows, ports)

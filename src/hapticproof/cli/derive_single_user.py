@@ -15,7 +15,7 @@ import json
 
 import sympy as sp
 
-from hapticproof.cli.common import add_output_option, add_scene_options, check_output, scene_from_args, write_output
+from hapticproof.cli.common import add_output_option, build_model, add_scene_options, check_output, refuse, scene_from_args, write_output
 from hapticproof.core.errors import InputFormatError
 
 __all__ = ["register", "run", "add_design_options", "design_answers"]
@@ -81,16 +81,16 @@ def run(args: argparse.Namespace) -> int:
     if getattr(args, "max_delay", 1) < 0:
         raise InputFormatError("--max-delay must be >= 0")
     scene = scene_from_args(args, "single-user")
-    model = scene.build()
+    model = build_model(scene, args)
     head: list[str] = []
     if scene.discretize is not None:
         head.append(f"H(s) = {sp.sstr(scene.environment)}  ->  {scene.discretize}: H(z) = {sp.sstr(model.H)}")
     if not is_rational(model.H):
-        head.append("H(z) has transcendental coefficients (e^{pT} of the exact " + str(scene.discretize) +
-                    " map): an exact decision needs rational coefficients; use forward, backward or tustin, or "
-                    "give the discrete H(z) with rounded poles")
-        write_output(args.output, "\n".join(head))
-        return 0
+        refuse(args, f"{scene.discretize}: H(z) = {sp.sstr(model.H)} has transcendental coefficients (e^(pT) of the "
+               "exact map): an exact decision needs rational coefficients; use forward, backward or tustin, or give "
+               "the discrete H(z) with rounded poles",
+               {"continuous_design": {"H_s": sp.sstr(scene.environment), "discretize": scene.discretize,
+                                      "H_z": sp.sstr(model.H)}, "verdict": None})
     numeric_but_delay = model.delay.is_Symbol and not (model.parameters - {model.delay})
     summary = summarize_single_user(model, with_profile=args.profile)
     extra, lines = design_answers(scene, args, args.delay_margin or numeric_but_delay)

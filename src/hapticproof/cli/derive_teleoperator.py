@@ -22,7 +22,7 @@ import json
 import sympy as sp
 
 from hapticproof.report import latex as tex
-from hapticproof.cli.common import add_output_option, add_scene_options, check_output, scene_from_args, write_output
+from hapticproof.cli.common import add_output_option, build_model, add_scene_options, check_output, refuse, scene_from_args, write_output
 from hapticproof.cli.derive_single_user import add_design_options, design_answers
 from hapticproof.core.errors import InputFormatError
 from hapticproof.core.evidence import to_jsonable
@@ -60,11 +60,13 @@ def run(args: argparse.Namespace) -> int:
         raise InputFormatError("--fragment needs --format latex")
     check_output(args.output, "--output")
     spec = scene_from_args(args, "teleoperator")
-    scene = spec.build()
+    scene = build_model(spec, args)
     if not is_rational(scene.C):
-        write_output(args.output, f"C(z) = {sp.sstr(scene.C)}\nC(z) has transcendental coefficients (e^(pT) of the exact "
-                     f"{spec.discretize} map): an exact decision needs rational coefficients")
-        return 0
+        refuse(args, f"{spec.discretize}: C(z) = {sp.sstr(scene.C)} has transcendental coefficients (e^(pT) of the "
+               "exact map): an exact decision needs rational coefficients; use forward, backward or tustin, or give "
+               "the discrete C(z) with rounded poles",
+               {"continuous_design": {"C_s": sp.sstr(spec.controller), "discretize": spec.discretize,
+                                      "C_z": sp.sstr(scene.C)}, "verdict": None})
     bd, wc = bounds(scene), worst_case(scene)
     decision = passivity(scene)
     conds = passivity_conditions(scene)

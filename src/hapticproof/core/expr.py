@@ -22,6 +22,10 @@ multiplication):
 * ``z`` (discrete time) and ``s`` (continuous time) are the transform variables: an expression
   of one domain that uses the other variable is an error, as is a name followed by ``(`` (there
   are no functions in a rational expression) or two operands side by side (``2s``).
+* ``nan``, ``inf``, ``infinity``, ``oo`` and ``zoo`` are not numbers and ``pi`` is not a
+  rational one (:data:`NOT_NAMES`): each is an error, never a symbol. An exact decision needs
+  rational coefficients, so ``pi`` is refused rather than kept exactly; write the rational you
+  mean (``355/113``, ``3.14159265358979``).
 
 Every mistake is one :class:`ExpressionError` line that names where the text came from and
 the position.
@@ -58,6 +62,9 @@ __all__ = [
     "read_number",
     "normalise_variables",
     "write_expression",
+    "NOT_NAMES",
+    "not_a_name",
+    "check_rational",
 ]
 
 #: Assumption words a user may give a parameter (scene files, ``--param NAME=positive``).
@@ -81,6 +88,28 @@ DEFAULT_ASSUMPTIONS: dict[str, str] = {
 }
 
 _VARIABLES = {"z": Z_SYM, "s": S_SYM}
+
+#: Words that look like names but are (not) numbers: never parameters, never symbols.
+NOT_NAMES: dict[str, str] = {
+    "nan": "is not a number",
+    "inf": "is not a finite number",
+    "infinity": "is not a finite number",
+    "oo": "is not a finite number",
+    "zoo": "is not a finite number",
+    "pi": "is the irrational number pi: values and coefficients are exact rationals (an exact decision needs "
+          "rational coefficients); write the rational you mean, e.g. 355/113 or 3.14159265358979",
+}
+
+
+def not_a_name(word: str) -> str | None:
+    """Why ``word`` is no parameter name (:data:`NOT_NAMES`; ``nan``/``inf`` in any case), or ``None``.
+
+    >>> not_a_name("NaN"), not_a_name("K")
+    ('is not a number', None)
+    """
+    if word.lower() == "pi":               # only the lower-case word is the number (PI may be a gain)
+        return NOT_NAMES["pi"] if word == "pi" else None
+    return NOT_NAMES.get(word.lower())
 _DOMAIN = {"z": "a discrete-time expression in z", "s": "a continuous-time expression in s"}
 
 
@@ -100,6 +129,8 @@ def parameter_symbol(name: str, assumption: str | None = None) -> sp.Symbol:
         raise ExpressionError(f"{name!r} is not a parameter name (letters, digits and _, not starting with _ or a digit)")
     if name in _VARIABLES:
         raise ExpressionError(f"{name!r} is a transform variable, not a parameter name")
+    if not_a_name(name):
+        raise ExpressionError(f"{name!r} {not_a_name(name)}, not a parameter name")
     word = assumption or DEFAULT_ASSUMPTIONS.get(name) or _indexed_default(name)
     if word not in ASSUMPTIONS:
         raise ExpressionError(f"{name}: unknown assumption {word!r}; use one of {', '.join(ASSUMPTIONS)}")
@@ -264,6 +295,10 @@ class _Parser:
                 return _VARIABLES[token.text]
             if token.text.startswith("_"):
                 self.fail(f"names may not start with '_': {token.text!r}", token.position)
+            if not_a_name(token.text):
+                if len(self.tokens) == 2:            # the whole text: no position to point at
+                    raise ExpressionError(f"{self.where + ': ' if self.where else ''}{token.text!r} {not_a_name(token.text)}")
+                self.fail(f"{token.text!r} {not_a_name(token.text)}", token.position)
             return self.symbol(token.text)
         if token.text == "(":
             value = self.expr()
@@ -343,6 +378,44 @@ def normalise_variables(expr: sp.Expr, variable: str, where: str = "") -> sp.Exp
     if expr.has(sp.Float):
         expr = expr.xreplace({f: sp.Rational(repr(float(f))) for f in expr.atoms(sp.Float)})  # as typed
     return expr
+
+
+def check_rational(value: sp.Basic, where: str = "") -> sp.Expr:
+    """A value built in Python is an exact rational number or a rational expression of symbols
+    with rational coefficients: ``nan``, infinities, ``pi``, ``sqrt(2)``, floats that are not
+    finite and functions are errors (:class:`ExpressionError`); finite floats become the
+    rationals of their shortest decimal text.
+
+    >>> K = sp.Symbol("K")
+    >>> check_rational(K / 2 + sp.Float(0.5)), check_rational(sp.Integer(3))
+    (K/2 + 1/2, 3)
+    >>> check_rational(sp.pi * K, "K_0")
+    Traceback (most recent call last):
+    ...
+    hapticproof.core.expr.ExpressionError: K_0: pi*K is not rational: values and coefficients are exact rationals (an exact decision needs rational coefficients)
+    """
+    prefix = f"{where}: " if where else ""
+    value = sp.sympify(value)
+    if value.has(sp.nan, sp.zoo, sp.oo, -sp.oo):
+        raise ExpressionError(f"{prefix}{sp.sstr(value)} is not a finite number")
+    if value.has(sp.Float):
+        floats = value.atoms(sp.Float)
+        if any(not f.is_finite for f in floats):
+            raise ExpressionError(f"{prefix}{sp.sstr(value)} is not a finite number")
+        value = value.xreplace({f: sp.Rational(repr(float(f))) for f in floats})
+    if value.is_Rational:
+        return value
+    gens = sorted(value.free_symbols, key=str)
+    try:
+        num, den = sp.fraction(sp.together(value))
+        ok = all(sp.Poly(part, *gens).domain.is_QQ or sp.Poly(part, *gens).domain.is_ZZ
+                 for part in (num, den)) if gens else False
+    except (sp.PolynomialError, sp.GeneratorsNeeded):
+        ok = False
+    if not ok:
+        raise ExpressionError(f"{prefix}{sp.sstr(value)} is not rational: values and coefficients are exact "
+                              "rationals (an exact decision needs rational coefficients)")
+    return value
 
 
 def write_expression(expr: sp.Expr) -> str:

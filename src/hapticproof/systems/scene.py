@@ -39,7 +39,7 @@ the file, the line and the field (:class:`SceneFileError`).
 >>> loads('system = "single-user"\nenviroment = "K"\n', "wall.toml")
 Traceback (most recent call last):
 ...
-hapticproof.systems.scene.SceneFileError: wall.toml:2: unknown field 'enviroment' (fields: system, approximation, environment, controller, discretize, delay, users, graph, uniform, active, operator, matrix, ports, params)
+hapticproof.systems.scene.SceneFileError: wall.toml:2: unknown field 'enviroment' (fields: system, approximation, environment, controller, discretize, delay, users, graph, uniform, active, operator, matrix, ports, roles, params)
 """
 
 from __future__ import annotations
@@ -55,6 +55,7 @@ from hapticproof.core.evidence import exact
 from hapticproof.core.symbols import n as N_SYM
 from hapticproof.core.symbols import z as Z_SYM
 from hapticproof.systems.singleuser import APPROXIMATIONS, SingleUserScene, delay_ratio, virtual_wall
+from hapticproof.systems.values import check_declared, check_positive_roles, param_value
 import json
 import re
 import sys
@@ -82,17 +83,19 @@ PRESETS = ("pd", "filtered-pd")
 _GRAPHS = ("complete", "path", "star", "ring")
 
 
-#: Names every system reserves, with their meaning (``m``... enter only stability boundaries).
-RESERVED = {
-    "single-user": {"b": "device damping", "T": "sampling period", "z_a": "operator's shortage of passivity",
-                    "t_d": "delay time (n = t_d/T)", "m": "device mass (stability only)"},
-    "multi-user": {"T": "sampling period", "m": "device masses (stability only)"},
-    "teleoperator": {"b_m": "master damping", "b_s": "slave damping", "T": "sampling period",
-                     "alpha": "position scaling", "m_m": "master mass (stability only)",
-                     "m_s": "slave mass (stability only)", "m": "both masses (stability only)",
-                     "b": "both dampings"},
-    "network": {},
-}
+def reserved_names(system: str, roles: tuple = (), users: int | None = None) -> dict[str, str]:
+    """The names a scene of ``system`` gives a meaning: its roles' names
+    (:mod:`hapticproof.systems.roles`) and the fixed names (``z_a``, ``t_d``, ``alpha``), with
+    what they mean.
+
+    >>> reserved_names("single-user", (("period", "Ts"),))["Ts"]
+    'the sampling period'
+    """
+    from hapticproof.systems.roles import FIXED_NAMES, ROLES, role_names
+
+    out = {name: ROLES[system][field].meaning for name, field in role_names(system, roles, users).items()}
+    out.update(FIXED_NAMES[system])
+    return out
 
 
 def _assumption_of(symbol: sp.Symbol) -> str | None:
@@ -102,50 +105,6 @@ def _assumption_of(symbol: sp.Symbol) -> str | None:
         if getattr(symbol, attr):
             return word
     return None
-
-
-def _param_value(name: str, value: Any, where: str) -> Any:
-    """A parameter value, normalised: an exact rational, an assumption word or an expression."""
-    from decimal import Decimal
-    from fractions import Fraction
-
-    from hapticproof.core.expr import ASSUMPTIONS, read_expression, read_number
-
-    if isinstance(value, bool):
-        raise SceneError(f"{where}{name}: {value!r} is not a number, an expression or an assumption")
-    if isinstance(value, (int, Fraction)):
-        return sp.Rational(value)
-    if isinstance(value, float):
-        # a Python float is read by its shortest decimal text: 0.001 is 1/1000, as typed
-        return read_number(repr(value), f"{where}{name}")
-    if isinstance(value, Decimal):
-        return read_number(str(value), f"{where}{name}")
-    if isinstance(value, sp.Basic):
-        if value.is_Rational:
-            return value
-        if value.is_Float:
-            return sp.Rational(value)
-        return value
-    if isinstance(value, str):
-        text = value.strip()
-        if text in ASSUMPTIONS:
-            return text
-        try:
-            return read_number(text)
-        except SceneError:
-            pass
-        except Exception:  # noqa: BLE001 - not a plain number: read it as an expression
-            pass
-        expr = read_expression(text, None, where=f"{where}{name}")
-        if expr.is_Symbol:
-            import difflib
-
-            close = difflib.get_close_matches(text, list(ASSUMPTIONS), n=1, cutoff=0.75)
-            if close:
-                raise SceneError(f"{where}{name}: {text!r} is not an assumption; did you mean {close[0]!r}?")
-        return expr if not expr.is_Rational else sp.Rational(expr)
-    raise SceneError(f"{where}{name}: cannot use {value!r} (a number, an expression or one of "
-                     f"{', '.join(ASSUMPTIONS)})")
 
 
 @dataclass(frozen=True, slots=True)
@@ -186,6 +145,11 @@ class Scene:
         positive, ``B, z_a`` non-negative) or ``real``.
     matrix, ports : network
         Impedance matrix ``Z(s)`` (rows of expressions in ``s``) and port sizes.
+    roles : mapping
+        The names of the parameters the system gives a meaning (:mod:`hapticproof.systems.roles`):
+        ``device_damping`` (default ``b``), ``period`` (``T``), ``mass`` (``m``); teleoperator
+        ``master_damping``/``slave_damping`` (``b_m``/``b_s``) and ``master_mass``/``slave_mass``
+        (``m_m``/``m_s``). ``{"period": "Ts"}`` makes ``Ts`` the sampling period everywhere.
 
     Examples
     --------
@@ -211,6 +175,7 @@ class Scene:
     params: Any = ()
     matrix: Any = None
     ports: Any = None
+    roles: Any = ()
 
     def __post_init__(self) -> None:
         from hapticproof.systems.discretize import METHODS
@@ -226,6 +191,15 @@ class Scene:
         for name in ("uniform", "active"):
             if not isinstance(getattr(self, name), bool):
                 raise SceneError(f"{name} must be true or false, got {getattr(self, name)!r}")
+        from hapticproof.systems.roles import check_members, read_roles
+
+        set_("roles", read_roles(self.system, self.roles))
+        if self.system == "multi-user":
+            users = 2 if self.users is None else self.users
+            if isinstance(users, bool) or not isinstance(users, int) or users < 1:
+                raise SceneError(f"users must be a positive integer, got {users!r}")
+            set_("users", users)
+            check_members(self.roles, users, self.uniform)
         # parameters first: their assumptions decide the symbols of every expression
         items = self.params.items() if isinstance(self.params, Mapping) else tuple(self.params)
         params: dict[str, Any] = {}
@@ -236,7 +210,7 @@ class Scene:
             parameter_symbol(key)                       # a valid name, not z or s
             if key in params:
                 raise SceneError(f"parameter {key} given twice")
-            params[key] = _param_value(key, value, where)
+            params[key] = param_value(key, value, where)
         system = self.system
         if system in ("single-user", "multi-user") and self.controller is not None:
             if self.environment is not None or system == "multi-user":
@@ -252,8 +226,8 @@ class Scene:
                 raise SceneError("a network scene needs its impedance matrix (matrix)")
         elif self.matrix is not None or self.ports is not None:
             raise SceneError("matrix and ports describe a network scene")
-        # expressions, read with the parameters' assumptions
-        assumptions = {k: v for k, v in params.items() if isinstance(v, str)}
+        # expressions, read with the parameters' assumptions (a role's parameter is positive)
+        assumptions = {**self._role_words(), **{k: v for k, v in params.items() if isinstance(v, str)}}
         continuous_env = system == "teleoperator" or self.discretize is not None
         if system == "teleoperator":
             set_("environment", self._expr(self.environment, "s", "environment", assumptions, words=TERMINATIONS))
@@ -274,17 +248,14 @@ class Scene:
         for name in ("environment", "controller", "operator"):
             value = getattr(self, name)
             if isinstance(value, sp.Basic):
-                set_(name, self._normalise(value, name, params))
-        params = {k: (self._normalise(v, k, params) if isinstance(v, sp.Basic) and not v.is_Rational else v)
+                set_(name, self._normalise(value, name, params, assumptions))
+        params = {k: (self._normalise(v, k, params, assumptions) if isinstance(v, sp.Basic) and not v.is_Rational else v)
                   for k, v in params.items()}
         set_("params", tuple(sorted(params.items())))
         # delays, users, graph
         set_("delay", self._delay(self.delay))
         if system == "multi-user":
-            users = 2 if self.users is None else self.users
-            if isinstance(users, bool) or not isinstance(users, int) or users < 1:
-                raise SceneError(f"users must be a positive integer, got {users!r}")
-            set_("users", users)
+            users = self.users
             graph = str(self.graph).strip().lower().replace(" ", "")
             set_("graph", graph)
             _edges_of(graph, users)                     # validate
@@ -302,7 +273,7 @@ class Scene:
                          for i, row in enumerate(self.matrix))
             if not rows or any(len(r) != len(rows) for r in rows):
                 raise SceneError("the impedance matrix must be square and not empty")
-            set_("matrix", tuple(tuple(self._normalise(e, "matrix", params) for e in row) for row in rows))
+            set_("matrix", tuple(tuple(self._normalise(e, "matrix", params, assumptions) for e in row) for row in rows))
             if self.ports is not None:
                 ports = tuple(int(p) for p in self.ports)
                 if sum(ports) != len(rows) or any(p < 1 for p in ports):
@@ -322,25 +293,25 @@ class Scene:
                 return value.strip().lower()
             return read_expression(value, variable, where=name, assumptions=assumptions)
         if isinstance(value, (int, float)) and not isinstance(value, bool):
-            return _param_value(name, value, "")
+            return param_value(name, value, "")
         if isinstance(value, sp.Basic):
             return normalise_variables(value, variable, name)
         raise SceneError(f"{name}: expected an expression, got {value!r}")
 
     @staticmethod
-    def _normalise(expr: sp.Expr, where: str, params: Mapping[str, Any]) -> sp.Expr:
+    def _normalise(expr: sp.Expr, where: str, params: Mapping[str, Any], words: Mapping[str, str]) -> sp.Expr:
         from hapticproof.core.expr import parameter_symbol
 
         mapping = {}
         for sym in expr.free_symbols:
             if sym.name in ("z", "s"):
                 continue
-            word = params.get(sym.name) if isinstance(params.get(sym.name), str) else None
+            word = words.get(sym.name)
             target = parameter_symbol(sym.name, word)
             if sym != target:
                 # a parameter given a value is substituted whatever its symbol's assumption
                 # (Scene.with_params on a scene whose B was declared "real", say)
-                if word is None and sym.name not in params and _assumption_of(sym) not in (None, _assumption_of(target)):
+                if sym.name not in params and _assumption_of(sym) not in (None, _assumption_of(target)):
                     raise SceneError(f"{where}: the symbol {sym.name} carries the assumption {_assumption_of(sym)!r}; "
                                      f"declare it in params ({sym.name} = {_assumption_of(sym)!r})")
                 mapping[sym] = target
@@ -369,6 +340,40 @@ class Scene:
             raise SceneError(f"the delay n = t_d/T must be a non-negative integer or 'n', got {delay}")
         return int(value)
 
+    # -- roles ---------------------------------------------------------------------------------
+    def role(self, field: str) -> str | None:
+        """The parameter name of a role (:mod:`hapticproof.systems.roles`): ``'T'`` for
+        ``'period'`` unless the scene names it (``None``: a multi-user role named per user only).
+
+        >>> Scene("single-user", roles={"period": "Ts"}).role("period")
+        'Ts'
+        """
+        from hapticproof.systems.roles import ROLES, role_name
+
+        if field not in ROLES[self.system]:
+            raise SceneError(f"a {self.system} scene has no role {field!r}")
+        return role_name(self.system, self.roles, field)
+
+    def members(self, field: str) -> tuple[str, ...]:
+        """The per-user names of a multi-user role (``b_1``, ..., ``b_m`` by default)."""
+        from hapticproof.systems.roles import member_names
+
+        return member_names(self.system, self.roles, field, self.users or 1)
+
+    def reserved(self) -> dict[str, str]:
+        """The names this scene gives a meaning (its roles' names, ``z_a``...) -> the meaning."""
+        return reserved_names(self.system, self.roles, self.users)
+
+    def _role_words(self) -> Mapping[str, str]:
+        """Name -> the assumption of a role's parameter (positive), for every name a role gives."""
+        from hapticproof.systems.roles import role_words
+
+        return role_words(self.system, self.roles, self.users)
+
+    def role_symbol(self, field: str) -> sp.Symbol:
+        """The symbol of a role's parameter (``T`` or the scene's own name for it)."""
+        return self.symbol(self.role(field))
+
     # -- reading the fields -------------------------------------------------------------------
     @property
     def param_values(self) -> dict[str, Any]:
@@ -384,7 +389,15 @@ class Scene:
         """The symbol of ``name`` in this scene (its assumption, else the default)."""
         from hapticproof.core.expr import parameter_symbol
 
-        return parameter_symbol(name, self.assumptions.get(name))
+        return parameter_symbol(name, self.assumptions.get(name) or self._role_words().get(name))
+
+    def resolved_values(self) -> dict[str, Any]:
+        """Name -> value of every parameter with a value, expressions of others resolved.
+
+        >>> Scene("single-user", params={"Kw": 4, "K": "Kw/2"}).resolved_values()["K"]
+        2
+        """
+        return {sym.name: value for sym, value in self._substitution().items()}
 
     def with_params(self, values: Mapping[str, Any] | None = None, **named: Any) -> Scene:
         """The scene with more (or changed) parameters; a value ``None`` removes one.
@@ -420,11 +433,17 @@ class Scene:
                         mapping[sym] = new
                         changed = True
             if not changed:
-                return {k: (sp.cancel(v) if v.free_symbols else v) for k, v in mapping.items()}
+                out = {k: (sp.cancel(v) if v.free_symbols else v) for k, v in mapping.items()}
+                for sym, value in out.items():
+                    if value.has(sp.zoo, sp.nan, sp.oo, -sp.oo):
+                        given = dict(values).get(sym.name)
+                        raise SceneError(f"parameter {sym.name!r}: {sp.sstr(given)} divides by zero at the scene's values")
+                check_positive_roles(self, out)
+                return out
         raise SceneError("the parameter expressions refer to each other in a cycle")
 
-    def names(self) -> set[str]:
-        """Every parameter name the scene's model uses (before values are substituted)."""
+    def model_names(self) -> set[str]:
+        """The parameter names of the scene's model and expressions (before values are substituted)."""
         model = self._model(substitute=False)
         if self.system == "network":
             free = set().union(*(e.free_symbols for e in model))
@@ -433,11 +452,15 @@ class Scene:
         for value in (self.environment, self.controller, self.operator):
             if isinstance(value, sp.Basic):
                 free |= value.free_symbols
-        names = {s.name for s in free} - {"z", "s", "n"}
+        return {s.name for s in free} - {"z", "s", "n"}
+
+    def names(self) -> set[str]:
+        """Every parameter name the scene uses: its model's, and those of its parameters' values."""
+        names = self.model_names()
         for value in self.param_values.values():
             if isinstance(value, sp.Basic):
                 names |= {s.name for s in value.free_symbols}
-        return names | (set(RESERVED[self.system]) & set(dict(self.params)))
+        return names | (set(self.reserved()) & set(dict(self.params)))
 
     def check_names(self) -> None:
         """Every parameter given must be used by the scene (a misspelt name is an error).
@@ -447,13 +470,29 @@ class Scene:
         ...
         hapticproof.core.errors.SceneError: unknown parameter 'Q': this single-user scene has B, K, T, b
         """
-        known = self.names() | set(RESERVED[self.system])
+        from hapticproof.systems.roles import ROLES
+
+        model_names = self.model_names()
+        names = self.names()
+        known = names | set(self.reserved())
         if self.system == "multi-user":
-            known |= {"b", "K_0", "B_0", "K", "B", "z_a"} | {f"m_{i + 1}" for i in range(self.users)}
+            known |= {"K_0", "B_0", "K", "B", "z_a"}
+        # a value is a number or an expression of declared names: the model's, the parameters'
+        # (with a value or an assumption) and the roles'; anything else is a typo, not a new symbol
+        declared = (model_names | set(dict(self.params)) | set(self.reserved())
+                    | ({"K_0", "B_0", "K", "B", "z_a"} if self.system == "multi-user" else set()))
+        check_declared(self.param_values, declared, model_names | set(dict(self.params)))
         for name in dict(self.params):
             if name not in known:
-                shown = sorted(self.names() - {name}) or ["no parameters"]
-                raise SceneError(f"unknown parameter {name!r}: this {self.system} scene has {', '.join(shown)}")
+                shown = sorted(names - {name}) or ["no parameters"]
+                renamed = [(field, role) for field, role in ROLES[self.system].items()
+                           if role.default == name and self.role(field) != name]
+                hint = ""
+                if renamed:
+                    field, role = renamed[0]
+                    now = self.role(field) or ", ".join(self.members(field))
+                    hint = f" ({role.meaning} is {now} in this scene: roles {field} = {now!r})"
+                raise SceneError(f"unknown parameter {name!r}: this {self.system} scene has {', '.join(shown)}{hint}")
 
     def build(self) -> Any:
         """The analysis model with the parameter values substituted: a :class:`SingleUserScene`,
@@ -488,12 +527,12 @@ class Scene:
         if self.system == "teleoperator" and design in (None, "pd", "filtered-pd"):
             from hapticproof.systems.teleoperator import filtered_pd_controller, pd_controller
 
-            K, B, T = self.symbol("K"), self.symbol("B"), self.symbol("T")
+            K, B, T = self.symbol("K"), self.symbol("B"), self.role_symbol("period")
             return filtered_pd_controller(K, B, T, self.symbol("a")) if design == "filtered-pd" else pd_controller(K, B, T)
         if design is None:
-            return virtual_wall(self.symbol("K"), self.symbol("B"), self.symbol("T"))
+            return virtual_wall(self.symbol("K"), self.symbol("B"), self.role_symbol("period"))
         if self.discretize is not None:
-            return discretize(design, self.discretize, self.symbol("T"))
+            return discretize(design, self.discretize, self.role_symbol("period"))
         return design
 
     def _z_a(self, mapping: Mapping[sp.Symbol, Any]) -> Any:
@@ -512,8 +551,8 @@ class Scene:
         return sp.Integer(0)
 
     def _single_user(self, mapping, sub) -> SingleUserScene:
-        T = sub(self.symbol("T"))
-        b = sub(self.symbol("b"))
+        T = sub(self.role_symbol("period"))
+        b = sub(self.role_symbol("device_damping"))
         H = sub(self.environment_z())
         delay: Any = N_SYM if self.delay == "n" else self.delay
         t_d = self.symbol("t_d")
@@ -539,9 +578,16 @@ class Scene:
                                             approximation=self.approximation)
             if z_a:
                 scene = replace(scene, z_a=(z_a,) * self.users)
+        # the roles' names: the period and the dampings (a group name, or one per user)
+        group = self.role("device_damping")
+        dampings = ((self.symbol(group),) * self.users if self.uniform else
+                    tuple(self.symbol(name) for name in self.members("device_damping")))
+        scene = replace(scene, T=self.role_symbol("period"), b=dampings)
         if not mapping:
             return scene
-        groups = {"b": "b", "K_0": "K0", "B_0": "B0", "z_a": "z_a", "K": "K", "B": "B"}
+        groups = {"K_0": "K0", "B_0": "B0", "z_a": "z_a", "K": "K", "B": "B"}
+        if group is not None:
+            groups[group] = "b"
         values: dict[sp.Symbol, Any] = {}
         by_name = {s.name: s for s in scene.parameters}
         for sym, value in mapping.items():
@@ -569,14 +615,16 @@ class Scene:
             if self.delay == "n":
                 raise SceneError("teleoperator scenes need an integer communication delay")
         values = {s.name: v for s, v in mapping.items()}
-        mass = lambda name: values.get(name, values.get("m"))  # noqa: E731
-        # "b" is both dampings: a value, or an assumption (one symbol b for both robots)
-        both = self.symbol("b") if "b" in self.assumptions else None
-        damping = lambda name: values.get(name, values.get("b", both if both is not None and name not in self.assumptions  # noqa: E731
-                                                           else self.symbol(name)))
+        role = self.role
+        mass = lambda field: values.get(role(field), values.get(role("mass")))  # noqa: E731
+        # the device damping is both dampings: a value, or an assumption (one symbol for both robots)
+        both_name = role("device_damping")
+        both = self.symbol(both_name) if both_name in self.assumptions else None
+        damping = lambda field: values.get(role(field), values.get(both_name, both if both is not None and role(field) not in self.assumptions  # noqa: E731
+                                                                   else self.symbol(role(field))))
         alpha = values.get("alpha", self.symbol("alpha") if "alpha" in self.assumptions else 1)
-        return TeleoperatorScene(mass("m_m"), mass("m_s"), damping("b_m"), damping("b_s"), sub(self.symbol("T")),
-                                 sub(self.environment_z()), alpha)
+        return TeleoperatorScene(mass("master_mass"), mass("slave_mass"), damping("master_damping"),
+                                 damping("slave_damping"), sub(self.role_symbol("period")), sub(self.environment_z()), alpha)
 
     # -- files ------------------------------------------------------------------------------------
     @classmethod
@@ -651,12 +699,13 @@ def _edges_of(graph: str, m: int) -> tuple[tuple[int, int], ...] | None:
 
 #: The fields of a scene table, in the order they are written.
 FIELDS = ("system", "approximation", "environment", "controller", "discretize", "delay", "users", "graph",
-          "uniform", "active", "operator", "matrix", "ports", "params")
+          "uniform", "active", "operator", "matrix", "ports", "roles", "params")
 
 _TYPES: dict[str, tuple[type, ...]] = {
     "system": (str,), "approximation": (str,), "environment": (str, int, Decimal), "controller": (str, int, Decimal),
     "discretize": (str,), "delay": (int, str, list), "users": (int,), "graph": (str,), "uniform": (bool,),
-    "active": (bool,), "operator": (str, int, Decimal), "matrix": (list, str), "ports": (list, str), "params": (dict,),
+    "active": (bool,), "operator": (str, int, Decimal), "matrix": (list, str), "ports": (list, str), "roles": (dict,),
+    "params": (dict,),
 }
 
 
@@ -775,9 +824,25 @@ def scene_from_table(table: Mapping[str, Any], where: str = "scene", base: str |
         return Scene(**fields, params=params)
     except HapticproofError as err:
         message = str(err)
-        key = _field_in(message, list(fields) + list(params))
-        table_name = (prefix + ".params").lstrip(".") if key in params else prefix
+        if message.startswith("roles:") and isinstance(fields.get("roles"), Mapping):
+            table_name = (prefix + ".roles").lstrip(".")
+            named = [k for k, v in fields["roles"].items()
+                     if message.startswith(f"roles: {k}:") or f"'{k}'" in message or f"'{v}'" in message] or [None]
+            line = line_of(text, named[0], table_name) if named[0] else None
+            line = line or line_of(text, "roles", prefix) or _table_header(text, table_name)
+            raise SceneFileError(f"{where}:{line}: {message}" if line else f"{where}: {message}") from None
+        else:
+            key = _field_in(message, list(fields) + list(params))
+            table_name = (prefix + ".params").lstrip(".") if key in params else prefix
         raise SceneFileError(f"{_where(where, text, key, table_name) if key else where}: {message}") from None
+
+
+def _table_header(text: str | None, table: str) -> int | None:
+    """The line of the header ``[table]`` in a TOML text."""
+    for number, line in enumerate((text or "").splitlines(), 1):
+        if re.match(r"\s*\[\s*" + re.escape(table) + r"\s*\]", line):
+            return number
+    return None
 
 
 def _field_in(message: str, keys: list[str]) -> str | None:
@@ -874,7 +939,7 @@ def dumps(scene) -> str:
 
     default = Scene(scene.system) if scene.system != "network" else None
     lines = ["# hapticproof scene"]
-    for name in FIELDS[:-1]:
+    for name in FIELDS[:-2]:
         value = getattr(scene, name)
         if value is None:
             continue
@@ -887,6 +952,9 @@ def dumps(scene) -> str:
         if name == "users" and scene.system == "multi-user" and value == 2:
             continue
         lines.append(f"{name} = {toml_value(value)}")
+    if scene.roles:
+        lines += ["", "[roles]"]
+        lines += [f"{field} = {toml_value(list(name) if isinstance(name, tuple) else name)}" for field, name in scene.roles]
     if scene.params:
         lines += ["", "[params]"]
         for key, value in scene.params:
