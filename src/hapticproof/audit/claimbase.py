@@ -12,7 +12,7 @@ from typing import Any
 
 import sympy as sp
 
-from hapticproof.exact.canonical import Sampler
+from hapticproof.exact.canonical import Sampler, is_identically_zero
 from hapticproof.audit.compare import as_bound, compare_bounds
 from hapticproof.core.errors import HapticproofError
 from hapticproof.core.evidence import Decision, Evidence, Finding, Method, Outcome, Verdict
@@ -255,12 +255,87 @@ def decide_at_point(state: State, point: Mapping[Any, Any]) -> Outcome:
 
 
 def holds_at(condition: Any, point: Mapping[Any, Any]) -> bool | None:
-    """Exact truth of a condition (relational or And) at a point; None when undecidable."""
+    """Exact truth of a condition (relational or And) at a point; None when undecidable.
+
+    Rational conditions at rational points are evaluated in exact fractions, without building
+    SymPy expressions (the samplers call this thousands of times); anything else by
+    substitution."""
+    fast = _fraction_truth(condition, point)
+    if fast is not _UNKNOWN:
+        return fast
     try:
         value = sp.sympify(condition).xreplace(dict(point))
     except (TypeError, ZeroDivisionError):
         return None
     return _truth(value)
+
+
+_UNKNOWN = object()
+
+
+def _fraction_truth(condition: Any, point: Mapping[Any, Any]) -> Any:
+    from fractions import Fraction
+
+    values = {}
+    for key, value in point.items():
+        if isinstance(value, sp.Rational):
+            values[key] = Fraction(int(value.p), int(value.q))
+        elif isinstance(value, int) and not isinstance(value, bool):
+            values[key] = Fraction(value)
+        else:
+            return _UNKNOWN
+    try:
+        return _truth_of(sp.sympify(condition), values)
+    except _NotRational:
+        return _UNKNOWN
+
+
+class _NotRational(Exception):
+    """A node the fraction evaluator does not take (a function, an irrational, a free symbol)."""
+
+
+def _truth_of(cond: Any, values: Mapping[Any, Any]) -> bool | None:
+    if cond is sp.true or cond is sp.false:
+        return bool(cond)
+    if isinstance(cond, (sp.And, sp.Or)):
+        parts = [_truth_of(a, values) for a in cond.args]
+        if None in parts:
+            return None
+        return all(parts) if isinstance(cond, sp.And) else any(parts)
+    if isinstance(cond, sp.core.relational.Relational) and cond.rel_op in (">", ">=", "<", "<=", "==", "!="):
+        try:
+            diff = _fraction_value(cond.lhs, values) - _fraction_value(cond.rhs, values)
+        except ZeroDivisionError:
+            return None
+        return {">": diff > 0, ">=": diff >= 0, "<": diff < 0, "<=": diff <= 0, "==": diff == 0, "!=": diff != 0}[cond.rel_op]
+    raise _NotRational
+
+
+def _fraction_value(expr: Any, values: Mapping[Any, Any]) -> Any:
+    from fractions import Fraction
+
+    if isinstance(expr, sp.Rational):
+        return Fraction(int(expr.p), int(expr.q))
+    if isinstance(expr, sp.Symbol):
+        if expr in values:
+            return values[expr]
+        raise _NotRational
+    if isinstance(expr, sp.Add):
+        return sum((_fraction_value(a, values) for a in expr.args), Fraction(0))
+    if isinstance(expr, sp.Mul):
+        out = Fraction(1)
+        for a in expr.args:
+            out *= _fraction_value(a, values)
+        return out
+    if isinstance(expr, sp.Pow) and expr.exp.is_Integer:
+        base = _fraction_value(expr.base, values)
+        return base ** int(expr.exp)
+    if isinstance(expr, sp.Abs):
+        return abs(_fraction_value(expr.args[0], values))
+    if isinstance(expr, (sp.Min, sp.Max)):
+        items = [_fraction_value(a, values) for a in expr.args]
+        return min(items) if isinstance(expr, sp.Min) else max(items)
+    raise _NotRational
 
 
 def _truth(value: Any) -> bool | None:
@@ -500,6 +575,8 @@ def _compare_conjunctions(printed: Any, exact: Any, state: State, claim: str, wh
     pairs = _pairs(printed, exact)
     if pairs is None:
         return None
+    if state.repairing:
+        return _quick_conjunctions(pairs, claim, what, exact, derived)
     findings = []
     for p, e, var in pairs:
         try:
@@ -555,6 +632,48 @@ def _compare_conjunctions(printed: Any, exact: Any, state: State, claim: str, wh
                    Evidence(Method.COUNTEREXAMPLE, witness=witness_json(witness), facts=facts), derived=derived)
 
 
+def _quick_conjunctions(pairs: list[tuple[Any, Any, sp.Symbol]], claim: str, what: str, exact: Any,
+                        derived: Any) -> Finding:
+    """While searching repairs: a trial is kept only when every bound is the exact one (or, for
+    a sufficient condition, provably above it); a numeric look rejects the others first."""
+    from hapticproof.audit.compare import sign_on_box
+
+    reject = Finding(Verdict.WRONG, f"{what} differs from the exact condition", Evidence(Method.INSTANCES))
+    above = False
+    for p, e, var in pairs:
+        pb, eb = _bound(p, var), _bound(e, var)
+        if pb is None or eb is None or not pb.lower:
+            return reject
+        if claim == "sufficient":
+            difference = sp.cancel(pb.bound - eb.bound)
+            if is_identically_zero(difference):
+                continue
+            if numerically_negative(difference) or sign_on_box(difference) != 1:
+                return reject
+            above = True
+            continue
+        if numerically_different(pb.bound, eb.bound) or not is_identically_zero(pb.bound - eb.bound):
+            return reject
+    if above:
+        return Finding(Verdict.CONSERVATIVE, f"{what} implies the exact condition bound by bound",
+                       Evidence(Method.ENDPOINT_ANALYSIS, facts={"exact": exact}), derived=derived)
+    return Finding(Verdict.CONFIRMED, f"{what} is equivalent to the exact condition {sp.sstr(exact)}, bound by bound",
+                   Evidence(Method.CANONICAL_FORM, facts={"exact": exact}), derived=derived)
+
+
+def numerically_negative(expr: Any, tries: int = 2) -> bool:
+    """``expr < 0`` at one of a few exact points (never used to prove, only to skip)."""
+    expr = sp.sympify(expr)
+    for point in Sampler(sorted(expr.free_symbols, key=str), seed=13).draw(tries + 1)[1:]:
+        try:
+            value = expr.xreplace(point)
+        except (TypeError, ZeroDivisionError):
+            continue
+        if value.is_Rational and value < 0:
+            return True
+    return False
+
+
 def numerically_different(a: Any, b: Any, tries: int = 2) -> bool:
     """``a != b`` seen at exact random points (never used to prove equality, only to skip)."""
     free = sorted((sp.sympify(a).free_symbols | sp.sympify(b).free_symbols), key=str)
@@ -596,6 +715,8 @@ def _quick_reject(printed: Any, exact: Any, var: sp.Symbol | None, claim: str) -
     sufficient condition, conservative): skip the others without a full comparison."""
     reject = Finding(Verdict.WRONG, "not equivalent to the exact condition", Evidence(Method.INSTANCES))
     if var is None:
+        if claim == "passivity" and _disagree_somewhere(printed, exact):
+            return reject
         if not positive_ratio_at_points(printed, exact):
             return reject
         return None if ratio_equivalent(printed, exact) else reject
@@ -607,6 +728,17 @@ def _quick_reject(printed: Any, exact: Any, var: sp.Symbol | None, claim: str) -
     if numerically_different(p.bound, e.bound):
         return reject
     return None
+
+
+def _disagree_somewhere(printed: Any, exact: Any, tries: int = 40) -> bool:
+    """Whether the two conditions differ in truth at one of a few exact points (a look that
+    only ever rejects; equivalent conditions never disagree)."""
+    free = sorted((sp.sympify(printed).free_symbols | sp.sympify(exact).free_symbols) - {C_SYM}, key=str)
+    for point in Sampler(free, seed=31).draw(tries):
+        a, b = holds_at(printed, point), holds_at(exact, point)
+        if a is not None and b is not None and a != b:
+            return True
+    return False
 
 
 def _constant_exact(printed: Any, exact: Any, state: State, claim: str, what: str, derived: Any) -> Finding:

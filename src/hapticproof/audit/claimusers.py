@@ -205,6 +205,16 @@ def _sign(expr: Any) -> int | None:
     return None
 
 
+def _negative_somewhere(expr: Any, tries: int = 3) -> bool:
+    """Whether ``expr`` is negative at one of a few exact points (a cheap look before a proof)."""
+    expr = sp.sympify(expr)
+    for point in Sampler(sorted(expr.free_symbols, key=str), seed=29).draw(tries):
+        value = expr.xreplace(point)
+        if value.is_Rational and value < 0:
+            return True
+    return False
+
+
 def _not_necessary_witness(state: State, b: sp.Symbol, f: Any, g: Any) -> dict | None:
     """A point where ``b > f`` fails and the scene is positive real (exact decision): ``b``
     between ``g`` and ``f`` where ``f > g``, the other users' dampings raised until it is."""
@@ -269,6 +279,8 @@ def _necessary(state: State, printed: list[Any], what: str) -> Finding:
             if g is None:
                 return Finding(Verdict.UNDECIDED, f"{what}: no exact bound on {b} from the diagonal of G + G^H",
                                Evidence(Method.INSTANCES, instances=0))
+            if state.repairing and _negative_somewhere(sp.sympify(g) - f):
+                return Finding(Verdict.WRONG, f"{what} is not implied by the diagonal of G + G^H", Evidence(Method.INSTANCES))
             sign = _sign(sp.sympify(g) - f)
             if sign == 1 and not (state.repairing and sp.expand(sp.sympify(g) - f) != 0):
                 # a repair must give the bound itself: any weaker bound is necessary too
@@ -381,6 +393,7 @@ def users_condition(state: State, *, claim: str, exact: Mapping[str, Any]) -> Fi
 
         return malformed_finding("the display is not a condition (inequalities) on the parameters")
     what = "the printed condition"
+    state.repairable = True             # proofs and exact decisions: a repair search can confirm an edit
     condition = exact.get("condition") if exact else None
     if claim == "necessary":
         return _necessary(state, printed, what)

@@ -547,8 +547,14 @@ def with_scene_names(table: Any, scene: Any) -> Any:
         from hapticproof.audit.reader.names import IndexedFamily, name_parts
 
         declared = {name_parts(pattern).base for pattern in table.families}
+        # the dampings' and masses' families follow their roles (device_damping = "c": c_i)
+        renamed = {"b": scene.role("device_damping"), "m": scene.role("mass")}
+        patterns = [(pattern.replace(pattern.split("_")[0], renamed.get(pattern.split("_")[0]) or "", 1)
+                     if pattern.split("_")[0] in renamed else pattern, symmetric, word)
+                    for pattern, symmetric, word in _USER_FAMILIES]
         families = [IndexedFamily(pattern, symmetric=symmetric, assumptions=_assumption_kwargs(word))
-                    for pattern, symmetric, word in _USER_FAMILIES if name_parts(pattern).base not in declared]
+                    for pattern, symmetric, word in patterns
+                    if not pattern.startswith("_") and name_parts(pattern).base not in declared]
         table = table.with_families(*families) if families else table
     return table
 
