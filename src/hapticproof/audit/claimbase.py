@@ -397,6 +397,30 @@ def _drop_trivial(condition: Any) -> Any:
     return parts[0] if len(parts) == 1 else sp.And(*parts)
 
 
+@functools.lru_cache(maxsize=256)
+def _drop_implied(condition: Any) -> Any:
+    """An And without the conjuncts another one implies: two lower bounds on one parameter, one
+    provably above the other (``b_s >= X`` makes ``b_s + u >= X`` redundant when ``u >= 0``)."""
+    parts = conjuncts(condition)
+    if len(parts) < 2:
+        return condition
+    dropped: set[int] = set()
+    for i, p in enumerate(parts):
+        for j, q in enumerate(parts):
+            if i == j or i in dropped or j in dropped:
+                continue
+            for var in sorted(sp.sympify(q).free_symbols - {C_SYM}, key=str):
+                bp, bq = _bound(p, var), _bound(q, var)
+                if bp is None or bq is None or not (bp.lower and bq.lower):
+                    continue
+                difference = sp.factor(sp.cancel(bp.bound - bq.bound))
+                if difference.is_nonnegative:
+                    dropped.add(j)
+                    break
+    kept = [p for k, p in enumerate(parts) if k not in dropped]
+    return kept[0] if len(kept) == 1 else sp.And(*kept)
+
+
 def preferred_variables(state: State) -> list[str]:
     order = []
     if state.spec.solve_for:
@@ -488,7 +512,7 @@ def compare_conditions(printed: Any, exact: Any, state: State, *, claim: str, wh
     ['conservative', 'wrong']
     """
     derived = exact if derived is None else derived
-    exact = _drop_trivial(exact)
+    exact = _drop_implied(_drop_trivial(exact))
     if exact in (sp.true, sp.false):
         return _constant_exact(printed, exact, state, claim, what, derived)
     paired = _compare_conjunctions(printed, exact, state, claim, what, verify, derived)

@@ -239,6 +239,8 @@ def _raise_others(state: State, values: dict, others: list[sp.Symbol]) -> dict |
     """``values`` with the other dampings raised (doubling from their necessary bounds) until
     the exact decision proves the scene positive real; the point and the decision, or None."""
     needed = necessary_bounds(state)
+    # a witness names every parameter of the scene (those no bound involves at 1)
+    values = {**{s: sp.Integer(1) for s in state.model.parameters if s not in values and s not in others}, **values}
     base = {}
     for d in others:
         g = needed.get(d)
@@ -363,6 +365,7 @@ def _insufficient_witness(state: State, printed: list[Any], by_user: dict, other
     params = sorted((s for s in state.model.parameters if s not in dampings), key=str)
     decided = 0
     for point in Sampler(params, seed=23).draw(DRAWS // 2):
+        point = {**{s: sp.Integer(1) for s in params if s not in point}, **point}
         for lift in (sp.Rational(1, 1000), sp.Rational(1, 10)):
             values = dict(point)
             for b in dampings:

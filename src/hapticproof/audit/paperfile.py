@@ -381,10 +381,28 @@ def _read_relations(relations: list[tuple[str, str, str, int | None]], table: An
     restrictions = []
     lines: dict[str, int | None] = {}
     for printed, name, value, line in relations:
-        try:
-            region = read_region(value, table, key=name)
-        except RegionError as err:
-            raise PaperFileError(f"{_at(path, line)}: symbols: {printed}: {err}") from None
+        local = table
+        for _ in range(8):
+            try:
+                region = read_region(value, local, key=name)
+                break
+            except RegionError as err:
+                # a relation may name a scene's parameter ``[symbols]`` does not declare
+                # (b_m >= b_s): it is read with that parameter's default sign
+                unknown = re.search(r"unknown name (\S+)\)$", str(err))
+                if unknown is None:
+                    raise PaperFileError(f"{_at(path, line)}: symbols: {printed}: {err}") from None
+                from hapticproof.audit.reader.names import sympy_name
+                from hapticproof.core.errors import InputFormatError as _Bad
+                from hapticproof.core.expr import parameter_symbol
+
+                try:
+                    symbol = parameter_symbol(sympy_name(unknown.group(1)))
+                except (_Bad, LatexParseError):
+                    raise PaperFileError(f"{_at(path, line)}: symbols: {printed}: {err}") from None
+                local = local.with_symbols({unknown.group(1): symbol})
+        else:
+            raise PaperFileError(f"{_at(path, line)}: symbols: {printed}: too many undeclared names in {value!r}")
         (restriction,) = region.restrictions
         if restriction.is_equality():
             raise PaperFileError(f"{_at(path, line)}: symbols: {printed}: an equality is a definition: write the value "
