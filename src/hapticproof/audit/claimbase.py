@@ -486,8 +486,58 @@ def ratio_equivalent(printed: Any, exact: Any) -> bool:
     fe = (exact.lhs - exact.rhs) * ops[exact.rel_op]
     if fe == 0:
         return False
+    # the ratio at a few exact points first: a positive constant r is proved by P - r E = 0; a
+    # ratio that changes sign is no positive factor; only a varying positive ratio is factored
+    ratios = _ratios_at_points(fp, fe)
+    if ratios is not None:
+        if any(r <= 0 for r in ratios):
+            return False
+        if len(set(ratios)) == 1:
+            r = sp.Rational(ratios[0].numerator, ratios[0].denominator)
+            if is_identically_zero(sp.expand(fp - r * fe)):
+                return True
+        if sp.count_ops(fp) + sp.count_ops(fe) > _FACTOR_LIMIT:
+            return False          # no varying positive factor is sought between large forms
     ratio = sp.factor(sp.cancel(sp.together(fp / fe)))
     return bool(ratio.is_positive)
+
+
+def constant_positive_ratio(fp: Any, fe: Any) -> bool | None:
+    """Whether ``fp/fe`` is one positive constant at a few exact points: ``False`` when it is
+    not (a varying or non-positive ratio), ``None`` when it cannot be evaluated so (a look,
+    never a proof)."""
+    ratios = _ratios_at_points(fp, fe)
+    if ratios is None:
+        return None
+    return len(set(ratios)) == 1 and ratios[0] > 0
+
+
+#: Size (operations) above which a varying positive ratio of two conditions is not factored.
+_FACTOR_LIMIT = 300
+
+
+def _ratios_at_points(fp: Any, fe: Any, count: int = 4) -> list[Any] | None:
+    """``fp/fe`` at a few exact points (fractions), or None when they cannot be evaluated so."""
+    free = sorted(sp.sympify(fp).free_symbols | sp.sympify(fe).free_symbols, key=str)
+    out = []
+    for point in Sampler(free, seed=37).draw(count + 2)[1:]:
+        fast = {}
+        for key, value in point.items():
+            if not isinstance(value, sp.Rational):
+                return None
+            from fractions import Fraction
+
+            fast[key] = Fraction(int(value.p), int(value.q))
+        try:
+            num, den = _fraction_value(sp.sympify(fp), fast), _fraction_value(sp.sympify(fe), fast)
+        except (_NotRational, ZeroDivisionError):
+            return None
+        if den == 0:
+            continue
+        out.append(num / den)
+        if len(out) == count:
+            break
+    return out or None
 
 
 def witness_json(point: Mapping[Any, Any]) -> dict[str, Any]:

@@ -420,10 +420,16 @@ def _minor_condition(state: State, relation: Any, M: sp.Matrix) -> Finding:
     factor) is non-negative at each frequency."""
     from hapticproof.audit.claimbase import positive_ratio_at_points, ratio_equivalent
 
-    printed = _in_c(state.prepare(relation), state)
     what = "the printed frequency-wise condition"
     state.repairable = True
-    minors = _principal_minors(M)
+    key = ("principal-minors", state.spec.scene)
+    if key not in state.cache:           # shared by the repair trials of one check
+        state.cache[key] = _principal_minors(M)
+    minors = state.cache[key]
+    prepared = state.prepare(relation)
+    if state.repairing and not _may_be_a_minor(prepared, minors, state):
+        return Finding(Verdict.WRONG, f"{what} is no principal minor condition", Evidence(Method.CANONICAL_FORM))
+    printed = _in_c(prepared, state)
     for label, minor in minors:
         exact = sp.Ge(minor, 0, evaluate=False)
         if positive_ratio_at_points(printed, exact) and ratio_equivalent(printed, exact):
@@ -435,6 +441,24 @@ def _minor_condition(state: State, relation: Any, M: sp.Matrix) -> Finding:
     f = compare_conditions(printed, sp.Ge(minor, 0, evaluate=False), state, claim="passivity",
                            what=f"{what} (no principal minor of G + G^H matches; compared with the minor {label})")
     return f
+
+
+def _may_be_a_minor(relation: Any, minors: list[tuple[str, Any]], state: State) -> bool:
+    """A cheap look before the exact comparison (used only to skip repair trials): with
+    ``cos(omega T)`` read as ``c``, is the display a positive constant times some principal
+    minor at a few exact points? A display in other functions of omega is not skipped."""
+    from hapticproof.audit.claimbase import constant_positive_ratio
+
+    omega = frequency_symbol(state)
+    if not isinstance(relation, sp.core.relational.Relational) or relation.rel_op not in (">", ">=", "<", "<="):
+        return True
+    sign = 1 if relation.rel_op in (">", ">=") else -1
+    expr = sp.sympify(relation.lhs - relation.rhs) * sign
+    if omega is not None:
+        expr = expr.xreplace({sp.cos(omega * period_of(state)): C_SYM})
+        if omega in expr.free_symbols:
+            return True
+    return any(constant_positive_ratio(expr, minor) is not False for _label, minor in minors)
 
 
 def _single(state: State) -> Any:

@@ -261,13 +261,28 @@ def _repaired(state: State, finding: Finding) -> bool:
 MAX_EDITS = 80
 
 
+#: The edits tried first when a display has more than :data:`MAX_EDITS`: the commonest slips.
+_LIKELY = ("sign", "half", "index", "relation", "scale", "swap", "drop", "symbol")
+
+
+def _most_likely(mutants: list[Any]) -> list[Any]:
+    """At most :data:`MAX_EDITS` edits, the commonest slips first over the whole display (a
+    long display's last terms get their sign flips too), tried in printed order."""
+    if len(mutants) <= MAX_EDITS:
+        return mutants
+    order = sorted(range(len(mutants)), key=lambda k: (_LIKELY.index(mutants[k].operator)
+                                                       if mutants[k].operator in _LIKELY else len(_LIKELY), k))
+    return [mutants[k] for k in sorted(order[:MAX_EDITS])]
+
+
 def _repair(state: State, finding: Finding) -> Finding:
     """Search the edits of :mod:`hapticproof.audit.mutate` for one that makes the display right."""
     try:
         from hapticproof.audit.mutate import generate
     except ImportError:  # pragma: no cover - the mutation operators are not available
         return finding
-    mutants = generate(state.equation, state.source.paper, text=state.printed, table=state.table, slips=True)[:MAX_EDITS]
+    mutants = _most_likely(generate(state.equation, state.source.paper, text=state.printed, table=state.table,
+                                    slips=True))
     found = []
     for mutant in mutants:
         trial = State(state.spec, state.source, mutant.printed, equation=state.equation, repairing=True,
