@@ -760,7 +760,8 @@ def _read_equations(raw: Any, path: str, text: str, table: Any, scenes: Mapping[
             if claim not in CONDITION_CLAIMS:
                 raise PaperFileError(f"{where('assumption')}: assumption applies to condition claims")
             fields["assumption"] = _assumption(_text_field(entry["assumption"], where("assumption"), "assumption"),
-                                               table, where("assumption"), region)
+                                               with_scene_names(table, scenes.get(fields.get("scene"))),
+                                               where("assumption"), region)
         # names: an unknown name is the file's mistake (declare it); other parse errors are the
         # paper's (the audit calls them malformed)
         check_table = with_scene_names(table, scenes.get(fields.get("scene")))
