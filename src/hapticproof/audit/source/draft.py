@@ -150,7 +150,51 @@ def _guess_scene(names: set[str]) -> tuple[str, str]:
     return "wall", "the names of a virtual wall"
 
 
-def _scene_lines(name: str) -> list[str]:
+def _designs(source: Source) -> dict[str, tuple[str, str]]:
+    """The environment ``H(z) = ...`` and controller ``C(z) = ...`` the source defines in a
+    display of their own (the first of each), as scene-file expressions, with the display's id."""
+    from hapticproof.audit.reader.names import SymbolTable
+    from hapticproof.audit.reader.printed import parse_printed
+    from hapticproof.core.errors import HapticproofError
+    from hapticproof.core.expr import parameter_symbol, write_expression
+    from hapticproof.core.symbols import z as Z_SYM
+    from hapticproof.systems.scene import scene_from_table
+
+    out: dict[str, tuple[str, str]] = {}
+    for display in source.displays:
+        match = re.match(r"^\s*([HC])\s*\(\s*z\s*\)\s*=(?!=)(.+)$", display.text, re.S)
+        if match is None or match.group(1) in out or re.search(r"[<>=]|\\[lg]e", match.group(2)):
+            continue
+        symbols: dict[str, object] = {"z": Z_SYM}
+        try:
+            for key, (word, _why) in symbol_guesses(match.group(2)).items():
+                if word.split(",")[0] in ("function", "signal") or "," in word:
+                    raise ValueError(key)
+                name = key.replace("{", "").replace("}", "").replace("\\", "")
+                symbols[("\\" + key) if key in ("omega", "alpha", "tau", "theta") else key] = parameter_symbol(name, word)
+            expr = parse_printed(match.group(2), SymbolTable(symbols=symbols)).expressions()[0]
+        except (HapticproofError, ValueError, IndexError, TypeError):
+            continue
+        text = write_expression(expr)
+        system, field = ("single-user", "environment") if match.group(1) == "H" else ("teleoperator", "controller")
+        try:                                   # a design no scene takes is no guess
+            scene_from_table({"system": system, field: text}).build()
+        except HapticproofError:
+            continue
+        out[match.group(1)] = (text, display.id)
+    return out
+
+
+def _scene_lines(name: str, designs: dict[str, tuple[str, str]] | None = None) -> list[str]:
+    designs = designs or {}
+    if name in ("wall", "delayed") and "H" in designs:
+        text, ident = designs["H"]
+        lines = [line if not line.startswith("environment") else
+                 f"{'environment = ' + _toml_string(text):36s} # guessed: H(z) of display ({ident})" for line in SCENES[name]]
+        return lines
+    if name == "teleoperator" and "C" in designs:
+        text, ident = designs["C"]
+        return [SCENES[name][0], f"{'controller = ' + _toml_string(text):36s} # guessed: C(z) of display ({ident})"]
     if name.startswith(("users", "uniform")):
         uniform = name.startswith("uniform")
         users = int(name[len("uniform" if uniform else "users"):])
@@ -160,7 +204,7 @@ def _scene_lines(name: str) -> list[str]:
     return SCENES[name]
 
 
-def _scene_names(name: str, cache: dict[str, set[str]]) -> set[str]:
+def _scene_names(name: str, cache: dict[str, set[str]], designs: dict[str, tuple[str, str]] | None = None) -> set[str]:
     """The parameter names of a guessed scene (as ``[symbols]`` keys: ``K_{01}``)."""
     if name in cache:
         return cache[name]
@@ -170,8 +214,7 @@ def _scene_names(name: str, cache: dict[str, set[str]]) -> set[str]:
     from hapticproof.audit.reader.names import normalise_name
     from hapticproof.systems.scene import scene_from_table
 
-    table = tomllib.loads("\n".join(line.split("  #")[0] for line in _scene_lines(name)))
-    scene = scene_from_table(table)
+    scene = scene_from_table(tomllib.loads("\n".join(line.split("  #")[0] for line in _scene_lines(name, designs))))
     names = set()
     for param in scene.names() | {"b", "T", "z_a"}:
         try:
@@ -230,7 +273,7 @@ def contexts(source: Source) -> list[str]:
     return out
 
 
-def _entries(source: Source) -> list[Entry]:
+def _entries(source: Source, designs: dict[str, tuple[str, str]]) -> list[Entry]:
     seen: dict[str, int] = {}
     cache: dict[str, set[str]] = {}
     out = []
@@ -247,10 +290,13 @@ def _entries(source: Source) -> list[Entry]:
             why += "; the sentence before lists it among conditions, so read as Re G^{-1} >= 0 ('> 0' is not printed)"
         names = symbol_guesses(display.text)
         if claim is None:
+            used = [k for k, (_t, i) in designs.items() if i == display.id]
+            if used:
+                why += f"; its right-hand side is the guessed scenes' {'environment' if used[0] == 'H' else 'controller'}"
             out.append(Entry(display, ident, None, f"not classified: {why}", symbols=names))
             continue
         scene, scene_why = _guess_scene(set(names))
-        missing = [n for n in _outside(names, _scene_names(scene, cache)) if n != _label(display.text, claim)]
+        missing = [n for n in _outside(names, _scene_names(scene, cache, designs)) if n != _label(display.text, claim)]
         if missing:
             out.append(Entry(display, ident, None, f"guessed {claim} ({why}), but the guessed scene '{scene}' has no "
                              f"{', '.join(missing)}: write its scene, then uncomment", scene=scene, symbols=names,
@@ -260,7 +306,8 @@ def _entries(source: Source) -> list[Entry]:
     return out
 
 
-def _render(source: Source, entries: list[Entry], paper_id: str, title: str, dropped: dict[str, str]) -> str:
+def _render(source: Source, entries: list[Entry], paper_id: str, title: str, dropped: dict[str, str],
+            designs: dict[str, tuple[str, str]] | None = None) -> str:
     lines = [
         f"# A draft paper file, written by hapticproof new-paper --from {source.path}",
         "# Every display of the source is below, verbatim (macros expanded). Lines marked '# guessed:'",
@@ -284,14 +331,27 @@ def _render(source: Source, entries: list[Entry], paper_id: str, title: str, dro
         lines.append("# names only the commented-out displays use: " + ", ".join(others))
     lines.append("# inequalities and relations are assumptions too: a = \"0 <= a < 1\", b_m = \"b_m >= b_s\"")
     for scene in sorted({e.scene for e in active if e.scene}):
-        lines += ["", f"[scenes.{scene}]"] + _scene_lines(scene)
+        lines += ["", f"[scenes.{scene}]"] + _scene_lines(scene, designs)
     lines.append("")
     for entry in entries:
-        lines += _entry_lines(entry, entry in active, dropped.get(entry.id))
+        lines += _entry_lines(entry, entry in active, dropped.get(entry.id), str(source.path))
     return "\n".join(lines).rstrip() + "\n"
 
 
-def _entry_lines(entry: Entry, active: bool, refused: str | None) -> list[str]:
+def _shown_file(file: str, source_path: str) -> str:
+    """A display's file as the reviewer knows it: relative to the source's folder."""
+    import os
+
+    if not os.path.isabs(file):
+        return file
+    folder = source_path if os.path.isdir(source_path) else os.path.dirname(source_path)
+    try:
+        return os.path.relpath(file, folder or ".")
+    except ValueError:
+        return file
+
+
+def _entry_lines(entry: Entry, active: bool, refused: str | None, source_path: str = "") -> list[str]:
     d = entry.display
     body = [f"id = {_toml_string(entry.id)}", f"printed = {_toml_string(d.text)}"]
     if active:
@@ -305,7 +365,7 @@ def _entry_lines(entry: Entry, active: bool, refused: str | None) -> list[str]:
         body.append(f"{'form = ' + _toml_string(entry.form):36s} # guessed: listed among conditions")
     if d.section is not None and d.section.id:
         body.append(f"section = {_toml_string(d.section.id)}")
-    notes = [f"{d.file}:{d.line} ({d.environment})"]
+    notes = [f"{_shown_file(d.file, source_path)}:{d.line} ({d.environment})"]
     notes += list(d.notes)
     original = re.sub(r"\\(?:label|tag\*?)\s*\{[^{}]*\}|\\(?:nonumber|notag)(?![A-Za-z])", " ", d.original)
     if original.strip() and " ".join(original.split()) != " ".join(d.text.split()):
@@ -329,9 +389,10 @@ def draft(source: Source, *, paper_id: str | None = None, title: str | None = No
         raise PaperFileError(f"paper id {paper_id!r}: letters, digits, '-', '_' and '.' only")
     title = title or (source.sections[0].title if source.sections and not source.sections[0].number else "") \
         or f"Displays of {Path(str(source.path)).name}"
-    entries = _entries(source)
+    designs = _designs(source)
+    entries = _entries(source, designs)
     dropped: dict[str, str] = {}
-    text = _render(source, entries, paper_id, title, dropped)
+    text = _render(source, entries, paper_id, title, dropped, designs)
     for _ in range(max_rounds):
         if not any(e.claim is not None and e.id not in dropped for e in entries):
             break
@@ -343,7 +404,7 @@ def draft(source: Source, *, paper_id: str | None = None, title: str | None = No
             if culprit is None:
                 raise
             dropped[culprit] = f"refused by the paper-file reader: {_comment(_reason(str(err)))}"
-            text = _render(source, entries, paper_id, title, dropped)
+            text = _render(source, entries, paper_id, title, dropped, designs)
     active = sum(1 for e in entries if e.claim is not None and e.id not in dropped)
     return Draft(text, active, len(entries) - active, tuple(entries))
 
