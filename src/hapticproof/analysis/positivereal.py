@@ -95,7 +95,7 @@ def _location(value: sp.Expr) -> str:
     lt = (modulus - 1).is_negative
     if lt:
         return "inside"
-    if sp.simplify(modulus - 1) == 0:
+    if sp.cancel(sp.expand(modulus - 1)) == 0:      # (no simplify: it loads sympy.physics on first use)
         return "on"
     if (modulus - 1).is_positive:
         return "outside"
@@ -149,14 +149,39 @@ def unit_circle_residues(F: Any, poles: list[Pole], z: sp.Symbol = Z_SYM) -> lis
             )
             out.append(Residue(pole.value, sp.nan, sp.nan, outcome))
             continue
-        residue = sp.cancel(sp.limit((z - pole.value) * sp.cancel(F), z, pole.value))
-        scaled = sp.simplify(residue / pole.value)
+        residue = _simple_residue(F, pole.value, z)
+        scaled = _tidy_value(residue / pole.value)
         out.append(Residue(pole.value, residue, scaled, _sign_outcome(scaled, f"Res/z0 at z0 = {pole.value}")))
     return out
 
 
+def _simple_residue(F: Any, z0: Any, z: sp.Symbol) -> sp.Expr:
+    """The residue of ``F`` at a simple pole ``z0``: ``P(z0)/Q'(z0)`` for ``F = P/Q`` rational in
+    ``z`` with a rational pole (no limit taken), else the limit of ``(z - z0) F``."""
+    F = sp.cancel(sp.sympify(F))
+    if sp.sympify(z0).is_Rational:
+        num, den = sp.fraction(sp.together(F))
+        try:
+            P, Q = sp.Poly(num, z), sp.Poly(den, z)
+        except sp.PolynomialError:
+            P = Q = None
+        if P is not None and Q.eval(z0) == 0 and Q.diff(z).eval(z0) != 0:
+            return sp.cancel(P.eval(z0) / Q.diff(z).eval(z0))
+    return sp.cancel(sp.limit((z - z0) * F, z, z0))
+
+
+def _tidy_value(value: Any) -> sp.Expr:
+    """A value in canonical form: cancelled when its numbers are rational (no ``simplify``,
+    which loads sympy.physics on first use), simplified otherwise (algebraic numbers)."""
+    value = sp.sympify(value)
+    if all(a.is_Rational for a in value.atoms(sp.Number)) and not value.atoms(sp.Pow, sp.exp) - {
+            p for p in value.atoms(sp.Pow) if p.exp.is_Integer}:
+        return sp.cancel(value)
+    return sp.simplify(value)
+
+
 def _sign_outcome(value: sp.Expr, what: str) -> Outcome:
-    value = sp.simplify(value)
+    value = _tidy_value(value)
     if value.is_real is False or (value.is_number and sp.im(value) != 0):
         return Outcome(Decision.DISPROVED, Evidence(Method.CANONICAL_FORM, facts={"value": value}), f"{what} = {value} is not real")
     if value.is_nonnegative:

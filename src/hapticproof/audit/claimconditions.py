@@ -262,7 +262,9 @@ def _sandwich(state: State, printed: Any, exact: Mapping[str, Any], claim: str, 
         if sufficient is not None:
             high = compare_conditions(printed, sufficient, state, claim="passivity", what=what, verify=None)
             if high.verdict in (Verdict.CONFIRMED, Verdict.CONSERVATIVE):
-                inst = _instances(state, printed, claim, what)
+                # a sufficient claim is settled by the proof; only a claimed exact condition needs the
+                # instances' witness of non-necessity
+                inst = _instances(state, printed, claim, what) if claim == "passivity" else high
                 if inst.verdict == Verdict.UNDECIDED and inst.evidence.witness and claim == "passivity":
                     return Finding(Verdict.CONSERVATIVE, f"{what} implies the sufficient Dirichlet bound {sp.sstr(sufficient)} "
                                    "(proved) but is not necessary: the scene is positive real at the witness where it fails",

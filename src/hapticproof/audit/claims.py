@@ -113,6 +113,8 @@ def check(ctx: Any, *, spec: Any, source: Any) -> Finding:
 
 def _run(state: State) -> Finding:
     finding = checkers()[state.spec.claim](state)
+    if state.repairing:            # a trial's finding is told in the paper's names only if it is chosen
+        return finding
     return _in_paper_names(finding, state.chart)
 
 
@@ -136,7 +138,8 @@ def _with_assumption(state: State) -> Finding:
     text = stated.text()
     if stated and state.repairing:
         # a repair of a claim made under an assumption is right under that assumption
-        inner = _run(_assumed(state))
+        assumed = _assumed(state)
+        inner = _in_paper_names(_run(assumed), assumed.chart)
         return Finding(inner.verdict, f"under the stated assumption {text}: {inner.detail}", inner.evidence,
                        derived=inner.derived)
     inner = None
@@ -301,6 +304,8 @@ def _repair(state: State, finding: Finding) -> Finding:
                                 instances=finding.evidence.instances, facts=facts),
                        derived=finding.derived, corrected=finding.corrected)
     mutant, result = found[0]
+    if not _stated(state):               # (a trial under an assumption is told in its region's names already)
+        result = _in_paper_names(result, state.chart)
     facts["repair"] = {"operator": mutant.operator, "position": mutant.position, "original": mutant.original,
                        "replacement": mutant.replacement, "repairs_found": len(found)}
     others = f" ({len(found) - 1} other edit{'s' if len(found) > 2 else ''} also repair it)" if len(found) > 1 else ""

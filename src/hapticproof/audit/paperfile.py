@@ -25,6 +25,8 @@ objects as the hand-written derivation modules, so every report format works for
     V_h = "signal"
     S = '\frac{\sin(\omega T)}{2}'         # a definition: LaTeX in the names above
     "K_{ij}" = "positive, symmetric"       # an indexed family (index letters i, j)
+    a = "0 <= a < 1"                       # an assumption: an inequality, interval or relation
+    b_m = "b_m >= b_s"                     # (LaTeX or expression syntax; audit.regions)
 
     [scenes.wall]                          # exactly the fields of a scene file
     system = "single-user"
@@ -40,7 +42,9 @@ objects as the hand-written derivation modules, so every report format works for
 Names
 -----
 ``j`` is the imaginary unit and ``e^{...}`` the exponential unless ``[symbols]`` declares them;
-``z`` and ``s`` are the transform variables. In a display, ``H(...)`` is the scene's
+``z`` and ``s`` are the transform variables; ``G``, ``G^{-1}``, ``\omega``, ``t_d``, ``n``, the
+parameters of an equation's scene and the m-user families (``b_i``, ``K_{0i}``...) need no
+declaration. In a display, ``H(...)`` is the scene's
 environment ``H(z)`` (single-user) and ``C(...)`` its controller ``C(z)`` (teleoperator). A
 symbol whose name is a scene parameter is that parameter (with the file's assumption); a
 display's ``t_d`` is ``n T`` with the scene's delay ``n``.
@@ -53,8 +57,8 @@ Equation fields (:data:`EQUATION_FIELDS`)
     ``other`` and ``under`` (same-as: ``other = "3"`` or ``"hve:3"``, ``under = "z_a = 0, t_d =
     0"``); ``order`` (stability: ``"exact"`` or ``"leading"``); ``form`` (hermitian-part:
     ``"expression"`` or ``"condition"``, default: as printed); ``assumption`` (conditions: the
-    paper's vague assumption made precise, such as ``"B = 0"`` for "B small": a condition that
-    holds only under it is ``needs-assumption``); ``solve_for`` (conditions: the parameter the
+    paper's vague assumption made precise, such as ``"B = 0"`` or ``'B \leq \frac{KT}{2}'`` for
+    "B small": a condition that holds only there is ``needs-assumption``); ``solve_for`` (conditions: the parameter the
     comparison solves for, default the device damping).
 
 Every mistake in a file is one line naming the file, the line and the field
