@@ -134,10 +134,14 @@ def test_passivity_conditions_each_way():
         ("nec-strong", r"b > KT + B", "necessary-condition", 'scene = "wall"'),
         ("stiffness", r"K < \frac{2b}{T}", "passivity-condition", 'scene = "spring"'),
     )
-    assert verdicts(res) == {"exact": "confirmed", "strong": "conservative", "weak": "wrong", "reversed": "typo",
+    # KT for KT/2 is the papers' commonest slip: halving the term makes both 'strong' displays exact
+    assert verdicts(res) == {"exact": "confirmed", "strong": "typo", "weak": "wrong", "reversed": "typo",
                              "suff-strong": "conservative", "suff-weak": "wrong", "nec-weak": "confirmed",
-                             "nec-strong": "wrong", "stiffness": "confirmed"}
+                             "nec-strong": "typo", "stiffness": "confirmed"}
     assert res["reversed"].corrected == r"b > \frac{KT}{2} + B"
+    assert res["strong"].corrected == res["nec-strong"].corrected == r"b > \frac{1}{2}KT + B"
+    assert "as printed: the printed condition implies the exact condition" in res["strong"].detail
+    assert res["strong"].evidence.facts["repair"]["operator"] == "half"
     # the witness of a weaker bound is re-checked by the exact decision of the numeric scene
     weak = res["weak"].evidence
     assert weak.facts["recheck"]["decision"] == "disproved"
@@ -184,7 +188,8 @@ def test_stability_leading_order_and_exact():
         ("exact", r"b > \frac{KT}{2} - B", "stability-condition", 'scene = "stable"'),
         ("no-mass", r"b > \frac{KT}{2} - B", "stability-condition", 'scene = "wall"'),
     )
-    assert verdicts(res) == {"lead": "confirmed", "lead-T": "conservative", "exact": "wrong", "no-mass": "undecided"}
+    # T for T/2: sufficient, not the leading order claimed; halving the term repairs it
+    assert verdicts(res) == {"lead": "confirmed", "lead-T": "typo", "exact": "wrong", "no-mass": "undecided"}
     certified = res["exact"].evidence.facts["certified"]
     assert certified["decision"] == "disproved" and res["exact"].evidence.witness["m"] > 0
     assert "device mass" in res["no-mass"].detail

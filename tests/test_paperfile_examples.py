@@ -32,7 +32,7 @@ ROOT = Path(__file__).resolve().parents[1]
 EXPECTED = {
     "colgate-schenkel-1997": {
         "frequency-form": "confirmed", "wall": "confirmed", "spring": "confirmed",
-        "ALTERED-sign": "typo", "ALTERED-half": "conservative",
+        "ALTERED-sign": "typo", "ALTERED-half": "typo",
     },
     "abbott-okamura-2005": {
         "stiffness": "confirmed", "sampling-period": "confirmed", "necessary": "confirmed",
@@ -40,7 +40,7 @@ EXPECTED = {
     },
     "gil-2009": {
         "linear": "confirmed", "no-delay": "confirmed",
-        "ALTERED-period": "conservative", "ALTERED-damping": "typo", "ALTERED-exact": "wrong",
+        "ALTERED-period": "typo", "ALTERED-damping": "typo", "ALTERED-exact": "wrong",
     },
 }
 
@@ -49,6 +49,9 @@ CORRECTED = {
     ("abbott-okamura-2005", "ALTERED-relation"): r"K < \frac{2b}{T}",
     ("abbott-okamura-2005", "ALTERED-damping"): r"K < \frac{2(b - B)}{T}",
     ("gil-2009", "ALTERED-damping"): r"K < \frac{b + B}{\frac{T}{2} + t_d}",
+    # the lost half: T/2 printed as T (a sufficient condition, but not the one claimed)
+    ("colgate-schenkel-1997", "ALTERED-half"): r"b > \frac{1}{2}KT + |B|",
+    ("gil-2009", "ALTERED-period"): r"K < \frac{b + B}{\frac{1}{2}T + t_d}",
 }
 
 

@@ -196,4 +196,5 @@ scene = "wall"
 '''
     report = audit_paper(load_paper(text, "roles.toml").paper)
     verdicts = {r.id: r.verdict.value for r in report.results}
-    assert verdicts == {"1": "confirmed", "2": "conservative", "3": "typo"}
+    # (2) K T_s for K T_s/2: halving the term makes it exact (the repair search's lost half)
+    assert verdicts == {"1": "confirmed", "2": "typo", "3": "typo"}

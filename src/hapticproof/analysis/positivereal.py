@@ -38,7 +38,7 @@ from hapticproof.core.symbols import z as Z_SYM
 from hapticproof.exact.unitcircle import CRational, ThetaForm, circle_real_part, hermitian_part_rational, numerator_denominator, theta_form
 from hapticproof.exact.conditions import HERMITIAN, RESIDUES, Condition, POLES_IN_DISK, POLES_SIMPLE, combine, pole_conditions, properness_condition
 
-__all__ = ["conditions", "transfer_polynomials", "numeric_scene", "Pole", "Residue", "WorstCase", "poles_of", "unit_circle_residues", "hermitian_of", "decide_hermitian", "symbolic_minimum", "symbolic_c_degree", "SYMBOLIC_CFORM_LIMIT", "poles", "residues", "hermitian", "worst_case", "positive_real", "with_definition"]
+__all__ = ["conditions", "transfer_polynomials", "numeric_scene", "Pole", "Residue", "WorstCase", "poles_of", "unit_circle_residues", "hermitian_of", "decide_hermitian", "symbolic_minimum", "bernstein_sign", "symbolic_c_degree", "SYMBOLIC_CFORM_LIMIT", "poles", "residues", "hermitian", "worst_case", "positive_real", "with_definition"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -96,7 +96,7 @@ def _location(value: sp.Expr) -> str:
     lt = (modulus - 1).is_negative
     if lt:
         return "inside"
-    if sp.simplify(modulus - 1) == 0:
+    if sp.cancel(sp.expand(modulus - 1)) == 0:      # (no simplify: it loads sympy.physics on first use)
         return "on"
     if (modulus - 1).is_positive:
         return "outside"
@@ -150,14 +150,39 @@ def unit_circle_residues(F: Any, poles: list[Pole], z: sp.Symbol = Z_SYM) -> lis
             )
             out.append(Residue(pole.value, sp.nan, sp.nan, outcome))
             continue
-        residue = sp.cancel(sp.limit((z - pole.value) * sp.cancel(F), z, pole.value))
-        scaled = sp.simplify(residue / pole.value)
+        residue = _simple_residue(F, pole.value, z)
+        scaled = _tidy_value(residue / pole.value)
         out.append(Residue(pole.value, residue, scaled, _sign_outcome(scaled, f"Res/z0 at z0 = {pole.value}")))
     return out
 
 
+def _simple_residue(F: Any, z0: Any, z: sp.Symbol) -> sp.Expr:
+    """The residue of ``F`` at a simple pole ``z0``: ``P(z0)/Q'(z0)`` for ``F = P/Q`` rational in
+    ``z`` with a rational pole (no limit taken), else the limit of ``(z - z0) F``."""
+    F = sp.cancel(sp.sympify(F))
+    if sp.sympify(z0).is_Rational:
+        num, den = sp.fraction(sp.together(F))
+        try:
+            P, Q = sp.Poly(num, z), sp.Poly(den, z)
+        except sp.PolynomialError:
+            P = Q = None
+        if P is not None and Q.eval(z0) == 0 and Q.diff(z).eval(z0) != 0:
+            return sp.cancel(P.eval(z0) / Q.diff(z).eval(z0))
+    return sp.cancel(sp.limit((z - z0) * F, z, z0))
+
+
+def _tidy_value(value: Any) -> sp.Expr:
+    """A value in canonical form: cancelled when its numbers are rational (no ``simplify``,
+    which loads sympy.physics on first use), simplified otherwise (algebraic numbers)."""
+    value = sp.sympify(value)
+    if all(a.is_Rational for a in value.atoms(sp.Number)) and not value.atoms(sp.Pow, sp.exp) - {
+            p for p in value.atoms(sp.Pow) if p.exp.is_Integer}:
+        return sp.cancel(value)
+    return sp.simplify(value)
+
+
 def _sign_outcome(value: sp.Expr, what: str) -> Outcome:
-    value = sp.simplify(value)
+    value = _tidy_value(value)
     if value.is_real is False or (value.is_number and sp.im(value) != 0):
         return Outcome(Decision.DISPROVED, Evidence(Method.CANONICAL_FORM, facts={"value": value}), f"{what} = {value} is not real")
     if value.is_nonnegative:
@@ -220,8 +245,10 @@ def symbolic_minimum(expr: sp.Expr, var: sp.Symbol = C_SYM) -> WorstCase:
     """
     num, den = sp.fraction(sp.cancel(sp.together(expr)))
     den_poly = sp.Poly(den, var)
-    if den_poly.degree() > 0 or not (den.is_positive or den.is_negative):
-        return _undecided_symbolic(expr, "the denominator depends on c or has an unknown sign")
+    if den_poly.degree() > 0:
+        return _rational_minimum(expr, num, den, var)
+    if not (den.is_positive or den.is_negative):
+        return _undecided_symbolic(expr, "the denominator has an unknown sign")
     if den.is_negative:
         num, den = -num, -den
     poly = sp.Poly(sp.expand(num / den), var)
@@ -242,6 +269,76 @@ def symbolic_minimum(expr: sp.Expr, var: sp.Symbol = C_SYM) -> WorstCase:
         cond = sp.And(_ge(low), _ge(high))
         return _symbolic(cond, None, sp.Min(low, high), "concave in c: minimum at an endpoint")
     return _undecided_symbolic(expr, f"degree {degree} in c with parameters: no closed-form minimum")
+
+
+def bernstein_sign(poly: sp.Expr, var: sp.Symbol = C_SYM, lo: Any = -1, hi: Any = 1) -> int | None:
+    """A provable sign of a polynomial in ``var`` on ``[lo, hi]`` with symbolic coefficients:
+    ``+1`` when every coefficient in the Bernstein basis of the interval is provably
+    non-negative (then so is the polynomial on the whole interval), ``-1`` when every one is
+    provably non-positive, ``2`` / ``-2`` when moreover the polynomial is provably non-zero
+    there (every coefficient strictly signed), else ``None`` (which proves nothing).
+
+    >>> a = sp.Symbol('a', positive=True)
+    >>> bernstein_sign(1 + a**2 - 2*a*C_SYM), bernstein_sign(C_SYM**2 - C_SYM/2)
+    (1, None)
+    """
+    t = sp.Dummy("t")
+    shifted = sp.Poly(sp.expand(sp.sympify(poly).subs(var, lo + (hi - lo) * t)), t)
+    degree = max(shifted.degree(), 0)
+    power = [shifted.coeff_monomial(t**k) for k in range(degree + 1)]
+    signs = set()
+    for i in range(degree + 1):
+        coeff = sum(sp.binomial(i, k) / sp.binomial(degree, k) * power[k] for k in range(i + 1))
+        sign = _coefficient_sign(coeff)
+        if sign is None:
+            return None
+        signs.add(sign)
+    if signs <= {2, 1, 0}:
+        return 2 if signs == {2} else 1
+    if signs <= {-2, -1, 0}:
+        return -2 if signs == {-2} else -1
+    return None
+
+
+def _coefficient_sign(value: sp.Expr) -> int | None:
+    """+2 / -2 (provably positive / negative), +1 / -1 (non-negative / non-positive), 0, or None."""
+    value = sp.sympify(value)
+    if value == 0:
+        return 0
+    for form in (value, sp.factor(sp.cancel(value))):
+        if form.is_positive:
+            return 2
+        if form.is_negative:
+            return -2
+    for form in (value, sp.factor(sp.cancel(value))):
+        if form.is_nonnegative:
+            return 1
+        if form.is_nonpositive:
+            return -1
+    return None
+
+
+def _rational_minimum(expr: sp.Expr, num: sp.Expr, den: sp.Expr, var: sp.Symbol) -> WorstCase:
+    """``num/den`` with ``den`` depending on ``c``: when ``den`` keeps a strict sign on ``[-1, 1]``
+    and the derivative's numerator ``num' den - num den'`` a sign (both proved through their
+    Bernstein coefficients under the symbols' assumptions), the function is monotone on the
+    interval and its minimum is at an end; otherwise the reason why not."""
+    den_sign = bernstein_sign(den, var)
+    if den_sign not in (2, -2):
+        return _undecided_symbolic(expr, "the denominator depends on c and its sign on [-1, 1] is not proved")
+    if den_sign < 0:
+        num, den = -num, -den
+    slope = sp.expand(sp.diff(num, var) * den - num * sp.diff(den, var))
+    slope_sign = bernstein_sign(slope, var)
+    if slope_sign is None:
+        return _undecided_symbolic(expr, "a rational function of c whose derivative's sign on [-1, 1] is not proved "
+                                   "(a stationary point may lie inside)")
+    end = sp.Integer(-1) if slope_sign > 0 else sp.Integer(1)
+    value = sp.factor(sp.cancel(num.subs(var, end) / den.subs(var, end)))
+    value = sp.collect(sp.expand(value), sorted(value.free_symbols, key=str), func=sp.factor)   # one term per parameter
+    side = "increasing" if slope_sign > 0 else "decreasing"
+    return _symbolic(_ge(value), end, value, f"rational in c with a denominator of fixed sign, {side} on [-1, 1] "
+                     f"(Bernstein coefficients of the derivative): minimum at c = {end}")
 
 
 def _ge(expr: sp.Expr) -> sp.Basic:

@@ -12,7 +12,7 @@ from typing import Any
 
 import sympy as sp
 
-from hapticproof.exact.canonical import Sampler
+from hapticproof.exact.canonical import Sampler, is_identically_zero
 from hapticproof.audit.compare import as_bound, compare_bounds
 from hapticproof.core.errors import HapticproofError
 from hapticproof.core.evidence import Decision, Evidence, Finding, Method, Outcome, Verdict
@@ -43,6 +43,10 @@ class State:
     #: set by a checker when its verdict rests on exact symbolic comparisons (a repair search is cheap)
     repairable: bool = False
     cache: dict = field(default_factory=dict)
+    #: the change of variables of the region the scene is restricted to (None: none)
+    chart: Any = None
+    #: the claim and paper file as written, before any region restricted the scene
+    origin: Any = None
 
     @functools.cached_property
     def scene(self) -> Any:
@@ -255,12 +259,87 @@ def decide_at_point(state: State, point: Mapping[Any, Any]) -> Outcome:
 
 
 def holds_at(condition: Any, point: Mapping[Any, Any]) -> bool | None:
-    """Exact truth of a condition (relational or And) at a point; None when undecidable."""
+    """Exact truth of a condition (relational or And) at a point; None when undecidable.
+
+    Rational conditions at rational points are evaluated in exact fractions, without building
+    SymPy expressions (the samplers call this thousands of times); anything else by
+    substitution."""
+    fast = _fraction_truth(condition, point)
+    if fast is not _UNKNOWN:
+        return fast
     try:
         value = sp.sympify(condition).xreplace(dict(point))
     except (TypeError, ZeroDivisionError):
         return None
     return _truth(value)
+
+
+_UNKNOWN = object()
+
+
+def _fraction_truth(condition: Any, point: Mapping[Any, Any]) -> Any:
+    from fractions import Fraction
+
+    values = {}
+    for key, value in point.items():
+        if isinstance(value, sp.Rational):
+            values[key] = Fraction(int(value.p), int(value.q))
+        elif isinstance(value, int) and not isinstance(value, bool):
+            values[key] = Fraction(value)
+        else:
+            return _UNKNOWN
+    try:
+        return _truth_of(sp.sympify(condition), values)
+    except _NotRational:
+        return _UNKNOWN
+
+
+class _NotRational(Exception):
+    """A node the fraction evaluator does not take (a function, an irrational, a free symbol)."""
+
+
+def _truth_of(cond: Any, values: Mapping[Any, Any]) -> bool | None:
+    if cond is sp.true or cond is sp.false:
+        return bool(cond)
+    if isinstance(cond, (sp.And, sp.Or)):
+        parts = [_truth_of(a, values) for a in cond.args]
+        if None in parts:
+            return None
+        return all(parts) if isinstance(cond, sp.And) else any(parts)
+    if isinstance(cond, sp.core.relational.Relational) and cond.rel_op in (">", ">=", "<", "<=", "==", "!="):
+        try:
+            diff = _fraction_value(cond.lhs, values) - _fraction_value(cond.rhs, values)
+        except ZeroDivisionError:
+            return None
+        return {">": diff > 0, ">=": diff >= 0, "<": diff < 0, "<=": diff <= 0, "==": diff == 0, "!=": diff != 0}[cond.rel_op]
+    raise _NotRational
+
+
+def _fraction_value(expr: Any, values: Mapping[Any, Any]) -> Any:
+    from fractions import Fraction
+
+    if isinstance(expr, sp.Rational):
+        return Fraction(int(expr.p), int(expr.q))
+    if isinstance(expr, sp.Symbol):
+        if expr in values:
+            return values[expr]
+        raise _NotRational
+    if isinstance(expr, sp.Add):
+        return sum((_fraction_value(a, values) for a in expr.args), Fraction(0))
+    if isinstance(expr, sp.Mul):
+        out = Fraction(1)
+        for a in expr.args:
+            out *= _fraction_value(a, values)
+        return out
+    if isinstance(expr, sp.Pow) and expr.exp.is_Integer:
+        base = _fraction_value(expr.base, values)
+        return base ** int(expr.exp)
+    if isinstance(expr, sp.Abs):
+        return abs(_fraction_value(expr.args[0], values))
+    if isinstance(expr, (sp.Min, sp.Max)):
+        items = [_fraction_value(a, values) for a in expr.args]
+        return min(items) if isinstance(expr, sp.Min) else max(items)
+    raise _NotRational
 
 
 def _truth(value: Any) -> bool | None:
@@ -320,6 +399,30 @@ def _drop_trivial(condition: Any) -> Any:
     if not parts:
         return sp.true
     return parts[0] if len(parts) == 1 else sp.And(*parts)
+
+
+@functools.lru_cache(maxsize=256)
+def _drop_implied(condition: Any) -> Any:
+    """An And without the conjuncts another one implies: two lower bounds on one parameter, one
+    provably above the other (``b_s >= X`` makes ``b_s + u >= X`` redundant when ``u >= 0``)."""
+    parts = conjuncts(condition)
+    if len(parts) < 2:
+        return condition
+    dropped: set[int] = set()
+    for i, p in enumerate(parts):
+        for j, q in enumerate(parts):
+            if i == j or i in dropped or j in dropped:
+                continue
+            for var in sorted(sp.sympify(q).free_symbols - {C_SYM}, key=str):
+                bp, bq = _bound(p, var), _bound(q, var)
+                if bp is None or bq is None or not (bp.lower and bq.lower):
+                    continue
+                difference = sp.factor(sp.cancel(bp.bound - bq.bound))
+                if difference.is_nonnegative:
+                    dropped.add(j)
+                    break
+    kept = [p for k, p in enumerate(parts) if k not in dropped]
+    return kept[0] if len(kept) == 1 else sp.And(*kept)
 
 
 def preferred_variables(state: State) -> list[str]:
@@ -387,8 +490,58 @@ def ratio_equivalent(printed: Any, exact: Any) -> bool:
     fe = (exact.lhs - exact.rhs) * ops[exact.rel_op]
     if fe == 0:
         return False
+    # the ratio at a few exact points first: a positive constant r is proved by P - r E = 0; a
+    # ratio that changes sign is no positive factor; only a varying positive ratio is factored
+    ratios = _ratios_at_points(fp, fe)
+    if ratios is not None:
+        if any(r <= 0 for r in ratios):
+            return False
+        if len(set(ratios)) == 1:
+            r = sp.Rational(ratios[0].numerator, ratios[0].denominator)
+            if is_identically_zero(sp.expand(fp - r * fe)):
+                return True
+        if sp.count_ops(fp) + sp.count_ops(fe) > _FACTOR_LIMIT:
+            return False          # no varying positive factor is sought between large forms
     ratio = sp.factor(sp.cancel(sp.together(fp / fe)))
     return bool(ratio.is_positive)
+
+
+def constant_positive_ratio(fp: Any, fe: Any) -> bool | None:
+    """Whether ``fp/fe`` is one positive constant at a few exact points: ``False`` when it is
+    not (a varying or non-positive ratio), ``None`` when it cannot be evaluated so (a look,
+    never a proof)."""
+    ratios = _ratios_at_points(fp, fe)
+    if ratios is None:
+        return None
+    return len(set(ratios)) == 1 and ratios[0] > 0
+
+
+#: Size (operations) above which a varying positive ratio of two conditions is not factored.
+_FACTOR_LIMIT = 300
+
+
+def _ratios_at_points(fp: Any, fe: Any, count: int = 4) -> list[Any] | None:
+    """``fp/fe`` at a few exact points (fractions), or None when they cannot be evaluated so."""
+    free = sorted(sp.sympify(fp).free_symbols | sp.sympify(fe).free_symbols, key=str)
+    out = []
+    for point in Sampler(free, seed=37).draw(count + 2)[1:]:
+        fast = {}
+        for key, value in point.items():
+            if not isinstance(value, sp.Rational):
+                return None
+            from fractions import Fraction
+
+            fast[key] = Fraction(int(value.p), int(value.q))
+        try:
+            num, den = _fraction_value(sp.sympify(fp), fast), _fraction_value(sp.sympify(fe), fast)
+        except (_NotRational, ZeroDivisionError):
+            return None
+        if den == 0:
+            continue
+        out.append(num / den)
+        if len(out) == count:
+            break
+    return out or None
 
 
 def witness_json(point: Mapping[Any, Any]) -> dict[str, Any]:
@@ -413,9 +566,12 @@ def compare_conditions(printed: Any, exact: Any, state: State, *, claim: str, wh
     ['conservative', 'wrong']
     """
     derived = exact if derived is None else derived
-    exact = _drop_trivial(exact)
+    exact = _drop_implied(_drop_trivial(exact))
     if exact in (sp.true, sp.false):
         return _constant_exact(printed, exact, state, claim, what, derived)
+    paired = _compare_conjunctions(printed, exact, state, claim, what, verify, derived)
+    if paired is not None:
+        return paired
     var = _variable(printed, exact, state)
     if state.repairing:
         quick = _quick_reject(printed, exact, var, claim)
@@ -453,6 +609,147 @@ def compare_conditions(printed: Any, exact: Any, state: State, *, claim: str, wh
                    Evidence(Method.INSTANCES, instances=count,
                             witness=witness_json(stronger) if stronger is not None else None, facts={"exact": exact}),
                    derived=derived)
+
+
+def _pairs(printed: Any, exact: Any) -> list[tuple[Any, Any, sp.Symbol]] | None:
+    """Printed and exact conjunctions that bound the same parameters from below, one conjunct
+    each (``b_m > KT + 2B, b_s > KT + 2B`` against ``b_m >= ..., b_s >= ...``), matched by
+    parameter; None when they are not."""
+    p_parts, e_parts = conjuncts(printed), conjuncts(exact)
+    if len(e_parts) < 2 or len(p_parts) != len(e_parts):
+        return None
+    out = []
+    used: set[int] = set()
+    for e in e_parts:
+        match = None
+        for var in sorted(sp.sympify(e).free_symbols - {C_SYM}, key=str):
+            eb = _bound(e, var)
+            if eb is None or not eb.lower or eb.bound.has(*[v for *_x, v in out]):
+                continue
+            for k, p in enumerate(p_parts):
+                pb = _bound(p, var) if k not in used else None
+                if pb is not None and pb.lower:
+                    match = (k, p, var)
+                    break
+            if match:
+                break
+        if match is None:
+            return None
+        used.add(match[0])
+        out.append((match[1], e, match[2]))
+    variables = [v for *_x, v in out]
+    if len(set(variables)) != len(variables):
+        return None
+    return out
+
+
+def _compare_conjunctions(printed: Any, exact: Any, state: State, claim: str, what: str,
+                          verify: Callable | None, derived: Any) -> Finding | None:
+    """Conjunctions of bounds on distinct parameters, compared bound by bound; a witness of one
+    bound is completed with the others' parameters above both their bounds (so the rest of both
+    conditions holds there) and re-checked by ``verify``."""
+    if not (isinstance(printed, sp.And) and isinstance(exact, sp.And)):
+        return None
+    pairs = _pairs(printed, exact)
+    if pairs is None:
+        return None
+    if state.repairing:
+        return _quick_conjunctions(pairs, claim, what, exact, derived)
+    findings = []
+    for p, e, var in pairs:
+        try:
+            f = compare_bounds(e, p, var, what=what) if claim == "necessary" else compare_bounds(p, e, var, what=what)
+        except (TypeError, ValueError, AssertionError):
+            return None
+        findings.append((f, p, e, var))
+    state.repairable = True
+    verdicts = {f.verdict for f, *_ in findings}
+    if verdicts == {Verdict.CONFIRMED}:
+        return Finding(Verdict.CONFIRMED, f"{what} is equivalent to the exact condition {sp.sstr(exact)}, bound by bound "
+                       f"({', '.join(str(v) for *_x, v in findings)})", Evidence(Method.CANONICAL_FORM, facts={"exact": exact}),
+                       derived=derived)
+    if verdicts <= {Verdict.CONFIRMED, Verdict.CONSERVATIVE}:
+        if claim == "necessary":
+            return Finding(Verdict.CONFIRMED, f"{what} is necessary: the exact condition implies it bound by bound",
+                           Evidence(Method.ENDPOINT_ANALYSIS, facts={"exact": exact}), derived=derived)
+        return Finding(Verdict.CONSERVATIVE, f"{what} implies the exact condition bound by bound (a bound exceeds the exact "
+                       "one) but not conversely", Evidence(Method.ENDPOINT_ANALYSIS, facts={"exact": exact}), derived=derived)
+    bad = next(((f, p, e, var) for f, p, e, var in findings if f.verdict == Verdict.WRONG and f.evidence.witness), None)
+    if bad is None or state.repairing:
+        if state.repairing:
+            return Finding(Verdict.WRONG, f"{what} differs from the exact condition", Evidence(Method.INSTANCES))
+        return None
+    f, _p, _e, var = bad
+    point = {sp.Symbol(k) if isinstance(k, str) else k: v for k, v in f.evidence.witness.items()}
+    by_name = {getattr(k, "name", k): v for k, v in point.items()}
+    for _f2, p2, e2, var2 in findings:
+        if var2 == var:
+            continue
+        levels = []
+        for cond in (p2, e2):
+            bound = _bound(cond, var2)
+            value = sp.sympify(bound.bound).xreplace({s: by_name[s.name] for s in bound.bound.free_symbols
+                                                      if s.name in by_name})
+            if not value.is_Rational:
+                return None
+            levels.append(value)
+        by_name[var2.name] = max(levels) + 1
+    witness = dict(by_name)
+    facts: dict[str, Any] = {"exact": exact, "differs_in": var.name}
+    expected = Decision.PROVED if claim == "necessary" else Decision.DISPROVED
+    if verify is not None:
+        check = verify(witness)
+        facts["recheck"] = check.to_json()
+        if check.decision != expected:
+            return Finding(Verdict.UNDECIDED, f"{what}: the witness {witness_json(witness)} was not confirmed by the exact "
+                           f"decision ({check.reason})", Evidence(Method.COUNTEREXAMPLE, witness=witness_json(witness),
+                                                                   facts=facts), derived=derived)
+    how = ("it fails at the witness where the exact condition holds (not necessary)" if claim == "necessary"
+           else "it holds at the witness where the exact condition fails")
+    return Finding(Verdict.WRONG, f"{what}: its bound on {var} is weaker than the exact one; {how}",
+                   Evidence(Method.COUNTEREXAMPLE, witness=witness_json(witness), facts=facts), derived=derived)
+
+
+def _quick_conjunctions(pairs: list[tuple[Any, Any, sp.Symbol]], claim: str, what: str, exact: Any,
+                        derived: Any) -> Finding:
+    """While searching repairs: a trial is kept only when every bound is the exact one (or, for
+    a sufficient condition, provably above it); a numeric look rejects the others first."""
+    from hapticproof.audit.compare import sign_on_box
+
+    reject = Finding(Verdict.WRONG, f"{what} differs from the exact condition", Evidence(Method.INSTANCES))
+    above = False
+    for p, e, var in pairs:
+        pb, eb = _bound(p, var), _bound(e, var)
+        if pb is None or eb is None or not pb.lower:
+            return reject
+        if claim == "sufficient":
+            difference = sp.cancel(pb.bound - eb.bound)
+            if is_identically_zero(difference):
+                continue
+            if numerically_negative(difference) or sign_on_box(difference) != 1:
+                return reject
+            above = True
+            continue
+        if numerically_different(pb.bound, eb.bound) or not is_identically_zero(pb.bound - eb.bound):
+            return reject
+    if above:
+        return Finding(Verdict.CONSERVATIVE, f"{what} implies the exact condition bound by bound",
+                       Evidence(Method.ENDPOINT_ANALYSIS, facts={"exact": exact}), derived=derived)
+    return Finding(Verdict.CONFIRMED, f"{what} is equivalent to the exact condition {sp.sstr(exact)}, bound by bound",
+                   Evidence(Method.CANONICAL_FORM, facts={"exact": exact}), derived=derived)
+
+
+def numerically_negative(expr: Any, tries: int = 2) -> bool:
+    """``expr < 0`` at one of a few exact points (never used to prove, only to skip)."""
+    expr = sp.sympify(expr)
+    for point in Sampler(sorted(expr.free_symbols, key=str), seed=13).draw(tries + 1)[1:]:
+        try:
+            value = expr.xreplace(point)
+        except (TypeError, ZeroDivisionError):
+            continue
+        if value.is_Rational and value < 0:
+            return True
+    return False
 
 
 def numerically_different(a: Any, b: Any, tries: int = 2) -> bool:
@@ -496,6 +793,8 @@ def _quick_reject(printed: Any, exact: Any, var: sp.Symbol | None, claim: str) -
     sufficient condition, conservative): skip the others without a full comparison."""
     reject = Finding(Verdict.WRONG, "not equivalent to the exact condition", Evidence(Method.INSTANCES))
     if var is None:
+        if claim == "passivity" and _disagree_somewhere(printed, exact):
+            return reject
         if not positive_ratio_at_points(printed, exact):
             return reject
         return None if ratio_equivalent(printed, exact) else reject
@@ -507,6 +806,17 @@ def _quick_reject(printed: Any, exact: Any, var: sp.Symbol | None, claim: str) -
     if numerically_different(p.bound, e.bound):
         return reject
     return None
+
+
+def _disagree_somewhere(printed: Any, exact: Any, tries: int = 40) -> bool:
+    """Whether the two conditions differ in truth at one of a few exact points (a look that
+    only ever rejects; equivalent conditions never disagree)."""
+    free = sorted((sp.sympify(printed).free_symbols | sp.sympify(exact).free_symbols) - {C_SYM}, key=str)
+    for point in Sampler(free, seed=31).draw(tries):
+        a, b = holds_at(printed, point), holds_at(exact, point)
+        if a is not None and b is not None and a != b:
+            return True
+    return False
 
 
 def _constant_exact(printed: Any, exact: Any, state: State, claim: str, what: str, derived: Any) -> Finding:

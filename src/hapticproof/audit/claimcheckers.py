@@ -86,11 +86,24 @@ def inverse_transfer(state: State) -> Finding:
         from hapticproof.systems.multiuser import inverse_transfer_matrix
 
         derived = inverse_transfer_matrix(state.model)
-    members = claimed_members(state, display_members(state.statement))
+    written = display_members(state.statement)
+    members = claimed_members(state, written)
     if not members:
         return malformed_finding("no member of the display states G^-1(z): every member is a signal, a name or an unknown function",
                           derived=derived)
+    if _names_g(written):
+        # G(z) = ... states G itself: its inverse is compared
+        members = [m.inv() if isinstance(m, sp.MatrixBase) else sp.cancel(1 / m) for m in members]
+        return _compare_members(state, members, derived, "G(z) (inverted)")
     return _compare_members(state, members, derived, "G^-1(z)")
+
+
+def _names_g(members: list[Any]) -> bool:
+    """Whether the display names ``G(z)`` (not ``G^{-1}(z)``) as one of its members."""
+    for member in members:
+        if isinstance(member, sp.core.function.AppliedUndef) and member.func.__name__ == "G":
+            return True
+    return False
 
 
 def residue(state: State) -> Finding:
@@ -561,10 +574,16 @@ def _minor_condition(state: State, relation: Any, M: sp.Matrix) -> Finding:
     factor) is non-negative at each frequency."""
     from hapticproof.audit.claimbase import positive_ratio_at_points, ratio_equivalent
 
-    printed = _in_c(state.prepare(relation), state)
     what = "the printed frequency-wise condition"
     state.repairable = True
-    minors = _principal_minors(M)
+    key = ("principal-minors", state.spec.scene)
+    if key not in state.cache:           # shared by the repair trials of one check
+        state.cache[key] = _principal_minors(M)
+    minors = state.cache[key]
+    prepared = state.prepare(relation)
+    if state.repairing and not _may_be_a_minor(prepared, minors, state):
+        return Finding(Verdict.WRONG, f"{what} is no principal minor condition", Evidence(Method.CANONICAL_FORM))
+    printed = _in_c(prepared, state)
     for label, minor in minors:
         exact = sp.Ge(minor, 0, evaluate=False)
         if positive_ratio_at_points(printed, exact) and ratio_equivalent(printed, exact):
@@ -576,6 +595,24 @@ def _minor_condition(state: State, relation: Any, M: sp.Matrix) -> Finding:
     f = compare_conditions(printed, sp.Ge(minor, 0, evaluate=False), state, claim="passivity",
                            what=f"{what} (no principal minor of G + G^H matches; compared with the minor {label})")
     return f
+
+
+def _may_be_a_minor(relation: Any, minors: list[tuple[str, Any]], state: State) -> bool:
+    """A cheap look before the exact comparison (used only to skip repair trials): with
+    ``cos(omega T)`` read as ``c``, is the display a positive constant times some principal
+    minor at a few exact points? A display in other functions of omega is not skipped."""
+    from hapticproof.audit.claimbase import constant_positive_ratio
+
+    omega = frequency_symbol(state)
+    if not isinstance(relation, sp.core.relational.Relational) or relation.rel_op not in (">", ">=", "<", "<="):
+        return True
+    sign = 1 if relation.rel_op in (">", ">=") else -1
+    expr = sp.sympify(relation.lhs - relation.rhs) * sign
+    if omega is not None:
+        expr = expr.xreplace({sp.cos(omega * period_of(state)): C_SYM})
+        if omega in expr.free_symbols:
+            return True
+    return any(constant_positive_ratio(expr, minor) is not False for _label, minor in minors)
 
 
 def _single(state: State) -> Any:

@@ -43,6 +43,21 @@ def _printed_condition(state: State) -> Any:
     return state.prepare(links[0] if len(links) == 1 else sp.And(*links))
 
 
+def _indexed(state: State) -> bool:
+    """Whether the display names users by an index (``b_i``, ``\\min_i``, ``i = 1, 2``)."""
+    from hapticproof.audit.reader.statements import IndexedExtremum, Qualified
+
+    statement = state.statement
+    if isinstance(statement, Qualified):
+        return True
+    for relation in statement.relations():
+        for term in relation.terms:
+            term = sp.sympify(term)
+            if term.atoms(sp.Indexed) or term.atoms(IndexedExtremum):
+                return True
+    return False
+
+
 def _symbolic_condition(outcome: Outcome) -> Any:
     condition = outcome.evidence.facts.get("condition") if outcome.evidence.facts else None
     return condition if isinstance(condition, sp.Basic) else None
@@ -179,11 +194,26 @@ def _verify_pr(state: State):
 
 def condition(state: State, claim: str) -> Finding:
     """A passivity condition: necessary and sufficient (``passivity``), ``sufficient`` or ``necessary``."""
+    if state.scene.system == "multi-user" and _indexed(state):
+        from hapticproof.audit.claimusers import users_condition
+
+        return users_condition(state, claim=claim, exact=_exact(state))
     printed = _printed_condition(state)
     if printed is None:
         return malformed_finding("the display is not a condition (an inequality) on the parameters")
     exact = _exact(state)
     what = "the printed condition"
+    if state.scene.system == "multi-user" and "decision" not in exact:
+        # scalar bounds on the users' dampings against the matrix condition first; then the
+        # comparison with the exact closed form (minor conditions printed as such)
+        from hapticproof.audit.claimusers import users_condition
+
+        g = users_condition(state, claim=claim, exact=exact)
+        if g.verdict in (Verdict.CONFIRMED, Verdict.CONSERVATIVE) or (g.verdict == Verdict.WRONG and not state.repairing) \
+                or "condition" not in exact:
+            return _noted(g, exact)
+        f = compare_conditions(printed, exact["condition"], state, claim=claim, what=what, verify=_verify_pr(state))
+        return _noted(f if f.verdict != Verdict.UNDECIDED or g.verdict == Verdict.WRONG else g, exact)
     if "decision" in exact:
         return _numeric_condition(printed, exact["decision"], claim, what)
     if "condition" in exact:
@@ -233,7 +263,9 @@ def _sandwich(state: State, printed: Any, exact: Mapping[str, Any], claim: str, 
         if sufficient is not None:
             high = compare_conditions(printed, sufficient, state, claim="passivity", what=what, verify=None)
             if high.verdict in (Verdict.CONFIRMED, Verdict.CONSERVATIVE):
-                inst = _instances(state, printed, claim, what)
+                # a sufficient claim is settled by the proof; only a claimed exact condition needs the
+                # instances' witness of non-necessity
+                inst = _instances(state, printed, claim, what) if claim == "passivity" else high
                 if inst.verdict == Verdict.UNDECIDED and inst.evidence.witness and claim == "passivity":
                     return Finding(Verdict.CONSERVATIVE, f"{what} implies the sufficient Dirichlet bound {sp.sstr(sufficient)} "
                                    "(proved) but is not necessary: the scene is positive real at the witness where it fails",
@@ -368,15 +400,32 @@ def _instances(state: State, printed: Any, claim: str, what: str, count: int = 6
 # ---------------------------------------------------------------------------------------------
 
 
-def _is_wall(state: State) -> bool:
-    from hapticproof.systems.singleuser import virtual_wall
-
+def _wall_parts(state: State) -> tuple[Any, Any] | None:
+    """The stiffness and damping of a virtual-wall environment ``X + Y(z - 1)/(Tz)`` in the
+    scene's own names and values (``k_v + d_v(z - 1)/(T_s z)``: ``(k_v, d_v)``), with ``T`` the
+    scene's period; None when the environment is no such wall."""
     scene = state.scene
     if scene.system != "single-user" or scene.discretize is not None:
-        return False
-    env = scene.environment_z()
-    wall = virtual_wall(scene.symbol("K"), scene.symbol("B"), scene.role_symbol("period"))
-    return is_identically_zero(sp.sympify(env) - wall)
+        return None
+    key = ("wall-parts", state.spec.scene)
+    if key in state.cache:
+        return state.cache[key]
+    model = state.model
+    H = sp.cancel(sp.sympify(model.H))
+    parts = None
+    num, den = sp.fraction(H)
+    if sp.Poly(den, Z_SYM).eval(1) != 0:
+        X = sp.cancel(H.subs(Z_SYM, 1))
+        Y = sp.cancel((H - X) * model.T * Z_SYM / (Z_SYM - 1))
+        if Z_SYM not in X.free_symbols and Z_SYM not in Y.free_symbols and is_identically_zero(
+                H - (X + Y * (Z_SYM - 1) / (model.T * Z_SYM))):
+            parts = (X, Y)
+    state.cache[key] = parts
+    return parts
+
+
+def _is_wall(state: State) -> bool:
+    return _wall_parts(state) is not None
 
 
 def _operator_damping(state: State) -> Any:
@@ -396,25 +445,32 @@ def _operator_damping(state: State) -> Any:
 
 
 def _leading(state: State) -> Any:
+    key = ("leading-order", state.spec.scene)
+    if key not in state.cache:          # shared by the repair trials of one check
+        state.cache[key] = _derive_leading(state)
+    return state.cache[key]
+
+
+def _derive_leading(state: State) -> Any:
     from hapticproof.analysis import classics
 
-    if not _is_wall(state):
-        raise ClaimError("the leading-order stability boundary is derived for the virtual wall K + B(z - 1)/(Tz) "
-                         "(single-user scene, no custom environment)")
+    parts = _wall_parts(state)
+    if parts is None:
+        raise ClaimError("the leading-order stability boundary is derived for a virtual wall X + Y(z - 1)/(Tz) "
+                         "(a spring and a damper in any names, T the scene's period); this environment is "
+                         f"H(z) = {sp.sstr(state.model.H)}")
     damping = _operator_damping(state)
-    n = state.model.delay
+    model = state.model
+    n = model.delay
     lo = classics.leading_order_boundary(classics.SYMBOLS["n"] if n.is_Symbol else int(n), operator=damping is not None)
-    cond = lo.condition
-    scene = state.scene
-    # the classic condition's b and T are the scene's device damping and period (their roles)
-    own = {"b": scene.role("device_damping"), "K": "K", "B": "B", "T": scene.role("period")}
-    mapping = {classics.SYMBOLS[k]: state.names.get(name, scene.symbol(name)) for k, name in own.items()}
-    mapping[classics.SYMBOLS["t_d"]] = n * state.names.get(own["T"], scene.symbol(own["T"]))
+    # one renaming table: the classic condition's b, K, B, T are the scene's device damping and
+    # period (their roles, values substituted) and the wall's spring and damper, in its names
+    stiffness, wall_damping = parts
+    mapping = {classics.SYMBOLS["b"]: model.b, classics.SYMBOLS["K"]: stiffness, classics.SYMBOLS["B"]: wall_damping,
+               classics.SYMBOLS["T"]: model.T, classics.SYMBOLS["t_d"]: n * model.T}
     if damping is not None:
         mapping[classics.OPERATOR["b_h"]] = damping
-    cond = cond.xreplace(mapping)
-    values = state.values
-    cond = cond.xreplace({state.names.get(k, scene.symbol(k)): v for k, v in values.items() if k in own.values()})
+    cond = lo.condition.xreplace(mapping)
     return sp.Ge(cond.lhs, sp.expand(cond.rhs), evaluate=False), lo
 
 
@@ -443,10 +499,16 @@ def _stable(state: State, values: Mapping[str, Any]) -> Outcome:
     from hapticproof.analysis import boundary as bnd
 
     delay = values.get("n", state.model.delay)
-    if _is_wall(state) and state.scene.operator is None:
-        role = state.scene.role
-        return bnd.certified_stable(values[role("mass")], values[role("device_damping")], values[role("period")],
-                                    values["K"], values.get("B", 0), int(delay))
+    parts = _wall_parts(state)
+    if parts is not None and state.scene.operator is None:
+        model = state.model
+
+        def at(expr: Any) -> Any:
+            expr = sp.sympify(expr)
+            return sp.cancel(expr.xreplace({s: values[s.name] for s in expr.free_symbols if s.name in values}))
+
+        return bnd.certified_stable(values[state.scene.role("mass")], at(model.b), at(model.T), at(parts[0]), at(parts[1]),
+                                    int(delay))
     from hapticproof.analysis.sampled import spectral_radius
     from hapticproof.analysis.stability import SceneLoops
 
@@ -472,7 +534,9 @@ def _stability_instances(state: State, printed: Any, count: int = 8) -> Finding:
         raise ClaimError(f"an exact stability claim needs the device mass {mass} in the scene ([scenes.X.params] "
                          f"{mass} = ... or {mass} = \"positive\")")
     symbols = {s.name: s for s in printed.free_symbols}
-    var = symbols.get("K") or next((s for n, s in sorted(symbols.items()) if n in state.names), None)
+    parts = _wall_parts(state)
+    stiffness = parts[0].name if parts is not None and isinstance(parts[0], sp.Symbol) else "K"
+    var = symbols.get(stiffness) or next((s for n, s in sorted(symbols.items()) if n in state.names), None)
     if var is None:
         return Finding(Verdict.UNDECIDED, "no scene parameter in the display to probe", Evidence(Method.INSTANCES, instances=0))
     model_params = {s.name: s for s in getattr(state.model, "parameters", set())}

@@ -96,6 +96,7 @@ def check(ctx: Any, *, spec: Any, source: Any) -> Finding:
     """The audit check of one paper-file claim (registered by :mod:`hapticproof.audit.paperfile`)."""
     state = State(spec, source, ctx.equation.printed, equation=ctx.equation)
     try:
+        state = _in_region(state, _file_region(state), "region")
         finding = _with_assumption(state)
     except ClaimError as err:
         return Finding(Verdict.UNDECIDED, f"the claim cannot be checked: {err}", Evidence(Method.STRUCTURAL))
@@ -126,22 +127,40 @@ def _judged(state: State, finding: Finding) -> Finding:
 
 
 def _run(state: State) -> Finding:
-    return checkers()[state.spec.claim](state)
+    finding = checkers()[state.spec.claim](state)
+    if state.repairing:            # a trial's finding is told in the paper's names only if it is chosen
+        return finding
+    return _in_paper_names(finding, state.chart)
+
+
+def _file_region(state: State) -> Any:
+    from hapticproof.audit.regions import Region
+
+    return getattr(state.source, "region", None) or Region()
+
+
+def _stated(state: State) -> Any:
+    from hapticproof.audit.regions import Region
+
+    spec = state.origin[0] if state.origin else state.spec
+    return spec.assumption or Region()
 
 
 def _with_assumption(state: State) -> Finding:
     """Check the claim; with a stated ``assumption`` also under it (``needs-assumption`` when
     it holds only there)."""
-    text = ", ".join(f"{sp.sstr(k)} = {sp.sstr(v)}" for k, v in state.spec.assumption)
-    if state.spec.assumption and state.repairing:
+    stated = _stated(state)
+    text = stated.text()
+    if stated and state.repairing:
         # a repair of a claim made under an assumption is right under that assumption
-        inner = _run(_assumed(state))
+        assumed = _assumed(state)
+        inner = _in_paper_names(_run(assumed), assumed.chart)
         return Finding(inner.verdict, f"under the stated assumption {text}: {inner.detail}", inner.evidence,
                        derived=inner.derived)
     inner = None
     finding = _run(state)
-    if not state.spec.assumption or finding.verdict in PROVED_VERDICTS:
-        if state.spec.assumption and finding.verdict in PROVED_VERDICTS:
+    if not stated or finding.verdict in PROVED_VERDICTS:
+        if stated and finding.verdict in PROVED_VERDICTS:
             return Finding(finding.verdict, finding.detail + " (it holds without the stated assumption)",
                            finding.evidence, derived=finding.derived, corrected=finding.corrected)
         return finding
@@ -153,30 +172,67 @@ def _with_assumption(state: State) -> Finding:
             f"holds under the stated assumption {text} ({inner.verdict.value}: {inner.detail}); without it: {finding.detail}",
             Evidence(finding.evidence.method, witness=finding.evidence.witness,
                      facts={**dict(finding.evidence.facts), "under_assumption": inner.verdict.value,
-                            "under_assumption_evidence": inner.evidence.to_json()}),
+                            "assumption": text, "under_assumption_evidence": inner.evidence.to_json()}),
             derived=inner.derived,
-            corrected=_with_text(state.printed, r"\quad (" + ", ".join(
-                f"{sp.latex(k)} = {sp.latex(v)}" for k, v in state.spec.assumption) + ")"),
+            corrected=_with_text(state.printed, r"\quad (" + stated.latex() + ")"),
         )
     if inner.verdict == Verdict.WRONG:
-        state.repairable = state.repairable
         return Finding(inner.verdict, f"{inner.detail} (even under the stated assumption {text})", inner.evidence,
                        derived=inner.derived, corrected=inner.corrected)
     return finding
 
 
 def _assumed(state: State) -> State:
-    """The state with the assumption substituted into the scene (parameters) and the display."""
-    spec = state.spec
-    scene = state.scene
-    params = {k.name: v for k, v in spec.assumption}
-    new_scene = scene.with_params(params)
-    name = f"{spec.scene}#assumed"
-    scenes = dict(state.source.scenes)
-    scenes[name] = new_scene
-    source = _SourceView(state.source, scenes)
-    new_spec = dataclasses.replace(spec, scene=name, assumption=())
-    return State(new_spec, source, state.printed, equation=state.equation, repairing=state.repairing, cache=state.cache)
+    """The state with the stated assumption (and the file's region) in the scene and the display."""
+    return _in_region(state, _file_region(state) & _stated(state), "assumed")
+
+
+def _in_region(state: State, region: Any, tag: str) -> State:
+    """The state of the claim with its scene restricted to ``region``: equalities substituted,
+    inequalities as a change of variables onto sign-assumed parameters
+    (:meth:`hapticproof.audit.regions.Region.parametrize`), in the scene and so in the display."""
+    spec, source = state.origin or (state.spec, state.source)
+    if not region or spec.scene is None:
+        return state if state.origin is None else State(spec, source, state.printed, equation=state.equation,
+                                                        repairing=state.repairing, cache=state.cache)
+    scene = source.scenes[spec.scene]
+    used = scene.names() | set(dict(scene.params))
+    region = region.restricted_to(used)
+    if not region.inequalities() and not region.equalities():
+        return State(spec, source, state.printed, equation=state.equation, repairing=state.repairing,
+                     cache=state.cache, origin=(spec, source))
+    taken = used | {getattr(sym, "name", "") for sym in _table_names(source)}
+    chart = region.parametrize(taken)
+    name = f"{spec.scene}#{tag}"
+    scenes = dict(source.scenes)
+    scenes[name] = scene.with_params(chart.params)
+    view = _SourceView(source, scenes)
+    new_spec = dataclasses.replace(spec, scene=name, assumption=None)
+    return State(new_spec, view, state.printed, equation=state.equation, repairing=state.repairing, cache=state.cache,
+                 chart=chart, origin=(spec, source))
+
+
+def _table_names(source: Any) -> list[Any]:
+    symbols = getattr(getattr(source, "symbols", None), "symbols", {}) or {}
+    return [sym for value in symbols.values() for sym in getattr(value, "free_symbols", ())]
+
+
+def _in_paper_names(finding: Finding, chart: Any) -> Finding:
+    """A finding of a restricted scene told in the paper's names: the witness mapped back
+    through the change of variables, the derived condition and the exact facts too."""
+    if chart is None or not chart.inverse:
+        return finding
+    evidence = finding.evidence
+    witness = chart.witness(evidence.witness) if evidence.witness else evidence.witness
+    facts = {k: (chart.back(v) if isinstance(v, sp.Basic) else v) for k, v in dict(evidence.facts).items()}
+    facts["region"] = "; ".join(chart.notes)
+    derived = chart.back(finding.derived)
+    detail = finding.detail
+    if any(name in detail for name in chart.fresh):
+        told = f"in the paper's names {sp.sstr(derived)}; " if isinstance(derived, sp.Basic) else ""
+        detail += f" ({told}{'; '.join(chart.notes)})"
+    return Finding(finding.verdict, detail, dataclasses.replace(evidence, witness=witness, facts=facts),
+                   derived=derived, corrected=finding.corrected)
 
 
 class _SourceView:
@@ -202,6 +258,9 @@ def _should_repair(state: State, finding: Finding) -> bool:
         return False
     if finding.verdict == Verdict.WRONG:
         return True
+    if (finding.verdict == Verdict.UNDECIDED and finding.evidence.witness and state.repairable
+            and state.spec.claim in ("passivity-condition", "stability-condition")):
+        return True          # not necessary at the witness: a nearby display may be exactly right
     return finding.verdict == Verdict.CONSERVATIVE and state.spec.claim in ("passivity-condition", "stability-condition",
                                                                             "hermitian-part")
 
@@ -212,12 +271,26 @@ def _repaired(state: State, finding: Finding) -> bool:
     if finding.verdict == Verdict.CONFIRMED:
         return True
     if finding.verdict == Verdict.NEEDS_ASSUMPTION:
-        return bool(state.spec.assumption)
+        return bool(_stated(state))
     return finding.verdict == Verdict.CONSERVATIVE and state.spec.claim == "sufficient-condition"
 
 
 #: At most this many edits are tried (in printed order).
 MAX_EDITS = 80
+
+
+#: The edits tried first when a display has more than :data:`MAX_EDITS`: the commonest slips.
+_LIKELY = ("sign", "half", "index", "relation", "scale", "swap", "drop", "symbol")
+
+
+def _most_likely(mutants: list[Any]) -> list[Any]:
+    """At most :data:`MAX_EDITS` edits, the commonest slips first over the whole display (a
+    long display's last terms get their sign flips too), tried in printed order."""
+    if len(mutants) <= MAX_EDITS:
+        return mutants
+    order = sorted(range(len(mutants)), key=lambda k: (_LIKELY.index(mutants[k].operator)
+                                                       if mutants[k].operator in _LIKELY else len(_LIKELY), k))
+    return [mutants[k] for k in sorted(order[:MAX_EDITS])]
 
 
 def _repair(state: State, finding: Finding) -> Finding:
@@ -226,11 +299,12 @@ def _repair(state: State, finding: Finding) -> Finding:
         from hapticproof.audit.mutate import generate
     except ImportError:  # pragma: no cover - the mutation operators are not available
         return finding
-    mutants = generate(state.equation, state.source.paper, text=state.printed)[:MAX_EDITS]
+    mutants = _most_likely(generate(state.equation, state.source.paper, text=state.printed, table=state.table,
+                                    slips=True))
     found = []
     for mutant in mutants:
         trial = State(state.spec, state.source, mutant.printed, equation=state.equation, repairing=True,
-                      cache=state.cache)
+                      cache=state.cache, chart=state.chart, origin=state.origin)
         try:
             result = _with_assumption(trial)
         except (LatexParseError, HapticproofError, TypeError, ValueError, ZeroDivisionError, NotImplementedError):
@@ -245,6 +319,8 @@ def _repair(state: State, finding: Finding) -> Finding:
                                 instances=finding.evidence.instances, facts=facts),
                        derived=finding.derived, corrected=finding.corrected)
     mutant, result = found[0]
+    if not _stated(state):               # (a trial under an assumption is told in its region's names already)
+        result = _in_paper_names(result, state.chart)
     facts["repair"] = {"operator": mutant.operator, "position": mutant.position, "original": mutant.original,
                        "replacement": mutant.replacement, "repairs_found": len(found)}
     others = f" ({len(found) - 1} other edit{'s' if len(found) > 2 else ''} also repair it)" if len(found) > 1 else ""
@@ -259,7 +335,8 @@ def _repair(state: State, finding: Finding) -> Finding:
 
 
 _EDITS = {"sign": "flipping the sign", "scale": "a factor 2", "drop": "dropping a term", "swap": "swapping the indices",
-          "relation": "reversing the relation", "symbol": "another symbol"}
+          "relation": "reversing the relation", "symbol": "another symbol", "index": "another index",
+          "half": "halving a term"}
 
 
 def _describe_edit(mutant: Any) -> str:
@@ -293,6 +370,9 @@ def describe(spec: Any, paper: Any) -> str:
         "same-as": f"equation {spec.other}" + (" with " + ", ".join(f"{k} = {v}" for k, v in spec.under) if spec.under else ""),
     }
     text = texts[spec.claim]
+    region = getattr(paper, "region", None)
+    if region and scene is not None and region.restricted_to(scene.names() | set(dict(scene.params))):
+        text += "; in the region " + region.restricted_to(scene.names() | set(dict(scene.params))).text()
     if spec.assumption:
-        text += "; stated assumption " + ", ".join(f"{k} = {v}" for k, v in spec.assumption)
+        text += "; stated assumption " + spec.assumption.text()
     return text

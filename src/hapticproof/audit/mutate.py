@@ -117,6 +117,10 @@ __all__ = [
 ]
 
 OPERATORS = ("sign", "scale", "drop", "swap", "relation", "symbol")
+#: The edits a repair search tries: the operators, index slips (``K_{02}`` for ``K_{01}``: one
+#: index of a name replaced so that it names another parameter of the scene) and a lost half
+#: (``KT`` for ``KT/2``, the commonest slip of these papers).
+REPAIR_OPERATORS = OPERATORS + ("index", "half")
 OUTCOMES = ("killed", "equivalent", "survived", "crashed")
 #: Environment variable: ``all`` runs every mutant in the test suite, a number N samples N per paper.
 ENV_KNOB = "HAPTICPROOF_MUTANTS"
@@ -156,7 +160,7 @@ class Mutant:
     printed: str
 
     def __post_init__(self) -> None:
-        if self.operator not in OPERATORS:
+        if self.operator not in REPAIR_OPERATORS:
             raise ValueError(f"unknown mutation operator {self.operator!r}")
 
     @property
@@ -412,10 +416,13 @@ def _swapped(sub: str) -> str | None:
     return compact[:-2] + b + a
 
 
-def generate(equation: Equation, paper: Paper, *, text: str | None = None) -> list[Mutant]:
+def generate(equation: Equation, paper: Paper, *, text: str | None = None, table: Any = None,
+             slips: bool = False) -> list[Mutant]:
     """All mutants of ``equation``'s printed text (or of ``text``), in printed order.
 
-    Displays are mutated as a whole; claims only inside their ``$...$`` mathematics.
+    Displays are mutated as a whole; claims only inside their ``$...$`` mathematics. ``table``
+    reads the names (default: the paper's symbols); ``slips`` adds the index slips of
+    :data:`REPAIR_OPERATORS` (for repair searches; mutation testing uses :data:`OPERATORS`).
 
     >>> import sympy as sp
     >>> from hapticproof.audit.reader.printed import SymbolTable
@@ -429,7 +436,7 @@ def generate(equation: Equation, paper: Paper, *, text: str | None = None) -> li
      ('symbol', 'y + y > 0')]
     """
     text = equation.printed if text is None else text
-    table = paper.symbols
+    table = paper.symbols if table is None else table
     found: dict[str, Mutant] = {}
 
     def add(operator: str, lo: int, hi: int, replacement: str) -> None:
@@ -467,6 +474,8 @@ def generate(equation: Equation, paper: Paper, *, text: str | None = None) -> li
                     add("sign", a.pos, a.pos, "-")
                 factor = r"2\cdot " if a.kind == "number" else "2 "
                 add("scale", a.pos, a.pos, factor)
+                if slips:
+                    add("half", a.pos, a.pos, r"\frac{1}{2}")
                 if len(terms) >= 2:
                     if sign is not None:
                         add("drop", body[segment[sign]].pos, z.end, "")
@@ -503,7 +512,20 @@ def generate(equation: Equation, paper: Paper, *, text: str | None = None) -> li
                 others = [n for n in _table_names(table) if str(_resolves(n, table)) != str(meanings[name])]
             if others:
                 add("symbol", name_lo, name_hi, _choose(others, f"{paper.id}:{equation.id}:{name_lo}"))
-    return sorted(found.values(), key=lambda m: (m.position, OPERATORS.index(m.operator), m.replacement))
+            if slips and sub is not None:
+                for new in _index_slips(base, sub, table):
+                    add("index", name_lo, name_hi, new)
+    return sorted(found.values(), key=lambda m: (m.position, REPAIR_OPERATORS.index(m.operator), m.replacement))
+
+
+def _index_slips(base: str, sub: str, table: Any) -> list[str]:
+    """Names of the table with the same base, a subscript differing in one index (``K_{02}``: ``K_{01}``)."""
+    inner, out = sub.replace(" ", ""), []
+    for key in _table_names(table):
+        match = re.fullmatch(re.escape(base) + r"_\{?([A-Za-z0-9]+)\}?", key)
+        if match and len(match.group(1)) == len(inner) and sum(x != y for x, y in zip(match.group(1), inner)) == 1:
+            out.append(f"{base}_{{{match.group(1)}}}")
+    return out
 
 
 def _table_names(table: Any) -> list[str]:

@@ -25,6 +25,8 @@ objects as the hand-written derivation modules, so every report format works for
     V_h = "signal"
     S = '\frac{\sin(\omega T)}{2}'         # a definition: LaTeX in the names above
     "K_{ij}" = "positive, symmetric"       # an indexed family (index letters i, j)
+    a = "0 <= a < 1"                       # an assumption: an inequality, interval or relation
+    b_m = "b_m >= b_s"                     # (LaTeX or expression syntax; audit.regions)
 
     [scenes.wall]                          # exactly the fields of a scene file
     system = "single-user"
@@ -40,7 +42,9 @@ objects as the hand-written derivation modules, so every report format works for
 Names
 -----
 ``j`` is the imaginary unit and ``e^{...}`` the exponential unless ``[symbols]`` declares them;
-``z`` and ``s`` are the transform variables. In a display, ``H(...)`` is the scene's
+``z`` and ``s`` are the transform variables; ``G``, ``G^{-1}``, ``\omega``, ``t_d``, ``n``, the
+parameters of an equation's scene and the m-user families (``b_i``, ``K_{0i}``...) need no
+declaration. In a display, ``H(...)`` is the scene's
 environment ``H(z)`` (single-user) and ``C(...)`` its controller ``C(z)`` (teleoperator). A
 symbol whose name is a scene parameter is that parameter (with the file's assumption); a
 display's ``t_d`` is ``n T`` with the scene's delay ``n``.
@@ -53,8 +57,8 @@ Equation fields (:data:`EQUATION_FIELDS`)
     ``other`` and ``under`` (same-as: ``other = "3"`` or ``"hve:3"``, ``under = "z_a = 0, t_d =
     0"``); ``order`` (stability: ``"exact"`` or ``"leading"``); ``form`` (hermitian-part:
     ``"expression"`` or ``"condition"``, default: as printed); ``assumption`` (conditions: the
-    paper's vague assumption made precise, such as ``"B = 0"`` for "B small": a condition that
-    holds only under it is ``needs-assumption``); ``solve_for`` (conditions: the parameter the
+    paper's vague assumption made precise, such as ``"B = 0"`` or ``'B \leq \frac{KT}{2}'`` for
+    "B small": a condition that holds only there is ``needs-assumption``); ``solve_for`` (conditions: the parameter the
     comparison solves for, default the device damping).
 
 Every mistake in a file is one line naming the file, the line and the field
@@ -123,9 +127,10 @@ class PaperFileError(InputFormatError):
 class ClaimSpec:
     """One ``[[equations]]`` entry: a printed display and what it claims.
 
-    ``under`` holds the substitutions of a same-as claim and ``assumption`` those of a
-    condition's stated assumption, each as ``((name, LaTeX value), ...)`` read with the file's
-    symbols; ``line`` is the entry's first line in the file.
+    ``under`` holds the substitutions of a same-as claim as ``((name, value), ...)`` and
+    ``assumption`` a condition's stated assumption as a :class:`~hapticproof.audit.regions.Region`
+    (equalities, inequalities, intervals, relations), each read with the file's symbols;
+    ``line`` is the entry's first line in the file.
     """
 
     id: str
@@ -137,7 +142,7 @@ class ClaimSpec:
     under: tuple[tuple[sp.Symbol, sp.Expr], ...] = ()
     order: str = "exact"
     form: str = "auto"
-    assumption: tuple[tuple[sp.Symbol, sp.Expr], ...] = ()
+    assumption: Any = None                 # a hapticproof.audit.regions.Region (None: no assumption)
     solve_for: str | None = None
     notes: str = ""
     line: int | None = None
@@ -171,6 +176,8 @@ class PaperFile:
     scenes: Mapping[str, Any]
     claims: tuple[ClaimSpec, ...]
     text: str = field(repr=False, default="")
+    #: the relations of ``[symbols]`` (``0 <= a < 1``): a region every claim is decided in
+    region: Any = None
     paper: Any = field(repr=False, default=None)
     _tables: dict = field(repr=False, compare=False, default_factory=dict)
 
@@ -240,7 +247,7 @@ def _at(path: str, line: int | None) -> str:
 # ---------------------------------------------------------------------------------------------
 
 
-def _printed_key(key: str) -> str:
+def printed_key(key: str) -> str:
     r"""The printed name of a ``[symbols]`` key: ``omega`` is ``\omega``, ``mathcal{M}`` is
     ``\mathcal{M}``; other keys are printed names already."""
     from hapticproof.audit.reader.lexer import DECORATIONS, GREEK
@@ -272,23 +279,33 @@ def _assumption_kwargs(word: str) -> dict[str, bool]:
     return dict(ASSUMPTIONS[word])
 
 
-def _read_symbols(raw: Mapping[str, Any], path: str, text: str) -> tuple[Any, dict[str, str]]:
-    """The symbol table of ``[symbols]`` and the word of each declared name."""
+#: An assumption in ``[symbols]`` rather than a word or a definition: a relation.
+_RELATION = re.compile(r"<|>|\\(?:le|ge|leq|geq|leqslant|geqslant|lt|gt|in)(?![A-Za-z])")
+
+
+def _read_symbols(raw: Mapping[str, Any], path: str,
+                  text: str) -> tuple[Any, dict[str, str], Any, dict[str, int | None]]:
+    """The symbol table of ``[symbols]``, the word of each declared name, the region of the
+    relations it states (``a = "0 <= a < 1"``) and the line of each."""
     from hapticproof.audit.reader.names import IndexedFamily, SymbolTable, sympy_name, normalise_name
     from hapticproof.core.symbols import s as S_SYM
     from hapticproof.core.symbols import z as Z_SYM
 
     symbols: dict[str, Any] = {"z": Z_SYM, "s": S_SYM}
-    functions: dict[str, Any] = {"H": sp.Function("H"), "C": sp.Function("C")}
+    # what everybody writes without declaring it: G(z), G^{-1}(z), H(z), C(z) are functions
+    # (H and C bound to the scene's environment and controller), \Re and \operatorname{Re} real parts
+    functions: dict[str, Any] = {"H": sp.Function("H"), "C": sp.Function("C"), "G": sp.Function("G"),
+                                 "G^{-1}": sp.Function(sympy_name(normalise_name("G^{-1}")))}
     families: list[Any] = []
     words: dict[str, str] = {}
     definitions: list[tuple[str, str, str, int | None]] = []
+    relations: list[tuple[str, str, str, int | None]] = []
     for key, value in raw.items():
         line = _table_line(text, key, "symbols")
         where = f"{_at(path, line)}: symbols: {key}"
         if not isinstance(value, str) or not value.strip():
             raise PaperFileError(f"{where}: expected a word ({', '.join(WORDS)}) or a definition in LaTeX, got {value!r}")
-        printed = _printed_key(key.strip())
+        printed = printed_key(key.strip())
         try:
             canonical = normalise_name(printed)
         except LatexParseError as err:
@@ -296,6 +313,10 @@ def _read_symbols(raw: Mapping[str, Any], path: str, text: str) -> tuple[Any, di
         name = sympy_name(canonical)
         if name in ("z", "s"):
             raise PaperFileError(f"{where}: z and s are the transform variables; they need no declaration")
+        if _RELATION.search(value):
+            relations.append((printed, name, value, line))
+            symbols[printed] = sp.Symbol(name, real=True)
+            continue
         parts = [w for w in re.split(r"[\s,]+", value.strip().lower()) if w]
         if re.fullmatch(r"[a-z]+(?:[\s,]+[a-z]+)*", value.strip()):
             unknown = [w for w in parts if w not in WORDS and w != "symmetric"]
@@ -326,7 +347,19 @@ def _read_symbols(raw: Mapping[str, Any], path: str, text: str) -> tuple[Any, di
                 symbols[printed] = sp.Symbol(name, **_assumption_kwargs(word))
             continue
         definitions.append((printed, name, value, line))
+    from hapticproof.core.symbols import n as N_SYM
+    from hapticproof.core.symbols import omega as OMEGA
+
+    # the toolkit's fixed names, unless declared: the frequency, the delay time t_d = n T, n
+    for printed, symbol in (("\\omega", OMEGA), ("t_d", sp.Symbol("t_d", nonnegative=True)), ("n", N_SYM)):
+        if normalise_name(printed) not in {normalise_name(k) for k in symbols}:
+            symbols[printed] = symbol
     table = SymbolTable(symbols=symbols, functions=functions, families=families)
+    region, lines = _read_relations(relations, table, words, path)
+    if relations:
+        table = table.with_symbols({printed: sp.Symbol(name, **_assumption_kwargs(words[name]))
+                                    for printed, name, _value, _line in relations})
+        region, lines = _read_relations(relations, table, words, path)
     for printed, name, value, line in definitions:
         try:
             expr = _parse_value(value, table)
@@ -336,7 +369,51 @@ def _read_symbols(raw: Mapping[str, Any], path: str, text: str) -> tuple[Any, di
             raise PaperFileError(f"{_at(path, line)}: symbols: {printed}: the definition does not read: {err}") from None
         table = table.with_symbols({printed: expr})
         words[name] = "definition"
-    return table, words
+    return table, words, region, lines
+
+
+def _read_relations(relations: list[tuple[str, str, str, int | None]], table: Any, words: dict[str, str],
+                    path: str) -> tuple[Any, dict[str, int | None]]:
+    """The region of the ``[symbols]`` relations; each restricted name gets the sign the
+    relation implies (``0 <= a < 1``: nonnegative), else ``real``."""
+    from hapticproof.audit.regions import Region, RegionError, read_region
+
+    restrictions = []
+    lines: dict[str, int | None] = {}
+    for printed, name, value, line in relations:
+        local = table
+        for _ in range(8):
+            try:
+                region = read_region(value, local, key=name)
+                break
+            except RegionError as err:
+                # a relation may name a scene's parameter ``[symbols]`` does not declare
+                # (b_m >= b_s): it is read with that parameter's default sign
+                unknown = re.search(r"unknown name (\S+)\)$", str(err))
+                if unknown is None:
+                    raise PaperFileError(f"{_at(path, line)}: symbols: {printed}: {err}") from None
+                from hapticproof.audit.reader.names import sympy_name
+                from hapticproof.core.errors import InputFormatError as _Bad
+                from hapticproof.core.expr import parameter_symbol
+
+                try:
+                    symbol = parameter_symbol(sympy_name(unknown.group(1)))
+                except (_Bad, LatexParseError):
+                    raise PaperFileError(f"{_at(path, line)}: symbols: {printed}: {err}") from None
+                local = local.with_symbols({unknown.group(1): symbol})
+        else:
+            raise PaperFileError(f"{_at(path, line)}: symbols: {printed}: too many undeclared names in {value!r}")
+        (restriction,) = region.restrictions
+        if restriction.is_equality():
+            raise PaperFileError(f"{_at(path, line)}: symbols: {printed}: an equality is a definition: write the value "
+                                 f"alone ({printed} = '...'), or make it an equation's assumption")
+        words[name] = restriction.sign_word() or "real"
+        restrictions.append(restriction)
+        lines[name] = line
+    try:
+        return Region(tuple(restrictions)), lines
+    except RegionError as err:
+        raise PaperFileError(f"{path}: symbols: {err}") from None
 
 
 def _parse_value(text: str, table: Any) -> sp.Expr:
@@ -354,7 +431,8 @@ def _parse_value(text: str, table: Any) -> sp.Expr:
 # ---------------------------------------------------------------------------------------------
 
 
-def _read_scenes(raw: Any, path: str, text: str, words: Mapping[str, str]) -> dict[str, Any]:
+def _read_scenes(raw: Any, path: str, text: str, words: Mapping[str, str], region: Any = None,
+                 region_lines: Mapping[str, int | None] | None = None) -> dict[str, Any]:
     from hapticproof.systems.scene import SceneFileError, scene_from_table
 
     if not isinstance(raw, Mapping):
@@ -367,6 +445,7 @@ def _read_scenes(raw: Any, path: str, text: str, words: Mapping[str, str]) -> di
         where = f"{_at(path, header)}: scene {name!r}"
         if not isinstance(table, Mapping):
             raise PaperFileError(f"{where}: a scene is a table of fields ([scenes.{name}])")
+        _check_declarations(table, name, path, text, prefix, words, region, region_lines or {})
         try:
             first = scene_from_table(table, where=path, base=base, text=text, prefix=prefix)
             used = first.names() | set(first.assumptions)
@@ -384,6 +463,45 @@ def _read_scenes(raw: Any, path: str, text: str, words: Mapping[str, str]) -> di
             raise PaperFileError(f"{_at(path, line or header)}: scene {name!r}: {err}") from None
         scenes[name] = scene
     return scenes
+
+
+_SIGNS = ("positive", "nonnegative", "real", "integer", "negative", "nonpositive")
+
+
+def _check_declarations(table: Mapping[str, Any], name: str, path: str, text: str, prefix: str,
+                        words: Mapping[str, str], region: Any, region_lines: Mapping[str, int | None]) -> None:
+    """A scene parameter must not contradict ``[symbols]``: another sign word (``B = "real"``
+    in the scene, ``B = "nonnegative"`` in ``[symbols]``: is ``|B|`` then ``B``?) or a value
+    outside the declared region is one error naming both lines."""
+    params = table.get("params", {}) if isinstance(table, Mapping) else {}
+    if not isinstance(params, Mapping):
+        return
+    for key, value in params.items():
+        here = _at(path, _table_line(text, key, f"{prefix}.params"))
+        declared = words.get(key)
+        there = _at(path, region_lines.get(key) or _table_line(text, key, "symbols"))
+        if isinstance(value, str) and value.strip() in _SIGNS and declared in _SIGNS and value.strip() != declared:
+            raise PaperFileError(f"{here}: scene {name!r}: params: {key} = {value.strip()!r} contradicts [symbols] "
+                                 f"({there}: {key} is {declared!r}); declare it once, in [symbols] or in the scene")
+        restriction = region.get(key) if region else None
+        if restriction is None:
+            continue
+        if isinstance(value, str) and value.strip() in _SIGNS:
+            if value.strip() != declared:
+                raise PaperFileError(f"{here}: scene {name!r}: params: {key} = {value.strip()!r} contradicts [symbols] "
+                                     f"({there}: {restriction.text_form()}); declare it once")
+            continue
+        number = None
+        if isinstance(value, (int, Decimal)) and not isinstance(value, bool):
+            number = sp.Rational(str(value))
+        elif isinstance(value, str):
+            try:
+                number = sp.Rational(value.strip())
+            except (TypeError, ValueError):
+                number = None
+        if number is not None and restriction.contains(number) is False:
+            raise PaperFileError(f"{here}: scene {name!r}: params: {key} = {value} lies outside [symbols] "
+                                 f"({there}: {restriction.text_form()})")
 
 
 def _header_line(text: str, table: str) -> int | None:
@@ -408,7 +526,7 @@ def bound_table(paper: PaperFile, scene: Any, key: Any) -> Any:
     """
     if key in paper._tables:
         return paper._tables[key]
-    table = paper.symbols
+    table = with_scene_names(paper.symbols, scene)
     if scene is not None:
         from hapticproof.core.symbols import z as Z_SYM
 
@@ -422,6 +540,57 @@ def bound_table(paper: PaperFile, scene: Any, key: Any) -> Any:
                 table = table.with_functions({name: bound})
     paper._tables[key] = table
     return table
+
+
+def with_scene_names(table: Any, scene: Any) -> Any:
+    """The table with the scene's parameters a display may name without declaring them
+    (``[scenes.X.params] b_v = "positive"``: ``b_v`` in a display is that parameter, with the
+    scene's assumption); names ``[symbols]`` declares keep their declaration."""
+    if scene is None:
+        return table
+    from hapticproof.audit.reader.names import normalise_name
+
+    known = set(table.symbols) | set(table.functions)
+    extra = {}
+    for name in sorted(scene.names()):
+        try:
+            printed = normalise_name(printed_key(name))
+        except LatexParseError:
+            continue
+        if printed not in known and not _family_member(table, printed):
+            extra[printed] = scene.symbol(name)
+    table = table.with_symbols(extra) if extra else table
+    if scene.system == "multi-user":
+        from hapticproof.audit.reader.names import IndexedFamily, name_parts
+
+        declared = {name_parts(pattern).base for pattern in table.families}
+        # the dampings' and masses' families follow their roles (device_damping = "c": c_i)
+        renamed = {"b": scene.role("device_damping"), "m": scene.role("mass")}
+        patterns = [(pattern.replace(pattern.split("_")[0], renamed.get(pattern.split("_")[0]) or "", 1)
+                     if pattern.split("_")[0] in renamed else pattern, symmetric, word)
+                    for pattern, symmetric, word in _USER_FAMILIES]
+        families = [IndexedFamily(pattern, symmetric=symmetric, assumptions=_assumption_kwargs(word))
+                    for pattern, symmetric, word in patterns
+                    if not pattern.startswith("_") and name_parts(pattern).base not in declared]
+        table = table.with_families(*families) if families else table
+    return table
+
+
+#: The indexed names of an m-user scene a display may use without declaring them (``b_i``,
+#: ``K_{0i}``, ``K_{ij}`` = ``K_{ji}``...), with the signs of :func:`hapticproof.systems.multiuser.user_symbols`.
+_USER_FAMILIES = (("b_{i}", False, "positive"), ("K_{0i}", False, "positive"), ("B_{0i}", False, "nonnegative"),
+                  ("K_{ij}", True, "positive"), ("B_{ij}", True, "nonnegative"), ("m_{i}", False, "positive"))
+
+
+def _family_member(table: Any, printed: str) -> bool:
+    """Whether a declared indexed family (``K_{ij}``) already reads the name."""
+    from hapticproof.audit.reader.names import name_parts
+
+    try:
+        parts = name_parts(printed)
+    except LatexParseError:
+        return False
+    return parts.sub is not None and any(name_parts(pattern).base == parts.base for pattern in table.families)
 
 
 def _substitution(scene: Any) -> dict[sp.Symbol, Any]:
@@ -483,7 +652,22 @@ def _check_other(other: str, ids: set[str], where: str) -> None:
         raise PaperFileError(f"{where}: paper {paper.id!r} has no equation {eq_id!r} (it has {len(ids)}: {shown})") from None
 
 
-def _read_equations(raw: Any, path: str, text: str, table: Any, scenes: Mapping[str, Any]) -> tuple[ClaimSpec, ...]:
+def _assumption(text: str, table: Any, where: str, region: Any) -> Any:
+    """An equation's ``assumption``: a region (``"B = 0"``, ``'B \\leq \\frac{KT}{2}'``, ``"0 <= a < 1/2"``)
+    that must not contradict the file's ``[symbols]``."""
+    from hapticproof.audit.regions import RegionError, read_region
+
+    try:
+        stated = read_region(text, table)
+        if region:
+            region & stated                      # contradicts [symbols]? (RegionError)
+    except RegionError as err:
+        raise PaperFileError(f"{where}: {err}") from None
+    return stated
+
+
+def _read_equations(raw: Any, path: str, text: str, table: Any, scenes: Mapping[str, Any],
+                    region: Any = None) -> tuple[ClaimSpec, ...]:
     from hapticproof.audit.reader.printed import parse_printed
 
     if not isinstance(raw, list):
@@ -577,11 +761,12 @@ def _read_equations(raw: Any, path: str, text: str, table: Any, scenes: Mapping[
         if "assumption" in entry:
             if claim not in CONDITION_CLAIMS:
                 raise PaperFileError(f"{where('assumption')}: assumption applies to condition claims")
-            fields["assumption"] = _substitutions(_text_field(entry["assumption"], where("assumption"), "assumption"),
-                                                  table, where("assumption"))
+            fields["assumption"] = _assumption(_text_field(entry["assumption"], where("assumption"), "assumption"),
+                                               with_scene_names(table, scenes.get(fields.get("scene"))),
+                                               where("assumption"), region)
         # names: an unknown name is the file's mistake (declare it); other parse errors are the
         # paper's (the audit calls them malformed)
-        check_table = table
+        check_table = with_scene_names(table, scenes.get(fields.get("scene")))
         try:
             parse_printed(printed, check_table)
         except LatexParseError as err:
@@ -633,14 +818,14 @@ def loads(text: str, path: str = "paper.toml") -> PaperFile:
     raw_symbols = data.get("symbols", {})
     if not isinstance(raw_symbols, Mapping):
         raise PaperFileError(f"{path}: [symbols] must be a table of names")
-    table, words = _read_symbols(raw_symbols, path, text)
-    scenes = _read_scenes(data.get("scenes", {}), path, text, words)
-    claims = _read_equations(data.get("equations", []), path, text, table, scenes)
+    table, words, region, region_lines = _read_symbols(raw_symbols, path, text)
+    scenes = _read_scenes(data.get("scenes", {}), path, text, words, region, region_lines)
+    claims = _read_equations(data.get("equations", []), path, text, table, scenes, region)
     if not claims:
         raise PaperFileError(f"{path}: no [[equations]] to audit")
     result = PaperFile(path=path, id=values["id"], title=values["title"], authors=values.get("authors", ""),
                        source=values.get("source", "") or path, symbols=table, words=words, scenes=scenes,
-                       claims=claims, text=text)
+                       claims=claims, text=text, region=region)
     object.__setattr__(result, "paper", _register(result))
     return result
 

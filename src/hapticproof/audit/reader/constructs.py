@@ -271,6 +271,35 @@ class ConstructRules:
             raise self.error("det of a scalar expression (the table should give a matrix)", first)
         return self.combine(lambda: sp.Determinant(argument), first, "a determinant")
 
+    def parse_residue(self) -> Any:
+        r"""``\mathrm{Res}_{z = z_0} F`` (``\operatorname{Res}``, ``\text{Res}``): the residue of ``F``
+        at ``z_0``, computed when ``F`` is an expression of the variable; the residue of a named
+        function (``\mathrm{Res}_{z=1} G^{-1}(z)``) is what the display names, kept as
+        ``Res(F, z_0)``."""
+        cmd = self.next()
+        variable, point = None, None
+        if self.at("op", "_"):
+            script = self.read_script()
+            with self.bounded(script.start, script.stop, "the subscript of Res"):
+                t = self.next()
+                if t.kind != "letter":
+                    raise self.error("Res needs its variable and point as a subscript (_{z=1})", t)
+                variable = sp.Symbol(t.value)
+                if not self.at("op", "="):
+                    raise self.unexpected("the subscript of Res (expected '=')")
+                self.next()
+                point = self.parse_sum()
+        body = self.delimited_argument("Res", "([{")
+        if body is None:
+            body = self.parse_run("Res", "operator")
+        if is_matrix(body):
+            raise self.error("Res of a matrix (give the residue matrix itself)", cmd)
+        body = sp.sympify(body)
+        if variable is not None and point is not None and not body.atoms(sp.core.function.AppliedUndef) \
+                and variable in body.free_symbols:
+            return sp.residue(body, variable, point)
+        return sp.Function("Res")(body, point if point is not None else sp.Symbol("z_0"))
+
     def parse_diag(self, width: int = 1) -> Any:
         first = self.peek()
         for _ in range(width):

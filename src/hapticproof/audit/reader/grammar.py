@@ -534,6 +534,8 @@ class Parser(NameRules, ConstructRules):
                 return self.parse_det()
             if arg == "diag":
                 return self.parse_diag()
+            if arg == "Res":
+                return self.parse_residue()
             if t.value in ("\\mathrm", "\\operatorname") and arg.isalpha():
                 return self.parse_name()
             raise self.error(f"prose {t.value}{{{t.arg}}} is not mathematics")

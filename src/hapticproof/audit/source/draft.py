@@ -1,0 +1,449 @@
+r"""The paper file ``hapticproof new-paper --from SOURCE`` writes: a draft for the reviewer to confirm.
+
+Every display of the source (:func:`~hapticproof.audit.source.displays.read_source`) becomes an
+``[[equations]]`` entry with its text verbatim (macros expanded), its ``\label``/``\tag`` or
+number as id and its section. Where the shape says what the display claims
+(:func:`~hapticproof.audit.source.guess.guess_claim`) the entry is active, its claim and scene
+marked ``# guessed:`` with the reason, for the reviewer to confirm; the names it uses are
+declared in ``[symbols]`` with a guessed assumption, each marked the same way. A display the
+guesses cannot classify, or whose names the guessed scene does not have, is kept commented out
+with the reason. The draft is read back before it is returned: an entry the paper-file reader
+refuses is commented out with the reader's message, so the written file loads and audits as it
+is (:func:`draft`).
+
+Scenes are guessed from the names too: ``b_m``, ``b_s``, ``C_m``... a teleoperator; indexed
+names (``K_{01}``, ``b_i``) ``m`` users; ``t_d`` or ``n`` a delayed wall; else the virtual wall
+``K + B(z - 1)/(Tz)`` on the HVE device model. Each is one ``[scenes.X]`` table the reviewer
+edits into the paper's system.
+
+>>> from hapticproof.audit.source.read import read_text
+>>> src = read_text(r'''\section{Wall}
+... \begin{equation} b > \frac{KT}{2} + B \label{eq:wall} \end{equation}
+... \begin{equation} x_h(k+1) = x_h(k) + T v_h(k) \end{equation}''', "wall.tex")
+>>> result = draft(src)
+>>> result.active, result.commented
+(1, 1)
+>>> print("\n".join(result.text.split("[[equations]]")[1].strip().splitlines()[:6]))   # doctest: +ELLIPSIS
+# source: wall.tex:2 (equation)
+id = '1'
+printed = 'b > \frac{KT}{2} + B'
+claim = 'passivity-condition'        # guessed: a bound on the parameters without frequency: ... -- confirm
+scene = 'wall'                       # guessed: the names of a virtual wall
+section = '1'
+>>> from hapticproof.audit.paperfile import loads
+>>> [c.claim for c in loads(result.text).claims]
+['passivity-condition']
+"""
+
+from __future__ import annotations
+
+import json
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+from hapticproof.audit.source.displays import Display, Source
+from hapticproof.audit.source.guess import guess_claim, guess_form, symbol_guesses
+
+__all__ = ["Draft", "Entry", "draft", "paper_id_of", "contexts"]
+
+#: Scenes a draft may guess, as the lines of their ``[scenes.X]`` tables.
+SCENES = {
+    "wall": ['system = "single-user"', 'approximation = "forward"          # guessed: the HVE device model, X_h = T/(z-1) V_h',
+             'environment = "K + B*(z - 1)/(T*z)"  # guessed: the virtual wall; write the paper\'s H(z)'],
+    "delayed": ['system = "single-user"', 'approximation = "forward"          # guessed: the HVE device model',
+                'environment = "K + B*(z - 1)/(T*z)"  # guessed: the virtual wall; write the paper\'s H(z)',
+                'delay = "n"                         # t_d = n T, n symbolic'],
+    "teleoperator": ['system = "teleoperator"             # guessed: a PEB teleoperator (master b_m, slave b_s)',
+                     'controller = "pd"                   # guessed: write the paper\'s C(z)'],
+}
+#: Names no scene declares that a display may use (the reader knows them).
+KNOWN = {"omega", "t_d", "n", "c", "j", "e", "pi"}
+_TELEOPERATOR = re.compile(r"^(?:b|C|K|B|m|x|v|f|F|V|X)_\{?[ms]\}?$|^alpha$")
+_USER_INDEX = re.compile(r"^(?:b|K|B|z_a|m)_\{?(\d{1,2})\}?$|^(?:K|B)_\{?0?(\d)(\d)?\}?$")
+
+
+@dataclass(frozen=True)
+class Entry:
+    """One display as a draft entry: ``claim`` None when it is commented out (``why``)."""
+
+    display: Display
+    id: str
+    claim: str | None
+    why: str
+    scene: str | None = None
+    scene_why: str = ""
+    symbols: dict[str, tuple[str, str]] = field(default_factory=dict)
+    #: the claim the shape suggests, whether or not the entry is active
+    guessed: str | None = None
+    #: ``"condition"`` for a hermitian-part display without a relation listed among conditions
+    form: str | None = None
+
+
+@dataclass(frozen=True)
+class Draft:
+    """A written draft: its TOML ``text`` and how many entries are ``active`` / ``commented``
+    out; ``entries`` in source order."""
+
+    text: str
+    active: int
+    commented: int
+    entries: tuple[Entry, ...]
+
+
+def paper_id_of(path: str) -> str:
+    """A paper-file id from a source's file name (``Hulin 2008.tex`` -> ``hulin-2008``)."""
+    stem = Path(path).stem if path not in ("", "-") else "paper"
+    text = re.sub(r"[^A-Za-z0-9_.-]+", "-", stem).strip("-.").lower()
+    return text if text and text[0].isalnum() else "paper"
+
+
+def _toml_string(text: str) -> str:
+    """A TOML string: literal ``'...'`` when the text allows it (LaTeX reads best so), else basic."""
+    if "'" not in text and not re.search(r"[\x00-\x1f\x7f]", text):
+        return f"'{text}'"
+    return json.dumps(text, ensure_ascii=False).replace("\x7f", "\\u007f")
+
+
+def _toml_key(key: str) -> str:
+    return key if re.fullmatch(r"[A-Za-z0-9_-]+", key) else json.dumps(key, ensure_ascii=False)
+
+
+def _comment(text: str) -> str:
+    return " ".join(str(text).split())
+
+
+def _users(names: set[str]) -> tuple[int, bool] | None:
+    """The number of users the indexed names need (``K_{13}``: 3; ``b_i``, ``K_{ij}``: 2) and
+    whether they are the uniform group names (``K_0``, ``B_0``); ``None`` for no such name."""
+    count, uniform = None, False
+    for name in names:
+        match = re.match(r"^(b|K|B|z_a|m)_\{?([0-9ij]+)\}?$", name)
+        if match is None:
+            continue
+        group, index = match.groups()
+        if group in ("K", "B") and index == "0":
+            uniform = True
+            count = max(count or 2, 2)
+            continue
+        if group in ("K", "B") and len(index) != 2:
+            continue
+        if group in ("b", "z_a", "m") and len(index) != 1:
+            continue
+        digits = [int(d) for d in index if d.isdigit()]
+        count = max(count or 2, 2, *digits)
+    return None if count is None else (count, uniform)
+
+
+def _guess_scene(names: set[str]) -> tuple[str, str]:
+    """The scene a display's names suggest, and why."""
+    plain = {n for n in names}
+    if any(_TELEOPERATOR.match(n) for n in plain) and any(n.startswith(("b_m", "b_s", "C_m", "C_s")) for n in plain):
+        return "teleoperator", "master and slave names (b_m, b_s, C_m, C_s)"
+    users = _users(plain)
+    if users is not None:
+        count, uniform = users
+        if uniform:
+            return f"uniform{count}", f"the group names of {count} identical users (K_0, B_0, K, B)"
+        return f"users{count}", f"indexed names of {count} users"
+    if {"t_d", "n"} & plain:
+        return "delayed", "a delay t_d = n T"
+    return "wall", "the names of a virtual wall"
+
+
+def _designs(source: Source) -> dict[str, tuple[str, str]]:
+    """The environment ``H(z) = ...`` and controller ``C(z) = ...`` the source defines in a
+    display of their own (the first of each), as scene-file expressions, with the display's id."""
+    from hapticproof.audit.reader.names import SymbolTable
+    from hapticproof.audit.reader.printed import parse_printed
+    from hapticproof.core.errors import HapticproofError
+    from hapticproof.core.expr import parameter_symbol, write_expression
+    from hapticproof.core.symbols import z as Z_SYM
+    from hapticproof.systems.scene import scene_from_table
+
+    out: dict[str, tuple[str, str]] = {}
+    for display in source.displays:
+        match = re.match(r"^\s*([HC])\s*\(\s*z\s*\)\s*=(?!=)(.+)$", display.text, re.S)
+        if match is None or match.group(1) in out or re.search(r"[<>=]|\\[lg]e", match.group(2)):
+            continue
+        symbols: dict[str, object] = {"z": Z_SYM}
+        try:
+            for key, (word, _why) in symbol_guesses(match.group(2)).items():
+                if word.split(",")[0] in ("function", "signal") or "," in word:
+                    raise ValueError(key)
+                name = key.replace("{", "").replace("}", "").replace("\\", "")
+                symbols[("\\" + key) if key in ("omega", "alpha", "tau", "theta") else key] = parameter_symbol(name, word)
+            expr = parse_printed(match.group(2), SymbolTable(symbols=symbols)).expressions()[0]
+        except (HapticproofError, ValueError, IndexError, TypeError):
+            continue
+        text = write_expression(expr)
+        system, field = ("single-user", "environment") if match.group(1) == "H" else ("teleoperator", "controller")
+        try:                                   # a design no scene takes is no guess
+            scene_from_table({"system": system, field: text}).build()
+        except HapticproofError:
+            continue
+        out[match.group(1)] = (text, display.id)
+    return out
+
+
+def _scene_lines(name: str, designs: dict[str, tuple[str, str]] | None = None) -> list[str]:
+    designs = designs or {}
+    if name in ("wall", "delayed") and "H" in designs:
+        text, ident = designs["H"]
+        lines = [line if not line.startswith("environment") else
+                 f"{'environment = ' + _toml_string(text):36s} # guessed: H(z) of display ({ident})" for line in SCENES[name]]
+        return lines
+    if name == "teleoperator" and "C" in designs:
+        text, ident = designs["C"]
+        return [SCENES[name][0], f"{'controller = ' + _toml_string(text):36s} # guessed: C(z) of display ({ident})"]
+    if name.startswith(("users", "uniform")):
+        uniform = name.startswith("uniform")
+        users = int(name[len("uniform" if uniform else "users"):])
+        lines = ['system = "multi-user"                # guessed: users coupled by K_0i, B_0i, K_ij, B_ij',
+                 f"users = {users}", 'approximation = "forward"']
+        return lines + (["uniform = true                      # one symbol per group: b, K_0, B_0, K, B"] if uniform else [])
+    return SCENES[name]
+
+
+def _scene_names(name: str, cache: dict[str, set[str]], designs: dict[str, tuple[str, str]] | None = None) -> set[str]:
+    """The parameter names of a guessed scene (as ``[symbols]`` keys: ``K_{01}``)."""
+    if name in cache:
+        return cache[name]
+    import tomllib
+
+    from hapticproof.audit.paperfile import printed_key
+    from hapticproof.audit.reader.names import normalise_name
+    from hapticproof.systems.scene import scene_from_table
+
+    scene = scene_from_table(tomllib.loads("\n".join(line.split("  #")[0] for line in _scene_lines(name, designs))))
+    names = set()
+    for param in scene.names() | {"b", "T", "z_a"}:
+        try:
+            names.add(normalise_name(printed_key(param)))
+        except ValueError:
+            continue
+    cache[name] = names
+    return names
+
+
+def _outside(names: dict[str, tuple[str, str]], scene_names: set[str]) -> list[str]:
+    """Names a display uses that are neither the scene's parameters nor known to the reader."""
+    from hapticproof.audit.reader.names import normalise_name
+
+    out = []
+    for key, (word, _why) in names.items():
+        if word.split(",")[0].strip() in ("function", "signal"):
+            continue
+        if key in KNOWN:
+            continue
+        try:
+            printed = normalise_name("\\" + key if key in ("omega", "alpha", "theta", "tau") else key)
+        except ValueError:
+            out.append(key)
+            continue
+        if printed in scene_names:
+            continue
+        if re.search(r"_\{?[^}]*[ij]", key) and any(n.split("_")[0] == key.split("_")[0] for n in scene_names):
+            continue                                   # an indexed family over the users
+        out.append(key)
+    return out
+
+
+def _label(text: str, claim: str) -> str | None:
+    """The lone name a display states its object under (``R_0 = ...``, ``r = KT``): a label,
+    not a parameter (claims of expressions only)."""
+    if claim not in ("residue", "inverse-transfer", "hermitian-part"):
+        return None
+    match = re.match(r"^\s*([A-Za-z](?:_\{?[A-Za-z0-9]+\}?)?)\s*=", text)
+    if match is None:
+        return None
+    name = match.group(1)
+    sub = re.match(r"^([A-Za-z])_\{?([A-Za-z0-9]+)\}?$", name)
+    return f"{sub.group(1)}_{{{sub.group(2)}}}" if sub and len(sub.group(2)) > 1 else \
+        (f"{sub.group(1)}_{sub.group(2)}" if sub else name)
+
+
+def contexts(source: Source) -> list[str]:
+    """The prose before each display; a display right after another (no prose between) shares
+    the prose before the first of its run ("the conditions are found as follows: (17) (18) (19)")."""
+    out, last = [], ""
+    for display in source.displays:
+        if display.context.strip():
+            last = display.context
+        out.append(display.context if display.context.strip() else last)
+    return out
+
+
+def _entries(source: Source, designs: dict[str, tuple[str, str]]) -> list[Entry]:
+    seen: dict[str, int] = {}
+    cache: dict[str, set[str]] = {}
+    out = []
+    for display, context in zip(source.displays, contexts(source)):
+        ident = display.id
+        if ident in seen:
+            seen[ident] += 1
+            ident = f"{ident}-{seen[ident]}"
+        else:
+            seen[ident] = 1
+        claim, why = guess_claim(display.text, context=context)
+        form = guess_form(display.text, claim, context)
+        if form is not None:
+            why += "; the sentence before lists it among conditions, so read as Re G^{-1} >= 0 ('> 0' is not printed)"
+        names = symbol_guesses(display.text)
+        if claim is None:
+            used = [k for k, (_t, i) in designs.items() if i == display.id]
+            if used:
+                why += f"; its right-hand side is the guessed scenes' {'environment' if used[0] == 'H' else 'controller'}"
+            out.append(Entry(display, ident, None, f"not classified: {why}", symbols=names))
+            continue
+        scene, scene_why = _guess_scene(set(names))
+        missing = [n for n in _outside(names, _scene_names(scene, cache, designs)) if n != _label(display.text, claim)]
+        if missing:
+            out.append(Entry(display, ident, None, f"guessed {claim} ({why}), but the guessed scene '{scene}' has no "
+                             f"{', '.join(missing)}: write its scene, then uncomment", scene=scene, symbols=names,
+                             guessed=claim, form=form))
+            continue
+        out.append(Entry(display, ident, claim, why, scene, scene_why, names, guessed=claim, form=form))
+    return out
+
+
+def _render(source: Source, entries: list[Entry], paper_id: str, title: str, dropped: dict[str, str],
+            designs: dict[str, tuple[str, str]] | None = None) -> str:
+    lines = [
+        f"# A draft paper file, written by hapticproof new-paper --from {source.path}",
+        "# Every display of the source is below, verbatim (macros expanded). Lines marked '# guessed:'",
+        "# are the reader's guesses: confirm or correct each one (the claim, the scene, the assumption of",
+        "# each name), give the scenes the paper's systems, uncomment the displays you can classify, then",
+        f"#     hapticproof audit --paper {paper_id}.toml --format html -o errata.html",
+    ]
+    lines += [f"# warning: {_comment(w)}" for w in source.warnings]
+    lines += ["", "[paper]", f"id = {_toml_string(paper_id)}", f"title = {_toml_string(title)}",
+              f"source = {_toml_string(str(source.path))}", ""]
+    active = [e for e in entries if e.claim is not None and e.id not in dropped]
+    symbols: dict[str, tuple[str, str]] = {}
+    for entry in active:
+        for name, guess in entry.symbols.items():
+            symbols.setdefault(name, guess)
+    lines.append("[symbols]                            # every name the active displays use, with its assumption")
+    for name, (word, why) in symbols.items():
+        lines.append(f"{_toml_key(name) + ' = ' + _toml_string(word):36s} # guessed: {_comment(why)}")
+    others = sorted({n for e in entries if e not in active for n in e.symbols} - set(symbols))
+    if others:
+        lines.append("# names only the commented-out displays use: " + ", ".join(others))
+    lines.append("# inequalities and relations are assumptions too: a = \"0 <= a < 1\", b_m = \"b_m >= b_s\"")
+    for scene in sorted({e.scene for e in active if e.scene}):
+        lines += ["", f"[scenes.{scene}]"] + _scene_lines(scene, designs)
+    lines.append("")
+    for entry in entries:
+        lines += _entry_lines(entry, entry in active, dropped.get(entry.id), str(source.path))
+    return "\n".join(lines).rstrip() + "\n"
+
+
+def _shown_file(file: str, source_path: str) -> str:
+    """A display's file as the reviewer knows it: relative to the source's folder."""
+    import os
+
+    if not os.path.isabs(file):
+        return file
+    folder = source_path if os.path.isdir(source_path) else os.path.dirname(source_path)
+    try:
+        return os.path.relpath(file, folder or ".")
+    except ValueError:
+        return file
+
+
+def _entry_lines(entry: Entry, active: bool, refused: str | None, source_path: str = "") -> list[str]:
+    d = entry.display
+    body = [f"id = {_toml_string(entry.id)}", f"printed = {_toml_string(d.text)}"]
+    if active:
+        body.append(f"{'claim = ' + _toml_string(entry.claim):36s} # guessed: {_comment(entry.why)} -- confirm")
+        body.append(f"{'scene = ' + _toml_string(entry.scene):36s} # guessed: {_comment(entry.scene_why)}")
+    else:
+        body.append(f"claim = {_toml_string(entry.guessed)}" if entry.guessed else 'claim = "?"')
+        if entry.scene:
+            body.append(f"scene = {_toml_string(entry.scene)}")
+    if entry.form:
+        body.append(f"{'form = ' + _toml_string(entry.form):36s} # guessed: listed among conditions")
+    if d.section is not None and d.section.id:
+        body.append(f"section = {_toml_string(d.section.id)}")
+    notes = [f"{_shown_file(d.file, source_path)}:{d.line} ({d.environment})"]
+    notes += list(d.notes)
+    original = re.sub(r"\\(?:label|tag\*?)\s*\{[^{}]*\}|\\(?:nonumber|notag)(?![A-Za-z])", " ", d.original)
+    if original.strip() and " ".join(original.split()) != " ".join(d.text.split()):
+        notes.append("as written: " + _comment(d.original)[:200])
+    header = ["", "[[equations]]"]
+    comment = [f"# source: {_comment(n)}" for n in notes]
+    if active:
+        return header + comment + body
+    reason = refused or entry.why
+    return ["", f"# {_comment(reason)}", "# [[equations]]"] + comment + [f"# {line}" for line in body]
+
+
+def draft(source: Source, *, paper_id: str | None = None, title: str | None = None, max_rounds: int = 50) -> Draft:
+    """The draft paper file of a read source; every active entry loads (checked by reading the
+    draft back with :func:`hapticproof.audit.paperfile.loads`: an entry the reader refuses is
+    commented out with the reader's message)."""
+    from hapticproof.audit.paperfile import PaperFileError, loads
+
+    paper_id = paper_id or paper_id_of(str(source.path))
+    if not re.fullmatch(r"[A-Za-z0-9][A-Za-z0-9_.-]*", paper_id):
+        raise PaperFileError(f"paper id {paper_id!r}: letters, digits, '-', '_' and '.' only")
+    title = title or (source.sections[0].title if source.sections and not source.sections[0].number else "") \
+        or f"Displays of {Path(str(source.path)).name}"
+    designs = _designs(source)
+    entries = _entries(source, designs)
+    dropped: dict[str, str] = {}
+    text = _render(source, entries, paper_id, title, dropped, designs)
+    for _ in range(max_rounds):
+        if not any(e.claim is not None and e.id not in dropped for e in entries):
+            break
+        try:
+            loads(text, f"{paper_id}.toml")
+            break
+        except PaperFileError as err:
+            culprit = _culprit(text, str(err), entries, dropped)
+            if culprit is None:
+                raise
+            dropped[culprit] = f"refused by the paper-file reader: {_comment(_reason(str(err)))}"
+            text = _render(source, entries, paper_id, title, dropped, designs)
+    active = sum(1 for e in entries if e.claim is not None and e.id not in dropped)
+    return Draft(text, active, len(entries) - active, tuple(entries))
+
+
+def _reason(message: str) -> str:
+    return re.sub(r"^[^:]*:\d+:\s*", "", message)
+
+
+def _culprit(text: str, message: str, entries: list[Entry], dropped: dict[str, str]) -> str | None:
+    """The active entry an error names (by its line, else by a name it uses)."""
+    match = re.match(r"^[^:]*:(\d+):", message)
+    lines = text.splitlines()
+    active = [e for e in entries if e.claim is not None and e.id not in dropped]
+    if match:
+        line = int(match.group(1))
+        for k in range(min(line, len(lines)) - 1, -1, -1):
+            found = re.match(r"id = (.+)$", lines[k])
+            if found and lines[k - 1].strip().startswith(("[[equations]]", "# source:")):
+                ident = _unquote(found.group(1))
+                if any(e.id == ident for e in active):
+                    return ident
+            if lines[k].startswith("[") and not lines[k].startswith("[[equations]]"):
+                break
+        # an error in [symbols] or a scene: drop the first active entry using the name it names
+        named = re.search(r"symbols: ([^:]+):", message)
+        if named:
+            key = named.group(1).strip()
+            for entry in active:
+                if key in entry.symbols:
+                    return entry.id
+    return active[0].id if active else None
+
+
+def _unquote(text: str) -> str:
+    text = text.split("  #")[0].strip()
+    if text.startswith("'") and text.endswith("'"):
+        return text[1:-1]
+    try:
+        return json.loads(text)
+    except ValueError:
+        return text
+
