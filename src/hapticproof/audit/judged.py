@@ -135,8 +135,9 @@ def condition_judge(state: Any, finding: Any) -> dict[str, Any] | None:
         if claim is None or any(k in witness for k in ("c", "omega", "z")):
             return None
         values = {str(k): str(v) for k, v in witness.items()}
-        for name, value in getattr(state.spec, "assumption", ()):   # a witness found under the stated assumption
-            values.setdefault(getattr(name, "name", str(name)), str(value))
+        stated = getattr(state.spec, "assumption", None)    # a Region (hapticproof.audit.regions) or None
+        for name, value in (stated.equalities() if stated else {}).items():   # a witness found under it
+            values.setdefault(name, str(value))
         out = {**base, "claim": claim, "values": values}
         point = (recheck.get("evidence") or {}).get("witness") or {}
         if claim == "holds-not-passive" and isinstance(point.get("z"), (list, tuple)):
