@@ -71,7 +71,7 @@ def test_the_delay_margin_search_ends_by_its_deadline():
     # passive for every n below ~1.5 million by the bound: the one delay to decide is very long
     scene = Scene("single-user", params={"K": "0.001", "B": 1, "T": "0.001", "b": "2.5"})
     calls = []
-    dm = delay_margin(scene, deadline=1e-9, progress=lambda done, total: calls.append((done, total)))
+    dm = delay_margin(scene, max_delay=4_000_000, deadline=1e-9, progress=lambda done, total: calls.append((done, total)))
     assert dm.decision == Decision.UNDECIDED and dm.margin is None
     assert dm.lower == dm.proof["N_low"] and dm.upper == dm.proof["n_fail"] - 1
     assert "deadline" in dm.reason and "not passive from n = " in dm.reason

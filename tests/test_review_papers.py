@@ -23,7 +23,7 @@ from oracles.discrete import multi_user_positive_real, single_user_positive_real
 EXPECTED = {
     "1": "confirmed", "2": "confirmed", "3": "confirmed", "4": "typo", "5": "confirmed", "6": "conservative",
     "7": "needs-assumption", "8": "confirmed", "9": "confirmed", "10": "typo", "11": "wrong", "12": "confirmed",
-    "13": "typo", "14": "confirmed", "15": "wrong", "16": "confirmed", "17": "wrong", "18": "confirmed",
+    "13": "typo", "14": "conservative", "15": "wrong", "16": "confirmed", "17": "wrong", "18": "confirmed",
     "19": "typo", "20": "conservative",
 }
 FILES = {"default": ROOT / "tests" / "fixtures" / "review-walls.toml", "renamed": ROOT / "examples" / "reviewer-walls.toml"}

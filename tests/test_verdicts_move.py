@@ -227,9 +227,11 @@ REVERSED = [
 @pytest.mark.parametrize("paper_id, eq_id, old, new", REVERSED, ids=[f"{p}:{e}" for p, e, _, _ in REVERSED])
 def test_reversed_relation_is_not_confirmed(paper_id, eq_id, old, new):
     before = audit(paper_id, eq_id)
-    assert before.verdict == Verdict.CONFIRMED
+    # the teleoperator's (29)/(32) are sufficient conditions resting on an unstated assumption and
+    # (35) is conservative (the exact decision, issue 18): each still holds as printed
+    assert before.verdict in (Verdict.CONFIRMED, Verdict.CONSERVATIVE, Verdict.NEEDS_ASSUMPTION)
     after = audit(paper_id, eq_id, old, new)          # never a traceback
-    assert after.verdict != Verdict.CONFIRMED, after.detail
+    assert after.verdict not in (Verdict.CONFIRMED, Verdict.CONSERVATIVE, before.verdict), after.detail
 
 
 # ---------------------------------------------------------------------------------------------

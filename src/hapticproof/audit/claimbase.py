@@ -592,8 +592,22 @@ def compare_conditions(printed: Any, exact: Any, state: State, *, claim: str, wh
         state.repairable = True
         return Finding(Verdict.CONFIRMED, f"{what} is the exact condition {sp.sstr(exact)} multiplied by a positive factor",
                        Evidence(Method.CANONICAL_FORM, facts={"exact": exact}), derived=derived)
+    corner = _corner_sufficiency(printed, exact) if claim != "necessary" else None
     weaker, stronger, count = separating_points(printed, exact, tries=60 if state.repairing else 300)
     state.repairable = True
+    if corner is not None and weaker is None:
+        shown = ", ".join(f"{v} = {sp.sstr(b)}" for v, b in corner.items())
+        proof = (f"{what} implies the exact condition {sp.sstr(exact)}: the exact condition is nondecreasing in "
+                 f"{', '.join(str(v) for v in corner)} and holds at the corner {shown} of the printed bounds")
+        facts = {"exact": exact, "corner": {str(k): v for k, v in corner.items()}}
+        if stronger is not None:
+            return Finding(Verdict.CONSERVATIVE, f"{proof}; it is not necessary (it fails at the witness where the exact "
+                           "condition holds)", Evidence(Method.ENDPOINT_ANALYSIS, witness=witness_json(stronger), facts=facts),
+                           derived=derived)
+        if claim == "sufficient":
+            return Finding(Verdict.CONFIRMED, proof, Evidence(Method.ENDPOINT_ANALYSIS, facts=facts), derived=derived)
+        return Finding(Verdict.UNDECIDED, f"{proof} (sufficient, proved); whether it is also necessary was not decided "
+                       f"({count} exact samples)", Evidence(Method.INSTANCES, instances=count, facts=facts), derived=derived)
     if weaker is not None and claim != "necessary":
         return _witness_finding(weaker, state, verify, what, derived, Decision.DISPROVED,
                                 "it holds at the witness where the exact condition fails")
@@ -708,6 +722,53 @@ def _compare_conjunctions(printed: Any, exact: Any, state: State, claim: str, wh
            else "it holds at the witness where the exact condition fails")
     return Finding(Verdict.WRONG, f"{what}: its bound on {var} is weaker than the exact one; {how}",
                    Evidence(Method.COUNTEREXAMPLE, witness=witness_json(witness), facts=facts), derived=derived)
+
+
+def _lower_bounds(printed: Any) -> dict[sp.Symbol, Any] | None:
+    """``{b_m: X, b_s: Y}`` of a printed ``b_m > X, b_s > Y`` (one lower bound per parameter, no
+    bound mentioning a bounded parameter), else ``None``."""
+    parts = printed.args if isinstance(printed, sp.And) else (printed,)
+    bounds: dict[sp.Symbol, Any] = {}
+    for rel in parts:
+        if isinstance(rel, (sp.Gt, sp.Ge)) and rel.lhs.is_Symbol:
+            var, bound = rel.lhs, rel.rhs
+        elif isinstance(rel, (sp.Lt, sp.Le)) and rel.rhs.is_Symbol:
+            var, bound = rel.rhs, rel.lhs
+        else:
+            return None
+        if var in bounds:
+            return None
+        bounds[var] = bound
+    if any(b.has(v) for b in bounds.values() for v in bounds):
+        return None
+    return bounds
+
+
+def _corner_sufficiency(printed: Any, exact: Any) -> dict[sp.Symbol, Any] | None:
+    """The corner of a printed conjunction of lower bounds where the exact condition ``f >= 0``
+    is proved to hold, when ``f`` is proved nondecreasing in each bounded parameter (its partial
+    derivative nonnegative under the parameters' signs) and every bound is nonnegative: then the
+    printed condition is sufficient (``f`` only grows from the corner to any point it admits).
+    ``None`` when any step is not proved (the teleoperator's ``b_m b_s/(b_m + b_s) >= B + KT/2``
+    against ``b_m, b_s > KT + 2B``: the corner gives ``B + KT/2 - (B + KT/2) = 0``)."""
+    bounds = _lower_bounds(printed)
+    if not bounds or not isinstance(exact, (sp.Ge, sp.Gt, sp.Le, sp.Lt)):
+        return None
+    f = exact.lhs - exact.rhs if isinstance(exact, (sp.Ge, sp.Gt)) else exact.rhs - exact.lhs
+    if not (f.free_symbols & set(bounds)):
+        return None
+    for var, bound in bounds.items():
+        if not (var.is_nonnegative and sp.cancel(bound).is_nonnegative):
+            return None
+        if not sp.factor(sp.cancel(sp.diff(f, var))).is_nonnegative:
+            return None
+    at_corner = sp.factor(sp.cancel(f.xreplace(bounds)))
+    if not (at_corner.is_nonnegative or (isinstance(exact, (sp.Ge, sp.Le)) and at_corner == 0)):
+        return None
+    if isinstance(exact, (sp.Gt, sp.Lt)) and at_corner == 0 and not all(isinstance(r, (sp.Gt, sp.Lt))
+                                                                         for r in (printed.args if isinstance(printed, sp.And) else (printed,))):
+        return None
+    return bounds
 
 
 def _quick_conjunctions(pairs: list[tuple[Any, Any, sp.Symbol]], claim: str, what: str, exact: Any,

@@ -119,9 +119,12 @@ def condition_judge(state: Any, finding: Any) -> dict[str, Any] | None:
     try:
         from hapticproof.systems.models import inverse_transfer
 
-        inverse = display_tree(inverse_transfer(state.model))
+        # a restricted scene (audit.regions) is judged in the paper's names, as its witness is told
+        chart = getattr(state, "chart", None)
+        back = chart.back if chart is not None else (lambda expr: expr)
+        inverse = display_tree(back(inverse_transfer(state.model)))
         relations = [r.as_sympy() for r in state.statement.relations()]
-        display = display_tree(sp.And(*[state.prepare(r) for r in relations])) if relations else None
+        display = display_tree(back(sp.And(*[state.prepare(r) for r in relations]))) if relations else None
     except Exception:  # noqa: BLE001 - a display the judge cannot read is not judged, never a failure
         return None
     if inverse is None or display is None:
@@ -146,6 +149,9 @@ def condition_judge(state: Any, finding: Any) -> dict[str, Any] | None:
     if finding.verdict in (Verdict.CONFIRMED, Verdict.CONSERVATIVE) and state.spec.claim != "necessary-condition" \
             and not state.spec.assumption:
         samples = _holding_points(state, relations)
+        if samples and chart is not None and chart.inverse:       # points of the region, in the paper's names
+            samples = [{k: str(v) for k, v in chart.witness({n: sp.Rational(x) for n, x in point.items()}).items()}
+                       for point in samples]
         if samples:
             return {**base, "claim": "holds-passive", "values": samples[0], "samples": samples}
     return None

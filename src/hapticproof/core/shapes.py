@@ -48,16 +48,19 @@ def _kind_of(value: Any) -> str:
 
 
 def report_kind(data: Any, name: str) -> str:
-    """``'audit'`` (one paper), ``'audits'`` (``{"papers": [...]}``) or ``'derive'`` (``conditions``);
-    anything else is refused in one line."""
+    """``'audit'`` (one paper), ``'audits'`` (``{"papers": [...]}``), ``'derive'`` (``conditions``)
+    or ``'boundary'`` (a stability boundary: ``parameter`` and its ``judge``); anything else is
+    refused in one line."""
     if isinstance(data, Mapping):
+        if "parameter" in data and isinstance(data.get("judge"), Mapping):
+            return "boundary"
         if "papers" in data:
             return "audits"
         if "equations" in data:
             return "audit"
         if "conditions" in data:
             return "derive"
-    raise InputFormatError(f"{name}: not a hapticproof report (a JSON object with 'paper' and 'equations', 'papers' "
+    raise InputFormatError(f"{name}: not a hapticproof report (a JSON object with 'paper' and 'equations', 'papers', 'parameter' "
                            f"or 'conditions' is expected, got {_kind_of(data) if not isinstance(data, Mapping) else 'an object without them'})")
 
 
@@ -142,6 +145,10 @@ def check_report(data: Any, name: str) -> str:
     'derive'
     """
     kind = report_kind(data, name)
+    if kind == "boundary":
+        _field(data, "parameter", (str,), name)
+        _field(data, "outcome", (str,), name, required=False)
+        return kind
     if kind != "derive":
         return check_audit(data, name)
     for k, entry in enumerate(_list(data, "conditions", name)):
