@@ -7,11 +7,16 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 
 
-def test_every_subpackage_is_listed_in_pyproject():
+def test_every_package_folder_is_listed_in_pyproject():
+    """Every folder with an ``__init__.py`` under each ``package-dir`` (the paper packages of
+    ``derivations/`` too: without them the installed audit knows no paper but classics)."""
     config = tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["setuptools"]
     listed = set(config["packages"])
-    found = {"hapticproof." + ".".join(p.parent.relative_to(ROOT / "src" / "hapticproof").parts)
-             for p in (ROOT / "src" / "hapticproof").rglob("__init__.py")}
-    found = {name.rstrip(".") for name in found}
-    assert found | {"hapticproof.derivations"} <= listed
+    found = set()
+    for prefix, folder in config["package-dir"].items():
+        for init in (ROOT / folder).rglob("__init__.py"):
+            found.add(".".join((prefix, *init.parent.relative_to(ROOT / folder).parts)))
+    assert {"hapticproof.derivations.hve", "hapticproof.audit.reader"} <= found      # the walk sees nested folders
+    assert found - listed == set(), "package folders missing from pyproject's packages"
+    assert listed - found == set(), "pyproject lists packages without a folder"
     assert config["package-dir"]["hapticproof.derivations"] == "derivations"

@@ -351,6 +351,18 @@ def _ge(expr: sp.Expr) -> sp.Basic:
 
 def _symbolic(condition: Any, minimiser: Any, minimum: Any, reason: str) -> WorstCase:
     condition = sp.simplify(condition) if condition in (sp.true, sp.false) else condition
+    # a condition the parameters' signs already settle is a decision, not a condition to state
+    low = sp.sympify(minimum) if minimum is not None else None
+    holds = True if condition is sp.true else False if condition is sp.false else None
+    if holds is None and low is not None:
+        holds = True if low.is_nonnegative else False if low.is_negative else None
+    if holds is not None:
+        facts = {"condition": condition, "reason": reason, "minimum": low}
+        told = f"the minimum {sp.sstr(low)} over c" if low is not None else "Re G^-1"
+        outcome = Outcome(Decision.PROVED if holds else Decision.DISPROVED, Evidence(Method.ENDPOINT_ANALYSIS, facts=facts),
+                          f"{told} is {'>= 0' if holds else '< 0'} for every value the parameters' signs allow ({reason})",
+                          minimiser=minimiser, minimum=minimum)
+        return WorstCase(outcome, sp.true if holds else sp.false, minimiser, minimum)
     outcome = Outcome(
         Decision.SYMBOLIC,
         Evidence(Method.ENDPOINT_ANALYSIS, facts={"condition": condition, "reason": reason}),
