@@ -311,3 +311,33 @@ def test_check_judges_a_boundary_on_both_sides(capsys, tmp_path):
         assert main(["check", _save(tmp_path, "t.json", report)]) == 1
         captured = capsys.readouterr()
         assert message in captured.out
+
+
+def test_check_refuses_a_derive_report_whose_displayed_forms_were_changed(capsys, tmp_path):
+    """What derive shows (G^-1, Re G^-1 in c, the minimum at its minimiser) is held against the
+    report's own G^-1(z) at exact points; the untouched report passes."""
+    assert main(["derive", "single-user", "--param", "K=2", "--param", "T=0.001", "--param", "b=0.0009",
+                 "--param", "B=0", "--format", "json", "-o", str(tmp_path / "wall.json")]) == 0
+    data = json.loads((tmp_path / "wall.json").read_text())
+    assert main(["check", str(tmp_path / "wall.json")]) == 0
+    capsys.readouterr()
+    for field, value, message in (("hermitian_part", "c/1000 + 2/1000", "the Re G^-1 shown"),
+                                  ("G_inverse", "9/10000 + z/(50*z**2 - 500*z)", "the G^-1 shown"),
+                                  ("minimum", "1/1000000", "the minimum shown")):
+        assert main(["check", _save(tmp_path, "t.json", {**data, field: value})]) == 1
+        assert message in capsys.readouterr().out
+
+
+def test_check_refuses_an_audit_entry_whose_printed_display_was_changed(capsys, tmp_path):
+    paper = tmp_path / "mine.toml"
+    assert main(["new-paper", str(paper)]) == 0
+    assert main(["audit", "--paper", str(paper), "--format", "json", "-o", str(tmp_path / "a.json")]) == 0
+    data = json.loads((tmp_path / "a.json").read_text())
+    entries = data["papers"][0]["equations"] if "papers" in data else data["equations"]
+    judged = [e for e in entries if isinstance(e.get("evidence", {}).get("facts", {}).get("judge"), dict)]
+    assert judged and all(e["evidence"]["facts"]["judge"]["printed"] == e["printed"] for e in judged)
+    assert main(["check", str(tmp_path / "a.json")]) == 0
+    capsys.readouterr()
+    judged[0]["printed"] = r"d > \frac{\kappa T_s}{2} - \beta"
+    assert main(["check", _save(tmp_path, "t.json", data)]) == 1
+    assert "the display shown is not the one judged" in capsys.readouterr().out

@@ -357,7 +357,7 @@ def run_equation(paper: Paper, equation: Equation) -> EquationResult:
         finding = equation.check(ctx)
     except LatexParseError as err:
         finding = parse_failure(equation, err)
-    finding = rechecked(finding)
+    finding = rechecked(_with_printed(finding, equation.printed))
     seconds = time.perf_counter() - start
     return EquationResult(
         id=equation.id,
@@ -372,6 +372,16 @@ def run_equation(paper: Paper, equation: Equation) -> EquationResult:
         section=equation.section,
         assumptions=equation.assumptions,
     )
+
+
+def _with_printed(finding: Finding, printed: str) -> Finding:
+    """A judge object remembers the display as printed: ``check`` refuses an entry whose shown
+    ``printed`` is not the one judged."""
+    judge = finding.evidence.facts.get("judge")
+    if not isinstance(judge, dict):
+        return finding
+    facts = {**finding.evidence.facts, "judge": {**judge, "printed": printed}}
+    return replace(finding, evidence=replace(finding.evidence, facts=facts))
 
 
 def rechecked(finding: Finding) -> Finding:

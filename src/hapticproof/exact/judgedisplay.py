@@ -6,11 +6,17 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterator, Mapping
+from fractions import Fraction
 from typing import Any
 
+from hapticproof.exact.checkarith import CheckFailed, Gaussian, eval_transfer, exact_q
 from hapticproof.exact.judge import consistent_witness, displayed_number
 
-__all__ = ["derive_display", "finding_display", "boundary_display"]
+__all__ = ["derive_display", "finding_display", "boundary_display", "displayed_forms"]
+
+#: Displayed expressions longer than this are not re-read (a degree-2000 Re G^-1 is shown by
+#: its closed form and checked through the definition object alone).
+MAX_SHOWN_CHARS = 20_000
 
 
 #: The verdicts a judged claim supports (a finding showing another verdict is refused).
@@ -123,6 +129,7 @@ def derive_display(report: Mapping[str, Any]) -> list[str]:
     elif shown:
         problems.append(f"a witness {shown} is shown, but no condition is disproved")
     if isinstance(definition, dict):
+        problems += displayed_forms(report, definition)
         if definition.get("decision") != report["verdict"] and report["verdict"] in ("proved", "disproved"):
             problems.append(f"the verdict shown is {report['verdict']!r}, the definition object says {definition.get('decision')!r}")
         problems += consistent_witness(shown, definition)
@@ -140,6 +147,8 @@ def finding_display(entry: Mapping[str, Any]) -> list[str]:
     if allowed is not None and entry["verdict"] not in allowed:
         problems.append(f"the verdict shown is {entry['verdict']!r}, but the judged claim {obj.get('claim')!r} supports "
                         f"{' or '.join(allowed)}")
+    if isinstance(obj.get("printed"), str) and "printed" in entry and entry["printed"] != obj["printed"]:
+        problems.append("the display shown is not the one judged (the entry's 'printed' was changed)")
     problems += consistent_witness(evidence.get("witness"), obj)
     return problems
 
@@ -160,3 +169,82 @@ def boundary_display(report: Mapping[str, Any]) -> list[str]:
     if (left["stable"], right["stable"]) != expected:
         problems.append(f"the direction shown ({report.get('direction')}) is not what the two judged loops say")
     return problems
+
+
+def _read_shown(text: Any, name: str) -> tuple[Any, Any] | None:
+    """A displayed expression read (never evaluated) by the toolkit's expression reader, with
+    its one symbol ``name`` (``None`` for a constant); ``None`` when it is not a numeric
+    expression of ``name`` alone."""
+    from hapticproof.core.expr import read_expression
+
+    if not isinstance(text, str) or len(text) > MAX_SHOWN_CHARS or text in ("None", "True", "False"):
+        return None
+    try:
+        expr = read_expression(text, "z" if name == "z" else None)
+    except Exception:  # noqa: BLE001 - a display the reader does not take is not compared
+        return None
+    if any(s.name != name for s in expr.free_symbols):
+        return None
+    return expr, next(iter(expr.free_symbols), None)
+
+
+def _value_at(expr: Any, symbol: Any, point: Fraction) -> Fraction | None:
+    import sympy as sp
+
+    value = expr if symbol is None else expr.xreplace({symbol: sp.Rational(point.numerator, point.denominator)})
+    value = sp.nsimplify(value) if getattr(value, "is_Float", False) else value
+    if not getattr(value, "is_Rational", False):
+        return None
+    return Fraction(int(value.p), int(value.q))
+
+
+def displayed_forms(report: Mapping[str, Any], definition: Mapping[str, Any]) -> list[str]:
+    """The displayed ``G_inverse`` (at real points off the circle), ``hermitian_part`` (at exact
+    points of the circle, ``c = (1 - t^2)/(1 + t^2)``) and ``minimum`` at ``minimiser`` held
+    against the definition object's ``G^{-1}(z)``: a display changed after the fact is refused.
+    (Exact values at a few points: a tampered display that agrees with ``G^{-1}`` at every one of
+    them is an identity in all but name.)"""
+    transfer = definition.get("transfer") or {}
+    if "num" not in transfer or transfer.get("variable", "z") != "z":
+        return []                                    # matrices: their entries are checked by the judge
+    problems: list[str] = []
+    try:
+        shown = _read_shown(report.get("G_inverse"), "z")
+        if shown:
+            expr, symbol = shown
+            for q in (Fraction(2), Fraction(-3), Fraction(7, 2), Fraction(-5, 3)):
+                try:
+                    own = eval_transfer(dict(transfer), Gaussian(q))
+                except CheckFailed:
+                    continue                                 # a pole of G^-1
+                value = _value_at(expr, symbol, q)
+                if value is not None and (value != own.re or own.im != 0):
+                    problems.append(f"the G^-1 shown is not the report's G^-1(z): at z = {q} it gives {value}, G^-1 is {own.re}")
+                    break
+        shown = _read_shown(report.get("hermitian_part"), "c")
+        if shown:
+            expr, symbol = shown
+            for t in (Fraction(1, 2), Fraction(1, 3), Fraction(2), Fraction(3, 5), Fraction(5)):
+                c = (1 - t * t) / (1 + t * t)
+                try:
+                    own = eval_transfer(dict(transfer), Gaussian(c, 2 * t / (1 + t * t)))
+                except CheckFailed:
+                    continue
+                value = _value_at(expr, symbol, c)
+                if value is not None and value != own.re:
+                    problems.append(f"the Re G^-1 shown is not the real part of the report's G^-1 on the circle: "
+                                    f"at c = {c} it gives {value}, Re G^-1 is {own.re}")
+                    break
+            low, at = report.get("minimum"), report.get("minimiser")
+            if not problems and isinstance(low, str) and isinstance(at, str):
+                try:
+                    low_q, at_q = exact_q(low), exact_q(at)
+                except (ValueError, ZeroDivisionError, TypeError):
+                    return problems
+                value = _value_at(expr, symbol, at_q) if -1 <= at_q <= 1 else None
+                if value is not None and value != low_q:
+                    problems.append(f"the minimum shown {low} is not Re G^-1 at the minimiser shown c = {at} ({value})")
+    except (ArithmeticError, ValueError, TypeError) as err:
+        problems.append(f"a displayed form could not be compared with G^-1 ({type(err).__name__})")
+    return problems
+
