@@ -215,3 +215,25 @@ def test_a_natural_eleven_display_file_loads_and_audits():
     assert report == {"1": "confirmed", "2": "confirmed", "3": "wrong", "4": "confirmed", "5": "confirmed",
                       "6": "confirmed", "7": "confirmed", "8": "confirmed", "9": "conservative",
                       "10": "conservative", "11": "needs-assumption"}
+
+
+def test_a_wall_in_the_papers_own_names_gets_its_scene_and_roles(tmp_path):
+    """Greek parameters and a period T_s: H(z) = kappa + beta(z - 1)/(T_s z) becomes the scene's
+    environment, T_s its period and the leading d of G^-1(z) = d + ... its device damping, so the
+    displays in those names are checked instead of commented out."""
+    from hapticproof.audit.paperfile import read_paper
+    from hapticproof.audit.runner import audit_paper
+    from hapticproof.cli import main
+
+    (tmp_path / "main.tex").write_text("\n".join([
+        r"\documentclass{article}\newcommand{\Ts}{T_s}\begin{document}",
+        r"\begin{equation} H(z) = \kappa + \frac{\beta (z-1)}{\Ts z} \end{equation}",
+        r"\begin{equation} G^{-1}(z) = d + \frac{\kappa \Ts}{z-1} + \frac{\beta}{z} \end{equation}",
+        r"\begin{equation} \Re\{G^{-1}(e^{j\omega \Ts})\} = d - \frac{\kappa \Ts}{2} + \beta\cos(\omega \Ts) \end{equation}",
+        r"\[ \mathrm{Res}_{z=1} G^{-1}(z) = \kappa \Ts \]", r"\end{document}"]))
+    out = tmp_path / "draft.toml"
+    assert main(["new-paper", str(out), "--from", str(tmp_path / "main.tex")]) == 0
+    text = out.read_text()
+    assert 'roles = { device_damping = "d", period = "T_s" }' in text
+    verdicts = [r.verdict.value for r in audit_paper(read_paper(out).paper).results]
+    assert verdicts == ["confirmed"] * 3

@@ -58,6 +58,9 @@ SCENES = {
 }
 #: Names no scene declares that a display may use (the reader knows them).
 KNOWN = {"omega", "t_d", "n", "c", "j", "e", "pi"}
+#: Greek letters a display writes as commands (``\kappa``): their symbol-table keys take the backslash.
+GREEK = {"alpha", "beta", "gamma", "delta", "epsilon", "varepsilon", "zeta", "eta", "theta", "vartheta", "iota", "kappa",
+         "lambda", "mu", "nu", "xi", "rho", "sigma", "tau", "upsilon", "phi", "varphi", "chi", "psi", "omega"}
 _TELEOPERATOR = re.compile(r"^(?:b|C|K|B|m|x|v|f|F|V|X)_\{?[ms]\}?$|^alpha$")
 _USER_INDEX = re.compile(r"^(?:b|K|B|z_a|m)_\{?(\d{1,2})\}?$|^(?:K|B)_\{?0?(\d)(\d)?\}?$")
 
@@ -171,7 +174,7 @@ def _designs(source: Source) -> dict[str, tuple[str, str]]:
                 if word.split(",")[0] in ("function", "signal") or "," in word:
                     raise ValueError(key)
                 name = key.replace("{", "").replace("}", "").replace("\\", "")
-                symbols[("\\" + key) if key in ("omega", "alpha", "tau", "theta") else key] = parameter_symbol(name, word)
+                symbols[("\\" + key) if key.split("_")[0] in GREEK else key] = parameter_symbol(name, word)
             expr = parse_printed(match.group(2), SymbolTable(symbols=symbols)).expressions()[0]
         except (HapticproofError, ValueError, IndexError, TypeError):
             continue
@@ -182,7 +185,35 @@ def _designs(source: Source) -> dict[str, tuple[str, str]]:
         except HapticproofError:
             continue
         out[match.group(1)] = (text, display.id)
+    if "H" in out:
+        roles = _guessed_roles(source, {s.name for s in expr_symbols(out["H"][0])})
+        if roles:
+            out["roles"] = (roles, out["H"][1])
     return out
+
+
+def expr_symbols(text: str) -> set:
+    from hapticproof.core.expr import read_expression
+
+    return read_expression(text, "z").free_symbols - {read_expression("z", "z")}
+
+
+def _guessed_roles(source: Source, environment: set[str]) -> str | None:
+    """The wall's roles in the paper's own names, as an inline TOML table: the period when
+    ``H(z)`` has one ``T_...`` and no ``T``; the device damping when a display
+    ``G^{-1}(z) = X + ...`` starts with a name ``X`` that ``H`` does not use."""
+    roles = {}
+    periods = sorted(n for n in environment if re.fullmatch(r"T_?\w*", n) and n != "T")
+    if "T" not in environment and len(periods) == 1:
+        roles["period"] = periods[0]
+    for display in source.displays:
+        match = re.match(r"^\s*G\^\{?-1\}?\s*\(\s*z\s*\)\s*=\s*([A-Za-z](?:_\{?\w+\}?)?)\s*\+", display.text)
+        if match:
+            name = match.group(1).replace("{", "").replace("}", "")
+            if name not in environment and name not in ("b", "z", "e", "j"):
+                roles["device_damping"] = name
+            break
+    return "{ " + ", ".join(f'{k} = "{v}"' for k, v in sorted(roles.items())) + " }" if roles else None
 
 
 def _scene_lines(name: str, designs: dict[str, tuple[str, str]] | None = None) -> list[str]:
@@ -191,6 +222,8 @@ def _scene_lines(name: str, designs: dict[str, tuple[str, str]] | None = None) -
         text, ident = designs["H"]
         lines = [line if not line.startswith("environment") else
                  f"{'environment = ' + _toml_string(text):36s} # guessed: H(z) of display ({ident})" for line in SCENES[name]]
+        if "roles" in designs:
+            lines.append(f"{'roles = ' + designs['roles'][0]:36s} # guessed: the paper's period and device damping")
         return lines
     if name == "teleoperator" and "C" in designs:
         text, ident = designs["C"]
@@ -236,7 +269,7 @@ def _outside(names: dict[str, tuple[str, str]], scene_names: set[str]) -> list[s
         if key in KNOWN:
             continue
         try:
-            printed = normalise_name("\\" + key if key in ("omega", "alpha", "theta", "tau") else key)
+            printed = normalise_name("\\" + key if key.split("_")[0] in GREEK else key)
         except ValueError:
             out.append(key)
             continue
