@@ -341,3 +341,31 @@ def test_check_refuses_an_audit_entry_whose_printed_display_was_changed(capsys, 
     judged[0]["printed"] = r"d > \frac{\kappa T_s}{2} - \beta"
     assert main(["check", _save(tmp_path, "t.json", data)]) == 1
     assert "the display shown is not the one judged" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("argv", [
+    # a negative residue at z = 1 that Re G^-1 on the circle never shows (the pole term is imaginary
+    # there) and that a damping of 1e10 hides from points 1e-6 away
+    ["--approximation", "tustin", "--environment=-3", "--param", "T=0.01", "--param", "b=1e10"],
+    # a non-real residue at z = j: Re G^-1 < 0 only in a narrow band beside the pole
+    ["--approximation", "forward", "--environment=K/(z**2+1)", "--param", "K=1", "--param", "T=0.0005", "--param", "b=1/7"],
+    ["--approximation", "tustin", "--environment=K/(z**2+1)", "--delay", "2", "--param", "K=1000", "--param", "T=0.001",
+     "--param", "b=1e300"],
+])
+def test_the_judge_finds_residue_violations_close_to_the_poles(argv, capsys):
+    """Found by an independent definition-level oracle: right disproofs were 'undecided' because
+    the judge's sample points were too far from the poles on the circle."""
+    assert main(["derive", "single-user", *argv, "--format", "json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["verdict"] == "disproved" and data["definition"]["judged"]["ok"]
+    assert "from the pole" in data["definition"]["judged"]["reason"]
+
+
+def test_results_with_thousands_of_digits_are_written(capsys):
+    """A delay of 47 samples at T = 1e-300 gives rationals of more than 4300 digits (Python's
+    int-to-text guard): the JSON is written, not a traceback."""
+    assert main(["derive", "single-user", "--format", "json", "--approximation", "backward",
+                 "--environment=K*(z+1)/(z-1)", "--delay", "47", "--param", "K=20", "--param", "T=1e-300",
+                 "--param", "b=1e300"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["verdict"] == "disproved" and "multiplicity 2" in data["reason"]

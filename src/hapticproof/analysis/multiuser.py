@@ -484,21 +484,9 @@ def worst_case(scene: MultiUserScene) -> MatrixWorstCase:
         witness = herm.witness.get("c") if herm.witness else None
         return MatrixWorstCase(herm, sp.true if holds else sp.false, "uniform-modes", witness)
     if scene.is_numeric:
-        from dataclasses import replace
-
-        from hapticproof.core.evidence import to_jsonable
-        from hapticproof.exact.judge import MAX_JUDGED_SIZE, judged_definition
-
-        transfer = transfer_entries(scene)
-        decision = decide_psd_on_circle(hermitian(scene), transfer=transfer)
+        decision = decide_psd_on_circle(hermitian(scene), transfer=transfer_entries(scene))
         holds = decision.decision == Decision.PROVED
-        outcome = decision.outcome
-        shown = outcome.witness if outcome.decision == Decision.DISPROVED else None
-        judged = judged_definition("disk", outcome.decision.value, transfer, to_jsonable(shown) if shown else None,
-                                   kind="circle-psd") if scene.users <= MAX_JUDGED_SIZE else None
-        if judged is not None:      # the Hermitian part itself at points of the circle, for the judge
-            outcome = replace(outcome, evidence=replace(outcome.evidence, facts={**outcome.evidence.facts, "definition": judged}))
-        return MatrixWorstCase(outcome, sp.true if holds else sp.false, "root-isolation",
+        return MatrixWorstCase(decision.outcome, sp.true if holds else sp.false, "root-isolation",
                                decision.witness, {"failing_k": decision.failing})
     if scene.is_uniform and (not scene.has_delay or not scene.damped) and decides_by_modes(scene):
         conditions = []
@@ -663,16 +651,8 @@ def _matrix_residue(scene: MultiUserScene) -> Outcome:
 
 @stage("positive_real")
 def positive_real(scene: MultiUserScene) -> Outcome:
-    """All three conditions of Definition 2 for ``G^{-1}``, combined (:func:`conditions`); a
-    numeric scene's outcome carries ``G^{-1}(z)`` itself for the definition-level judge."""
-    from hapticproof.exact.judge import MAX_JUDGED_SIZE
-
-    out = combine(conditions(scene))
-    if scene.is_numeric and scene.users <= MAX_JUDGED_SIZE:
-        from hapticproof.analysis.positivereal import with_definition
-
-        out = with_definition(out, transfer_entries(scene))
-    return out
+    """All three conditions of Definition 2 for ``G^{-1}``, combined (:func:`conditions`)."""
+    return combine(conditions(scene))
 
 
 def hve_leading_minor_counterexample() -> tuple[MultiUserScene, Any]:

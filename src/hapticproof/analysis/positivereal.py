@@ -38,7 +38,7 @@ from hapticproof.core.symbols import z as Z_SYM
 from hapticproof.exact.unitcircle import CRational, ThetaForm, circle_real_part, hermitian_part_rational, numerator_denominator, theta_form
 from hapticproof.exact.conditions import HERMITIAN, RESIDUES, Condition, POLES_IN_DISK, POLES_SIMPLE, combine, pole_conditions, properness_condition
 
-__all__ = ["conditions", "transfer_polynomials", "numeric_scene", "Pole", "Residue", "WorstCase", "poles_of", "unit_circle_residues", "hermitian_of", "decide_hermitian", "symbolic_minimum", "bernstein_sign", "symbolic_c_degree", "SYMBOLIC_CFORM_LIMIT", "poles", "residues", "hermitian", "worst_case", "positive_real", "with_definition"]
+__all__ = ["conditions", "transfer_polynomials", "numeric_scene", "Pole", "Residue", "WorstCase", "poles_of", "unit_circle_residues", "hermitian_of", "decide_hermitian", "symbolic_minimum", "bernstein_sign", "symbolic_c_degree", "SYMBOLIC_CFORM_LIMIT", "poles", "residues", "hermitian", "worst_case", "positive_real", "definition_object"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -656,25 +656,16 @@ def positive_real(scene: SingleUserScene) -> Outcome:
     >>> out = positive_real(sc)
     >>> out.decision.value, out.reason
     ('disproved', 'G^-1 is not positive real: poles in |z| <= 1: 1 pole(s) outside the unit circle (z ~ 2)')
-    >>> positive_real(sc).evidence.facts["definition"]["judged"]["ok"]       # G^-1 itself, for the judge
-    True
     """
-    out = combine(conditions(scene))
-    if scene.is_numeric:
-        out = with_definition(out, transfer_json(*transfer_polynomials(scene)))
-    return out
+    return combine(conditions(scene))
 
 
-def with_definition(out: Outcome, transfer: dict[str, Any]) -> Outcome:
-    """``out`` with the judged definition object of its decision (:func:`hapticproof.exact.judge.judged_definition`)
-    in its facts: whoever re-checks the decision (the audit's :func:`~hapticproof.audit.runner.rechecked`,
-    ``hapticproof check``) tests it against the definition from ``G^{-1}`` itself."""
-    from dataclasses import replace
-
+def definition_object(out: Outcome, transfer: dict[str, Any]) -> dict[str, Any] | None:
+    """The judged definition object of a decision (:func:`hapticproof.exact.judge.judged_definition`)
+    for a report that shows it (``derive``): ``hapticproof check`` tests the decision against the
+    definition from ``G^{-1}`` itself. Not part of the decision: the judge's exact sample points
+    cost far more than the decision (a map or an audit decides thousands of scenes)."""
     from hapticproof.exact.judge import judged_definition
 
-    definition = judged_definition("disk", out.decision.value, transfer,
-                                   to_jsonable(out.witness) if out.decision == Decision.DISPROVED and out.witness else None)
-    if definition is None:
-        return out
-    return replace(out, evidence=replace(out.evidence, facts={**out.evidence.facts, "definition": definition}))
+    return judged_definition("disk", out.decision.value, transfer,
+                             to_jsonable(out.witness) if out.decision == Decision.DISPROVED and out.witness else None)

@@ -87,6 +87,11 @@ def _refuse_foreign_digits(argv: list[str]) -> None:
 
 def main(argv: Sequence[str] | None = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
+    # Exact results may have many digits (a delay of 47 samples at T = 1e-300): Python's guard
+    # against slow int <-> str conversions would stop writing them. Inputs are bounded before any
+    # work by core.limits (digits, exponents, degrees), so the conversions stay bounded too.
+    if hasattr(sys, "set_int_max_str_digits") and 0 < sys.get_int_max_str_digits() < 10**6:
+        sys.set_int_max_str_digits(10**6)
     try:
         return _main(argv)
     except HapticproofError as err:

@@ -111,8 +111,14 @@ def derive(scene: Any, minors: str = "auto", full: bool = False) -> dict[str, An
         "witness": positive_real(scene).evidence.witness,
     }
     if scene.is_numeric:
-        # the original G^-1(z) matrix, judged against the definition (and re-judged by 'check')
-        definition = positive_real(scene).evidence.facts.get("definition")
+        # the original G^-1(z) matrix, judged against the definition (and re-judged by 'check');
+        # above MAX_JUDGED_SIZE users the judge's exact points cost minutes: not judged
+        from hapticproof.analysis.multiuser import transfer_entries
+        from hapticproof.analysis.positivereal import definition_object
+        from hapticproof.exact.judge import MAX_JUDGED_SIZE
+
+        definition = (definition_object(positive_real(scene), transfer_entries(scene))
+                      if scene.users <= MAX_JUDGED_SIZE else None)
         if definition is not None:
             out["definition"] = definition
             if not definition["judged"]["ok"]:   # the decision and the definition disagree

@@ -26,8 +26,9 @@ from hapticproof.core.notation import shorten_numbers
 from hapticproof.report.readable import brief, full_text, witness_text
 from hapticproof.systems.models import inverse_transfer
 from hapticproof.exact.conditions import Condition
-from hapticproof.analysis.positivereal import (SYMBOLIC_CFORM_LIMIT, conditions, hermitian, poles, positive_real, residues,
-                                              symbolic_c_degree, transfer_polynomials, worst_case)
+from hapticproof.analysis.positivereal import (SYMBOLIC_CFORM_LIMIT, conditions, definition_object, hermitian, poles,
+                                              positive_real, residues, symbolic_c_degree, transfer_polynomials, worst_case)
+from hapticproof.exact.kernel import transfer_json
 from hapticproof.systems.singleuser import SingleUserScene
 from hapticproof.exact.unitcircle import CRational
 
@@ -227,7 +228,8 @@ def summarize_single_user(scene: SingleUserScene, with_profile: bool = False, fu
     wc = worst_case(scene)
     verdict = positive_real(scene)
     witness = dict(verdict.witness) if (verdict.witness and verdict.decision == Decision.DISPROVED) else None
-    definition = verdict.evidence.facts.get("definition")     # G^-1 itself, judged (numeric scenes)
+    definition = (definition_object(verdict, transfer_json(*transfer_polynomials(scene)))   # G^-1 itself, judged
+                  if scene.is_numeric else None)
     decision, reason = verdict.decision.value, verdict.reason
     if definition is not None and not definition["judged"]["ok"]:
         # the decision and the definition disagree: neither is reported as established
