@@ -196,3 +196,21 @@ def test_equal_scenes_hash_equal_however_built():
     assert a == b == c and hash(a) == hash(b) == hash(c)
     ring = MultiUserScene.uniform(4, edges=[(0, 1), (1, 2), (2, 3), (0, 3)])
     assert ring != a and pickle.loads(pickle.dumps(ring)) == ring
+
+
+def test_uniform_scenes_with_a_numeric_damping_and_symbolic_couplings():
+    """Found by the fuzz test: b given as a number, the rest symbolic. b = 0 is settled by the
+    parameters' signs (disproved); b = 2 keeps the condition of the top mode lambda = 2,
+    b >= (K_0 + 2K) T/2 + B_0 + 2B, with nothing solved 'for the number 2'."""
+    import sympy as sp
+
+    from hapticproof.analysis.multiuser import worst_case
+    from hapticproof.systems.scene import Scene
+
+    zero = worst_case(Scene("multi-user", users=2, uniform=True, params={"b": 0}).build())
+    assert zero.outcome.decision.value == "disproved"
+    two = worst_case(Scene("multi-user", users=2, uniform=True, params={"b": 2}).build())
+    names = {s.name: s for s in two.condition.free_symbols}
+    K, K0, B, B0, T = (names[n] for n in ("K", "K_0", "B", "B_0", "T"))
+    assert isinstance(two.condition, sp.Ge) and two.condition.lhs == 2
+    assert sp.simplify(two.condition.rhs - ((K0 + 2 * K) * T / 2 + B0 + 2 * B)) == 0

@@ -458,14 +458,17 @@ def _and(conditions: Sequence[sp.Basic]) -> sp.Basic:
 def _dominates(a: sp.Basic, b: sp.Basic) -> bool:
     """``a`` implies ``b`` for ``lhs >= rhs`` conditions with the same lhs and a rhs larger
     by a non-negative-coefficient polynomial in non-negative symbols."""
-    if a.lhs != b.lhs:
+    if not (isinstance(a, sp.Rel) and isinstance(b, sp.Rel)) or a.lhs != b.lhs:
         return False
     diff = sp.expand(a.rhs - b.rhs)
     if diff == 0:
         return True
     if not all(s.is_nonnegative for s in diff.free_symbols):
         return False
-    poly = sp.Poly(diff, *sorted(diff.free_symbols, key=str)) if diff.free_symbols else None
+    try:
+        poly = sp.Poly(diff, *sorted(diff.free_symbols, key=str)) if diff.free_symbols else None
+    except sp.PolynomialError:             # rational in the parameters: no coefficient argument
+        return False
     return (poly is None and diff >= 0) or (poly is not None and all(cf >= 0 for cf in poly.coeffs()))
 
 
@@ -495,9 +498,10 @@ def worst_case(scene: MultiUserScene) -> MatrixWorstCase:
             wc = _mode_condition(md.scene)
             conditions.append(wc)
         kept = [cnd for cnd in conditions if not any(o is not cnd and _dominates(o, cnd) and not _dominates(cnd, o) for o in conditions)]
-        kept = list(dict.fromkeys(kept))
-        condition = _and(kept)
-        outcome = Outcome(Decision.SYMBOLIC,
+        kept = [cnd for cnd in dict.fromkeys(kept) if cnd is not sp.true]
+        condition = sp.false if sp.false in kept else _and(kept) if kept else sp.true
+        settled = {sp.true: Decision.PROVED, sp.false: Decision.DISPROVED}.get(condition)
+        outcome = Outcome(settled or Decision.SYMBOLIC,
                           Evidence(Method.STRUCTURAL, facts={"modes": [(md.eigenvalue, md.multiplicity) for md in modes],
                                                             "mode_conditions": conditions}),
                           "uniform couplings: G^-1 decouples into single-user walls K_0 + lambda K, B_0 + lambda B "
@@ -562,6 +566,8 @@ def _mode_condition(wall: SingleUserScene) -> sp.Basic:
         kb = kernel_bounds(wall.approximation, int(wall.delay))
         return sp.Ge(wall.b - wall.z_a, sp.expand(kb.kappa_K * wall.T * stiffness))
     cond = single_worst_case(wall).condition
+    if not isinstance(cond, sp.Rel) or not sp.sympify(wall.b).is_Symbol:
+        return cond                 # settled by the signs (sp.true / sp.false), or b a number: nothing to solve for
     bound = sp.solve(sp.Eq(cond.lhs - cond.rhs, 0), wall.b)
     if len(bound) != 1:
         return cond

@@ -18,7 +18,7 @@ where an equation is ``{"id": str, "kind": str, "printed": str, "derived": str |
 >>> report_kind(42, "a.json")
 Traceback (most recent call last):
 ...
-hapticproof.core.errors.InputFormatError: a.json: not a hapticproof report (a JSON object with 'paper' and 'equations', 'papers' or 'conditions' is expected, got a number)
+hapticproof.core.errors.InputFormatError: a.json: not a hapticproof report (a JSON object with 'paper' and 'equations', 'papers', 'parameter' or 'conditions' is expected, got a number)
 """
 
 from __future__ import annotations
