@@ -508,7 +508,7 @@ class Scene:
         >>> Scene("single-user", params={"Q": 1}).check_names()
         Traceback (most recent call last):
         ...
-        hapticproof.core.errors.SceneError: unknown parameter 'Q': this single-user scene has B, K, T, b
+        hapticproof.core.errors.SceneError: unknown parameter 'Q': this single-user scene has B, K, T, b (and m, t_d, z_a)
         """
         from hapticproof.systems.roles import ROLES
 
@@ -532,7 +532,9 @@ class Scene:
                     field, role = renamed[0]
                     now = self.role(field) or ", ".join(self.members(field))
                     hint = f" ({role.meaning} is {now} in this scene: roles {field} = {now!r})"
-                raise SceneError(f"unknown parameter {name!r}: this {self.system} scene has {', '.join(shown)}{hint}")
+                others = sorted(set(self.reserved()) - names - {name})
+                also = f" (and {', '.join(others)})" if others else ""
+                raise SceneError(f"unknown parameter {name!r}: this {self.system} scene has {', '.join(shown)}{also}{hint}")
 
     def build(self) -> Any:
         """The analysis model with the parameter values substituted: a :class:`SingleUserScene`,
