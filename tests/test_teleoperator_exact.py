@@ -210,3 +210,12 @@ def test_cli_prints_the_exact_conditions_and_32_apart():
     assert data["verdict"] == "proved"
     assert [c["name"][:4] for c in data["conditions"]] == ["(D) ", "(P1)", "(P2)", "(P3)", "(P4)", "(P5)"]
     assert data["criterion_32"]["decision"] == "disproved"
+
+
+def test_a_zero_controller_is_passive_with_nonnegative_dampers():
+    """Found by the fuzz test (controller = "0": the zero polynomial's degree is -oo)."""
+    from hapticproof.analysis.teleoperator import passivity
+    from hapticproof.systems.scene import Scene
+
+    scene = Scene("teleoperator", controller="0").build()
+    assert passivity(scene).decision.value == "proved"

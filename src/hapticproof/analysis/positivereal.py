@@ -252,11 +252,11 @@ def symbolic_minimum(expr: sp.Expr, var: sp.Symbol = C_SYM) -> WorstCase:
     if den.is_negative:
         num, den = -num, -den
     poly = sp.Poly(sp.expand(num / den), var)
-    degree = poly.degree()
-    coeffs = {k: poly.coeff_monomial(var**k) for k in range(degree + 1)}
+    degree = poly.degree()            # -oo for the zero polynomial
     if degree <= 0:
         cond = sp.Ge(poly.as_expr(), 0)
         return _symbolic(cond, None, poly.as_expr(), "constant in c")
+    coeffs = {k: poly.coeff_monomial(var**k) for k in range(degree + 1)}
     if degree == 1:
         alpha, beta = coeffs[0], coeffs[1]
         if beta.is_nonnegative:
