@@ -440,3 +440,13 @@ def test_arabic_indic_digits_are_refused(capsys, argv):
 def test_same_as_itself_is_refused(tmp_path, capsys):
     refused(capsys, ["audit", "--paper", paper(tmp_path, claim="same-as", extra='other = "1"')],
             "field 'other'", "the same as itself")
+
+
+def test_an_equation_id_with_a_control_character_is_one_line(tmp_path, capsys):
+    """Found by the large fuzz run: an id "0\\r0" split the error message in two lines."""
+    path = tmp_path / "p.toml"
+    path.write_text('[paper]\nid = "fz"\ntitle = "t"\n[scenes.s]\nsystem = "single-user"\n[[equations]]\n'
+                    'id = "0\\r0"\nprinted = "b > c"\nclaim = "passivity-condition"\nscene = "s"\n')
+    assert main(["audit", "--paper", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert len(err.strip().splitlines()) == 1 and "control character" in err and "\r" not in err

@@ -699,6 +699,10 @@ def _read_equations(raw: Any, path: str, text: str, table: Any, scenes: Mapping[
         label = f"equation {eq_id}"
         if not eq_id:
             raise PaperFileError(f"{where('id')}: an id is needed")
+        if not eq_id.isprintable():        # an id is shown in one-line messages, anchors and reports
+            label = "equation"
+            raise PaperFileError(f"{where('id')}: the id {eq_id!r} has a control character (use letters, digits, "
+                                 "'-', '.', '_' and spaces)")
         if eq_id in ids:
             raise PaperFileError(f"{where('id')}: equation {eq_id!r} is listed twice")
         ids.add(eq_id)
