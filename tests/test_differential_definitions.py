@@ -402,6 +402,11 @@ def judge_margin(case: dict, data: dict, params: dict) -> tuple[str, str]:
         if want and ans.verdict == NO:
             return "false-proof", f"margin {N} but not positive real at n = {n}: {ans.reason}"
         if not want and ans.verdict == YES:
+            # the oracle samples; the derive's own witness at n = 0 (an exact point where
+            # Re G^-1 < 0) settles it against the oracle, evaluated with the oracle's model
+            if n == 0 and int(case.get("delay") or 0) == 0 and data.get("verdict") == "disproved" \
+                    and _witness_is_valid(G, data.get("witness")):
+                return "oracle-miss", f"margin {N}: the oracle sees n = 0 positive real, the witness shows it is not"
             return "false-disproof", f"margin {N} but positive real at n = {n}"
     return "agree", dm.get("reason", "")
 
@@ -459,6 +464,8 @@ REGRESSIONS = [
     ("derive single-user --approximation backward --environment 'K + B*(z-1)/T' --active --range K --param=B=3e0 --param=T=0.01 --param=b=0.01001 --param=z_a=2e-2", False),
     ("derive single-user --approximation backward --environment 'K*(1 + -1e-12*z)' --delay-margin --param=K=0.5 --param=T=0.05 --param=b=0.255", False),
     ("derive single-user --approximation backward --environment 'K*(z^3 + z^-3)/2' --delay-margin --param=K=2 --param=T=0.05 --param=b=0.06", False),
+    # a delay margin of -1 the sampling oracle missed: Re G^-1 < 0 only for wT below about 3e-150
+    ("derive single-user --approximation backward --environment 'K/(tau*s + 1)' --discretize tustin --delay-margin --param=K=0.5 --param=tau=0.01 --param=T=1e-300 --param=b=5.1e-300", False),
     # a true disproof the sampling oracle missed: Re G^-1 < 0 only within 1e-303 of w = 0
     ("derive single-user --approximation backward --environment 'K/(tau*s + 1)' --discretize backward --param=K=1.001e1 --param=tau=3e2 --param=T=1e-300 --param=b=1e-127", False),
     # crashes: huge margins, resonators by ZOH (transcendental), a float diagnostic at 1e300
