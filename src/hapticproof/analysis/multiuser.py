@@ -498,8 +498,8 @@ def worst_case(scene: MultiUserScene) -> MatrixWorstCase:
             wc = _mode_condition(md.scene)
             conditions.append(wc)
         kept = [cnd for cnd in conditions if not any(o is not cnd and _dominates(o, cnd) and not _dominates(cnd, o) for o in conditions)]
-        kept = [cnd for cnd in dict.fromkeys(kept) if cnd is not sp.true]
-        condition = sp.false if sp.false in kept else _and(kept) if kept else sp.true
+        kept = list(dict.fromkeys(kept))
+        condition = sp.false if sp.false in kept else _and(kept)      # (_and drops sp.true)
         settled = {sp.true: Decision.PROVED, sp.false: Decision.DISPROVED}.get(condition)
         outcome = Outcome(settled or Decision.SYMBOLIC,
                           Evidence(Method.STRUCTURAL, facts={"modes": [(md.eigenvalue, md.multiplicity) for md in modes],

@@ -38,7 +38,7 @@ from hapticproof.core.symbols import z as Z_SYM
 from hapticproof.exact.unitcircle import CRational, ThetaForm, circle_real_part, hermitian_part_rational, numerator_denominator, theta_form
 from hapticproof.exact.conditions import HERMITIAN, RESIDUES, Condition, POLES_IN_DISK, POLES_SIMPLE, combine, pole_conditions, properness_condition
 
-__all__ = ["conditions", "transfer_polynomials", "numeric_scene", "Pole", "Residue", "WorstCase", "poles_of", "unit_circle_residues", "hermitian_of", "decide_hermitian", "symbolic_minimum", "bernstein_sign", "symbolic_c_degree", "SYMBOLIC_CFORM_LIMIT", "poles", "residues", "hermitian", "worst_case", "positive_real", "definition_object"]
+__all__ = ["conditions", "transfer_polynomials", "numeric_scene", "Pole", "Residue", "WorstCase", "poles_of", "unit_circle_residues", "hermitian_of", "decide_hermitian", "symbolic_minimum", "bernstein_sign", "symbolic_c_degree", "SYMBOLIC_CFORM_LIMIT", "poles", "residues", "hermitian", "worst_case", "positive_real", "definition_object", "pole_location_outcome"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -576,20 +576,25 @@ def _numeric_conditions(scene: SingleUserScene) -> list[Condition]:
     return pole_conditions(P, Q) + [Condition(HERMITIAN, worst_case(scene).outcome)]
 
 
-def _symbolic_conditions(scene: SingleUserScene) -> list[Condition]:
-    pole_list = poles(scene)
+def pole_location_outcome(pole_list: list[Pole], of: str = "") -> Outcome:
+    """Whether every pole of :func:`poles_of`'s list lies in ``|z| <= 1``: disproved by a pole
+    outside, undecided when a location depends on the parameters (``of``: whose poles, e.g.
+    ``" of C"``, for the message)."""
     outside = [p for p in pole_list if p.location == "outside"]
     unknown = [p for p in pole_list if p.location == "unknown"]
     if outside:
-        pole_out = Outcome(Decision.DISPROVED, Evidence(Method.CANONICAL_FORM, witness={"pole": outside[0].value}),
-                           f"pole z = {outside[0].value} outside the unit circle")
-    elif unknown:
-        pole_out = Outcome(Decision.UNDECIDED, Evidence(Method.CANONICAL_FORM, facts={"poles": [str(p.value) for p in unknown]}),
-                           "the location of some pole depends on the parameters")
-    else:
-        pole_out = Outcome(Decision.PROVED, Evidence(Method.CANONICAL_FORM, facts={"poles": [str(p.value) for p in pole_list]}),
-                           "every pole lies in |z| <= 1 for all parameter values")
-    pole_out = _with_properness(pole_out, _properness(scene))
+        return Outcome(Decision.DISPROVED, Evidence(Method.CANONICAL_FORM, witness={"pole": outside[0].value}),
+                       f"pole z = {sp.sstr(outside[0].value)}{of} outside the unit circle")
+    if unknown:
+        return Outcome(Decision.UNDECIDED, Evidence(Method.CANONICAL_FORM, facts={"poles": [str(p.value) for p in unknown]}),
+                       f"the location of some pole{of} depends on the parameters")
+    return Outcome(Decision.PROVED, Evidence(Method.CANONICAL_FORM, facts={"poles": [str(p.value) for p in pole_list]}),
+                   f"every pole{of} lies in |z| <= 1 for all parameter values")
+
+
+def _symbolic_conditions(scene: SingleUserScene) -> list[Condition]:
+    pole_list = poles(scene)
+    pole_out = _with_properness(pole_location_outcome(pole_list), _properness(scene))
     multiple = [p for p in pole_list if p.location == "on" and p.multiplicity > 1]
     if multiple:
         simple = Outcome(Decision.DISPROVED, Evidence(Method.CANONICAL_FORM, witness={"pole": multiple[0].value}),

@@ -96,7 +96,7 @@ import flint
 import sympy as sp
 
 from hapticproof.analysis.classics import leak_bound
-from hapticproof.analysis.positivereal import poles_of, symbolic_minimum, unit_circle_residues
+from hapticproof.analysis.positivereal import pole_location_outcome, poles_of, symbolic_minimum, unit_circle_residues
 from hapticproof.core.evidence import Decision, Evidence, Method, Outcome
 from hapticproof.core.lazy import stage
 from hapticproof.core.symbols import c as C_SYM
@@ -416,17 +416,8 @@ def _symbolic_conditions(scene: TeleoperatorScene) -> list[Condition]:
     out = [Condition(_name("D"), damping)]
     C = sp.cancel(sp.together(scene.C))
     poles = poles_of(C)
-    outside = [p for p in poles if p.location == "outside"]
-    unknown = [p for p in poles if p.location == "unknown"]
-    if outside:
-        p1 = Outcome(Decision.DISPROVED, Evidence(Method.CANONICAL_FORM, witness={"pole": outside[0].value}),
-                     f"pole z = {sp.sstr(outside[0].value)} of C outside the unit circle")
-    elif unknown:
-        p1 = Outcome(Decision.UNDECIDED, Evidence(Method.CANONICAL_FORM, facts={"poles": [str(p.value) for p in unknown]}),
-                     "the location of some pole of C depends on the parameters")
-    else:
-        p1 = Outcome(Decision.PROVED, Evidence(Method.CANONICAL_FORM, facts={"poles": [str(p.value) for p in poles]}),
-                     "every pole of C lies in |z| <= 1 for all parameter values")
+    p1 = pole_location_outcome(poles, of=" of C")
+    unknown = [p for p in poles if p.location == "unknown"]        # (P2) and (P4) undecided with them
     at_one = [p for p in poles if p.location == "on" and sp.simplify(p.value - 1) == 0]
     out.append(Condition(_name("P1"), p1))
     if at_one:

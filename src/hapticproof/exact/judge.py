@@ -39,8 +39,9 @@ True
 
 from __future__ import annotations
 
+import itertools
 import math
-from collections.abc import Iterator, Mapping
+from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any
@@ -373,6 +374,20 @@ def _hermitian_psd(entries: list[list[dict]], point: Gaussian) -> tuple[bool, Fr
     return all(e >= 0 for e in E), min(E)
 
 
+def _first_violation(entries: list[list[dict]], points: Iterable[tuple[str, Gaussian]]) -> tuple[int, tuple | None]:
+    """The points checked (poles skipped) up to the first ``(where, point, value)`` where the
+    Hermitian part is not PSD, or ``None`` when it is PSD at every one."""
+    checked = 0
+    for where, point in points:
+        psd = _hermitian_psd(entries, point)
+        if psd is None:
+            continue
+        checked += 1
+        if not psd[0]:
+            return checked, (where, point, psd[1])
+    return checked, None
+
+
 def _pole_violations(entries: list[list[dict]], domain: str) -> list[str]:
     """Improper entries, poles outside, repeated poles on the boundary: from the raw polynomials."""
     out = []
@@ -470,14 +485,9 @@ def _positive_real(obj: Mapping[str, Any]) -> str:
     if decision == "proved":
         if structural:
             raise CheckFailed(f"{structural[0]}, not positive real")
-        checked = 0
-        for where, point in points:
-            psd = _hermitian_psd(entries, point)
-            if psd is None:
-                continue
-            checked += 1
-            if not psd[0]:
-                raise CheckFailed(f"the Hermitian part is not PSD at {_show(point)} ({where}): the definition fails")
+        checked, bad = _first_violation(entries, points)
+        if bad is not None:
+            raise CheckFailed(f"the Hermitian part is not PSD at {_show(bad[1])} ({bad[0]}): the definition fails")
         return f"definition: proper, no pole outside, Hermitian part PSD at {checked} exact points on and outside the boundary"
     if decision != "disproved":
         return "nothing to judge (the decision is neither proved nor disproved)"
@@ -495,15 +505,10 @@ def _positive_real(obj: Mapping[str, Any]) -> str:
                               + (f" ({structural[0]} elsewhere)" if structural else ""))
     if structural:
         return f"definition fails: {structural[0]}"
-    for where, point in points:
-        psd = _hermitian_psd(entries, point)
-        if psd is not None and not psd[0]:
-            return f"definition fails at {_show(point)} ({where})"
-    if domain == "disk" and len(entries) == 1:
-        for where, point in _near_circle_poles(den):
-            psd = _hermitian_psd(entries, point)
-            if psd is not None and not psd[0]:
-                return f"definition fails at {_show(point)} ({where})"
+    near = _near_circle_poles(den) if domain == "disk" and len(entries) == 1 else ()
+    _, bad = _first_violation(entries, itertools.chain(points, near))
+    if bad is not None:
+        return f"definition fails at {_show(bad[1])} ({bad[0]})"
     raise CheckFailed("no violation of the definition found (no pole outside, proper, Hermitian part PSD at every point tried)")
 
 
@@ -521,15 +526,11 @@ def _circle_psd(obj: Mapping[str, Any]) -> str:
     entries = _entries(obj["transfer"])
     _within_limits(entries)
     witness = _witness_point(obj.get("witness"), "disk")
+    circle = (("on the circle", z) for z in _circle_points(4 * _CIRCLE_COUNT))
     if obj["decision"] == "proved":
-        checked = 0
-        for z in _circle_points(4 * _CIRCLE_COUNT):
-            psd = _hermitian_psd(entries, z)
-            if psd is None:
-                continue
-            checked += 1
-            if not psd[0]:
-                raise CheckFailed(f"the Hermitian part is not PSD at z = {_show(z)} on the circle ({psd[1]} < 0)")
+        checked, bad = _first_violation(entries, circle)
+        if bad is not None:
+            raise CheckFailed(f"the Hermitian part is not PSD at z = {_show(bad[1])} on the circle ({bad[2]} < 0)")
         return f"the Hermitian part is PSD at {checked} exact points of the circle"
     if obj["decision"] != "disproved":
         return "nothing to judge (the decision is neither proved nor disproved)"
@@ -542,10 +543,9 @@ def _circle_psd(obj: Mapping[str, Any]) -> str:
         if psd[0]:
             raise CheckFailed(f"the witness {_show(witness)} is no counterexample: the Hermitian part is PSD there")
         return f"the Hermitian part is not PSD at the witness {_show(witness)} ({psd[1]} < 0)"
-    for z in _circle_points(4 * _CIRCLE_COUNT):
-        psd = _hermitian_psd(entries, z)
-        if psd is not None and not psd[0]:
-            return f"the Hermitian part is not PSD at z = {_show(z)}"
+    _, bad = _first_violation(entries, circle)
+    if bad is not None:
+        return f"the Hermitian part is not PSD at z = {_show(bad[1])}"
     raise CheckFailed("no point of the circle where the Hermitian part fails to be PSD was given or found")
 
 
