@@ -490,7 +490,7 @@ def _minor_check(ctx: AuditContext, which: str, what: str) -> Finding:
     missing = [[i + 1 for i in S] for S in (expected or []) if S not in listed]
     if unmatched:
         why = ("the printed k_psyx is the xy gain; the yy gain k_psyy belongs here" if ctx.equation.id == "39b"
-               else f"it is not of the form (principal minor) >= 0")
+               else "it is not of the form (principal minor) >= 0")
         return Finding(Verdict.TYPO,
                        f"{[u for u, _ in unmatched]} is not a principal minor of the {what} ({why}); the others are the "
                        f"minors {[[i + 1 for i in S] for S in listed]} (of {[[i + 1 for i in S] for S in expected or []]}; "

@@ -159,7 +159,7 @@ def eq5(ctx: AuditContext) -> Finding:
     derived_K = _stiffness_limit(derived, values)
     crit = _fig8b_critical()
     numbers = {"exact_K*": crit.K.str(12), "derived_linear": derived_K, "printed_(5)": printed_K}
-    loop = (f"for the paper's Fig. 8b loop (m = 0.15, b = 0.2, T = 1 ms, t_d = 10T) it gives "
+    loop = ("for the paper's Fig. 8b loop (m = 0.15, b = 0.2, T = 1 ms, t_d = 10T) it gives "
             + (f"K < {float(printed_K):.2f}" if printed_K is not None else "no upper limit on K")
             + f" against the derived {float(derived_K):.2f} and the exact {float(crit.value):.2f}")
     evidence = Evidence(Method.COUNTEREXAMPLE, witness=cmp.evidence.witness,

@@ -164,7 +164,6 @@ def eq45(ctx: AuditContext) -> Finding:
         return sign
     printed = as_sign_condition(rel).expr
     a = 2 * b - K_0 * T - 2 * B_0
-    w = K * T + 2 * B
     factored = sp.factor(printed)
     # where (45) alone is not enough: a < 0 (the first minor (43) at c = -1 fails) with (45) holding
     values = {b: sp.Rational(1, 10), K_0: 1, B_0: 0, K: 1, B: 0, T: 1}
