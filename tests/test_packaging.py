@@ -20,3 +20,16 @@ def test_every_package_folder_is_listed_in_pyproject():
     assert found - listed == set(), "package folders missing from pyproject's packages"
     assert listed - found == set(), "pyproject lists packages without a folder"
     assert config["package-dir"]["hapticproof.derivations"] == "derivations"
+
+
+def test_every_data_file_of_a_package_folder_ships():
+    """A paper file beside a bundled paper's modules (``derivations/hve/routine.toml``, read when
+    the paper registers) is package data: without it a plain install cannot import the paper."""
+    config = tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["setuptools"]
+    shipped = config.get("package-data", {})
+    for prefix, folder in config["package-dir"].items():
+        for data in (ROOT / folder).rglob("*.toml"):
+            package = ".".join((prefix, *data.parent.relative_to(ROOT / folder).parts))
+            assert any(data.match(pattern) for pattern in shipped.get(package, ())), \
+                f"{data.relative_to(ROOT)} is not in pyproject's package-data for {package}"
+    assert (ROOT / "derivations" / "hve" / "routine.toml").is_file()

@@ -212,13 +212,6 @@ def eq25(ctx: AuditContext) -> Finding:
     return _delayed_condition_check(ctx, active=False)
 
 
-@PAPER.equation("26", kind="condition", printed=r"b - z_a > \frac{KT}{2} + B", section="3.1.1",
-                assumptions=ASSUME, derivation="exact worst case of Re G^-1 with b replaced by b - z_a")
-def eq26(ctx: AuditContext) -> Finding:
-    return compare_bounds(ctx.relation(), exact_worst(scene(active=True)), b,
-                          verify=verify_worst_case(active=True), what="the printed condition")
-
-
 @PAPER.equation("27", kind="condition", printed=r"b - z_a + B > Kt_d + \frac{KT}{2}", section="3.1.1",
                 assumptions=ASSUME + "; B small (paper)", derivation="exact worst case of (22) with b - z_a")
 def eq27(ctx: AuditContext) -> Finding:

@@ -130,11 +130,6 @@ def scene(approximation: str = "forward", delay=0, active: bool = False) -> Sing
     )
 
 
-def pointwise_exact(sc: SingleUserScene) -> sp.Basic:
-    """``Re G^{-1}(e^{jwT}) >= 0`` at one frequency, as a condition in the parameters and c."""
-    return sp.Ge(sp.expand(hermitian(sc).expr()), 0, evaluate=False)
-
-
 def verify_pointwise(approximation: str, delay=0, active: bool = False):
     """Re-check a witness (parameters and c) by exact evaluation of the numeric scene."""
 

@@ -5,9 +5,11 @@ and the delayed condition (23).
 
 from __future__ import annotations
 
+from pathlib import Path
 
 import sympy as sp
 
+from hapticproof.audit.paperfile import read_paper, register_claims
 from hapticproof.audit.runner import AuditContext, malformed
 from hapticproof.audit.compare import NotABound, as_bound, as_lower_bound, as_sign_condition, compare_bounds, compare_expressions
 from hapticproof.exact.canonical import is_identically_zero
@@ -20,7 +22,7 @@ from hapticproof.systems.singleuser import SingleUserScene, virtual_wall
 from hapticproof.core.symbols import c as C
 from hapticproof.core.symbols import helper_definitions
 from hapticproof.exact.unitcircle import canonical_theta, omega_to_c
-from hapticproof.derivations.hve.paper import ASSUME, B, F_h, G_INV, K, PAPER, S_EXPR, T, V_h, X_h, b, exact_worst, in_c, k_idx, n, omega, pointwise_exact, scene, t_d, verify_pointwise, verify_worst_case, x_h, xdot_h
+from hapticproof.derivations.hve.paper import ASSUME, B, F_h, G_INV, K, PAPER, S_EXPR, T, V_h, X_h, b, exact_worst, in_c, k_idx, n, omega, scene, t_d, verify_pointwise, verify_worst_case, x_h, xdot_h
 
 
 @PAPER.equation("1", kind="condition", printed="", section="1", parse=False,
@@ -75,6 +77,11 @@ def def3(ctx: AuditContext) -> Finding:
         Evidence(Method.COUNTEREXAMPLE, witness={"A": A}, facts={"leading_minors": leading, "min_eigenvalue": eigen}),
         corrected=r"A \succeq 0 \iff \text{all principal minors of } A \text{ are non-negative}",
     )
+
+
+#: The routine claims of Section 3.1.1, (17), (18), (21), (22) and (26): kept as a paper file
+#: beside this module and decided by the generic claim checkers.
+ROUTINE = register_claims(read_paper(Path(__file__).with_name("routine.toml")), PAPER)
 
 
 def _approximation_check(ctx: AuditContext, approximation: str, restore_lhs: bool = False) -> Finding:
@@ -222,20 +229,6 @@ def residue_claim(ctx: AuditContext) -> Finding:
                    Evidence(Method.CANONICAL_FORM, facts=facts), derived=K * T)
 
 
-@PAPER.equation("17", kind="condition", printed=r"b > \frac{KT}{2} - B\cos(\omega T)", section="3.1.1",
-                assumptions=ASSUME, derivation="Re G_1^{-1}(e^{jwT}) >= 0 (forward difference) as a bound on b")
-def eq17(ctx: AuditContext) -> Finding:
-    return compare_bounds(in_c(ctx.relation()), pointwise_exact(scene("forward")), b,
-                          verify=verify_pointwise("forward"), what="the printed frequency-wise condition")
-
-
-@PAPER.equation("18", kind="condition", printed=r"b + \frac{KT}{2} + B > 0", section="3.1.1",
-                assumptions=ASSUME, derivation="Re G_2^{-1}(e^{jwT}) >= 0 (backward difference)")
-def eq18(ctx: AuditContext) -> Finding:
-    return compare_bounds(in_c(ctx.relation()), pointwise_exact(scene("backward")), b,
-                          verify=verify_pointwise("backward"), what="the printed frequency-wise condition")
-
-
 @PAPER.equation("19", kind="condition", printed=r"b + B \frac{1 + \cos(\omega T)}{2}", section="3.1.1",
                 assumptions=ASSUME, derivation="Re G_3^{-1}(e^{jwT}) >= 0 (Tustin)")
 def eq19(ctx: AuditContext) -> Finding:
@@ -332,29 +325,6 @@ def forward_is_worst(ctx: AuditContext) -> Finding:
     return Finding(Verdict.CONFIRMED,
                    f"without delay proved for all parameters (19-worst); with delays n = 0..3 checked on {instances} exact instances",
                    Evidence(Method.INSTANCES, instances=instances))
-
-
-@PAPER.equation("21", kind="expression", section="3.1.1",
-                printed=r"F_h(z) = bV_h(z) + z^{-n}\left(K + \frac{B(z-1)}{Tz}\right)\frac{T}{z-1}V_h(z)",
-                derivation="force over velocity of the delayed scene, forward difference")
-def eq21(ctx: AuditContext) -> Finding:
-    relation = ctx.relation()
-    if not isinstance(relation, sp.Eq) or relation.lhs != F_h:
-        return Finding(Verdict.TYPO, f"the display reads {sp.sstr(relation)}: not F_h(z) = ... V_h(z)",
-                       Evidence(Method.PARSE, facts={"printed_form": sp.srepr(relation)}))
-    return compare_expressions(sp.cancel(relation.rhs / V_h), inverse_transfer(scene(delay=n)),
-                               what="the printed F_h/V_h")
-
-
-@PAPER.equation("22", kind="expression", section="3.1.1",
-                printed=r"G^{-1}(z) = b + z^{-n} \left(K + \frac{B(z-1)}{Tz}\right) \frac{T}{z-1}",
-                derivation="G^-1 of the delayed scene, forward difference")
-def eq22(ctx: AuditContext) -> Finding:
-    relation = ctx.relation()
-    if not isinstance(relation, sp.Eq) or relation.lhs != sp.Symbol("Ginv"):
-        return Finding(Verdict.TYPO, f"the display reads {sp.sstr(relation)}: not G^-1(z) = ...",
-                       Evidence(Method.PARSE, facts={"printed_form": sp.srepr(relation)}))
-    return compare_expressions(relation.rhs, inverse_transfer(scene(delay=n)), what="the printed G^-1(z)")
 
 
 @PAPER.equation("22-conditions", kind="claim", after="22", section="3.1.1",

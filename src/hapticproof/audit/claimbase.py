@@ -591,7 +591,8 @@ def compare_conditions(printed: Any, exact: Any, state: State, *, claim: str, wh
     if ratio_equivalent(printed, exact):
         state.repairable = True
         return Finding(Verdict.CONFIRMED, f"{what} is the exact condition {sp.sstr(exact)} multiplied by a positive factor",
-                       Evidence(Method.CANONICAL_FORM, facts={"exact": exact}), derived=derived)
+                       Evidence(Method.CANONICAL_FORM, facts={"exact": exact, "printed_form": ("equals", sp.srepr(exact))}),
+                       derived=derived)
     corner = _corner_sufficiency(printed, exact) if claim != "necessary" else None
     weaker, stronger, count = separating_points(printed, exact, tries=60 if state.repairing else 300)
     state.repairable = True
@@ -891,7 +892,9 @@ def _constant_exact(printed: Any, exact: Any, state: State, claim: str, what: st
     if exact is sp.true:
         if always:
             return Finding(Verdict.CONFIRMED, f"{what} and the exact condition both hold for every admissible value of the "
-                           "parameters", Evidence(Method.CANONICAL_FORM, facts={"exact": derived}), derived=derived)
+                           "parameters", Evidence(Method.CANONICAL_FORM, facts={"exact": derived,
+                                                                  "printed_form": ("holds for every admissible value",)}),
+                           derived=derived)
         if claim == "necessary":
             if fails is None:
                 return Finding(Verdict.UNDECIDED, f"{what}: the exact condition always holds; no point where the display "

@@ -101,6 +101,7 @@ __all__ = [
     "FilePaper",
     "loads",
     "read_paper",
+    "register_claims",
 ]
 
 #: The claim kinds of a paper file.
@@ -890,17 +891,24 @@ def _derivation(spec: ClaimSpec, paper: PaperFile) -> str:
     return describe(spec, paper)
 
 
-def _register(paper: PaperFile) -> FilePaper:
+def register_claims(source: PaperFile, onto: Paper) -> Paper:
+    """Register the claims of a read paper file onto a paper (``onto``), each checked as the
+    file says: how a paper file's claims are audited, and how a bundled paper takes the routine
+    claims kept in a paper file beside its derivation modules (``derivations/hve/single_user.toml``).
+    An id ``onto`` already has is refused."""
     from hapticproof.audit.claims import check
 
-    registered = FilePaper(paper.id, title=paper.title, source=paper.source, authors=paper.authors,
-                           symbols=paper.symbols)
-    assumptions = _assumptions_text(paper.words)
-    for spec in paper.claims:
-        registered.equation(spec.id, kind=_kind(spec, paper.symbols), printed=spec.printed, section=spec.section,
-                            assumptions=assumptions, derivation=_derivation(spec, paper), parse=True)(
-            functools.partial(check, spec=spec, source=paper))
-    return registered
+    assumptions = _assumptions_text(source.words)
+    for spec in source.claims:
+        onto.equation(spec.id, kind=_kind(spec, source.symbols), printed=spec.printed, section=spec.section,
+                      assumptions=assumptions, derivation=_derivation(spec, source), parse=True)(
+            functools.partial(check, spec=spec, source=source))
+    return onto
+
+
+def _register(paper: PaperFile) -> FilePaper:
+    return register_claims(paper, FilePaper(paper.id, title=paper.title, source=paper.source, authors=paper.authors,
+                                            symbols=paper.symbols))
 
 
 # ---------------------------------------------------------------------------------------------
