@@ -72,6 +72,8 @@ __all__ = [
     "critical_stiffness",
     "linear_critical_beta",
     "certified_stable",
+    "crossings",
+    "stable_between",
     "certified_spectral_radius",
     "arb_interval",
     "arb_midpoint",
@@ -489,7 +491,11 @@ def stable_at(norm: Normalised, n: int, beta: sp.Rational, bits: int) -> bool | 
     return None
 
 
-def _crossing_stiffness(norm: Normalised, n: int, bits: int) -> tuple[flint.arb, flint.arb, str, tuple]:
+def crossings(norm: Normalised, n: int, bits: int) -> list[tuple[flint.arb, str]]:
+    """The stiffnesses ``beta > 0`` where a root of the delayed wall's characteristic polynomial
+    meets the unit circle: a complex pair (``"complex"``, at a root in (-1, 1) of the cross term's
+    U-series) or a real root through ``z = -1`` (``"flip"``); sorted and certified apart (an
+    ``ArithmeticError`` asks for more precision)."""
     A, C, _ = wall_parts(norm, n)
     cross = laurent_product(A, C)
     V = chebyshev_sum(cross, "U")
@@ -511,27 +517,36 @@ def _crossing_stiffness(norm: Normalised, n: int, bits: int) -> tuple[flint.arb,
     for (x, _), (y, _) in zip(candidates, candidates[1:]):
         if not x < y:
             raise ArithmeticError("crossing stiffnesses not separated at this precision")
-    # stability in each gap, from beta = 0+ upwards
-    edges = [flint.arb(0)] + [c for c, _ in candidates]
+    return candidates
+
+
+def stable_between(norm: Normalised, n: int, edges: Sequence[flint.arb], bits: int) -> list[bool]:
+    """Certified stability in each gap of the sorted crossings ``edges``: (0, e_1), (e_1, e_2),
+    ..., (e_last, oo), tested at a rational point inside each gap."""
+    bounds = [flint.arb(0), *edges]
     stable_gaps = []
-    for i, lo in enumerate(edges):
-        if i + 1 < len(edges):
-            lo_q, hi_q = arb_interval(lo)[1], arb_interval(edges[i + 1])[0]
-            test = (lo_q + hi_q) / 2
-        else:
-            test = 2 * arb_interval(lo)[1] + 1
+    for i, lo in enumerate(bounds):
+        lo_q = arb_interval(lo)[1]
+        test = (lo_q + arb_interval(bounds[i + 1])[0]) / 2 if i + 1 < len(bounds) else 2 * lo_q + 1
         verdict = stable_at(norm, n, test, bits)
         if verdict is None:
             raise ArithmeticError("stability between crossings not certified")
         stable_gaps.append(verdict)
-    crossings = tuple(c for c, _ in candidates)
+    return stable_gaps
+
+
+def _crossing_stiffness(norm: Normalised, n: int, bits: int) -> tuple[flint.arb, flint.arb, str, tuple]:
+    candidates = crossings(norm, n, bits)
+    found = tuple(c for c, _ in candidates)
+    stable_gaps = stable_between(norm, n, found, bits)
+    edges = [flint.arb(0), *found]
     zero = flint.arb(0)
     for i, stable in enumerate(stable_gaps):
         if stable:
             if i + 1 >= len(edges):
                 raise ArithmeticError("stable for arbitrarily large stiffness: not a wall loop")
-            return candidates[i][0], edges[i] if i else zero, candidates[i][1], crossings
-    return zero, zero, "unstable", crossings
+            return candidates[i][0], edges[i] if i else zero, candidates[i][1], found
+    return zero, zero, "unstable", found
 
 
 def critical_stiffness(m: Any, b: Any, T: Any, B: Any = 0, n: int = 0, bits: int = 160) -> CriticalStiffness:

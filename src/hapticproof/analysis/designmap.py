@@ -577,7 +577,6 @@ def _stability_point(params: Mapping[str, Fraction]) -> int:
 def _stability_gaps(params: Mapping[str, Fraction], bits: int) -> tuple[list, list[bool]]:
     """The certified crossing stiffnesses (``beta`` balls, sorted) and the stability of each gap
     between them (from ``beta = 0+`` up): every crossing, not only the first."""
-    import flint
 
     from hapticproof.analysis import boundary as bd
 
@@ -591,36 +590,8 @@ def _stability_gaps(params: Mapping[str, Fraction], bits: int) -> tuple[list, li
             if lower > 0:
                 return [lower, upper], [False, True, False]
             return [upper], [True, False]
-        A, C, _ = bd.wall_parts(norm, n)
-        cross = bd.laurent_product(A, C)
-        V = bd.chebyshev_sum(cross, "U")
-        R = bd.chebyshev_sum(cross, "T")
-        Q = bd.chebyshev_sum(bd.laurent_product(C, C), "T")
-        edges = []
-        for c in bd.real_roots_inside(V, bits):
-            beta = -R(c) / Q(c)
-            if beta > 0:
-                edges.append(beta)
-            elif not beta < 0:
-                raise ArithmeticError("sign of a crossing stiffness not decided")
-        a_m1 = sum((coef * (-1) ** k for k, coef in enumerate(A)), flint.arb(0))
-        c_m1 = sum((coef * (-1) ** k for k, coef in enumerate(C)), flint.arb(0))
-        flip = -a_m1 / c_m1
-        if flip > 0:
-            edges.append(flip)
-        edges.sort(key=lambda e: float(e.mid()))
-        for x, y in zip(edges, edges[1:]):
-            if not x < y:
-                raise ArithmeticError("crossing stiffnesses not separated")
-        stable = []
-        bounds = [flint.arb(0)] + edges
-        for i, lo in enumerate(bounds):
-            lo_q = bd.arb_interval(lo)[1]
-            test = (lo_q + bd.arb_interval(bounds[i + 1])[0]) / 2 if i + 1 < len(bounds) else 2 * lo_q + 1
-            verdict = bd.stable_at(norm, n, test, bits)
-            if verdict is None:
-                raise ArithmeticError("stability between crossings not certified")
-            stable.append(verdict)
+        edges = [beta for beta, _ in bd.crossings(norm, n, bits)]
+        stable = bd.stable_between(norm, n, edges, bits)
         return edges, stable
 
 

@@ -339,20 +339,23 @@ class ConstructRules:
                 self.next()
                 symbol = index_symbol(t.value)
                 indices[t.value] = symbol
-                left: Any = symbol
                 with self.scope(indices):
-                    while is_relation(self.peek()):
-                        op_tok = self.peek()
-                        op = self.relation_op()
-                        right = self.parse_sum()
-                        conditions.append(
-                            self.combine(lambda l=left, o=op, r=right: RELATION_CLASSES[o](l, r), op_tok, "a condition")
-                        )
-                        left = right
+                    conditions.extend(self.condition_chain(symbol))
                 if not self.at("op", ","):
                     break
                 self.next()
         return indices, conditions
+
+    def condition_chain(self, left: Any) -> list[Any]:
+        """The relations of a chain ``left < a <= b ...`` that follows ``left`` (each link one condition)."""
+        conditions = []
+        while is_relation(self.peek()):
+            op_tok = self.peek()
+            op = self.relation_op()
+            right = self.parse_sum()
+            conditions.append(self.combine(lambda l=left, o=op, r=right: RELATION_CLASSES[o](l, r), op_tok, "a condition"))
+            left = right
+        return conditions
 
     def parse_extremum(self) -> Any:
         cmd = self.next()
@@ -400,15 +403,7 @@ class ConstructRules:
             with self.scope({t.value: var}):
                 while self.at("op", ","):
                     self.next()
-                    left = self.parse_sum()
-                    while is_relation(self.peek()):
-                        op_tok = self.peek()
-                        op = self.relation_op()
-                        right = self.parse_sum()
-                        conditions.append(
-                            self.combine(lambda l=left, o=op, r=right: RELATION_CLASSES[o](l, r), op_tok, "a condition")
-                        )
-                        left = right
+                    conditions.extend(self.condition_chain(self.parse_sum()))
         with self.indexing():
             stop = self.parse_script(upper, "the upper limit of \\sum")
         with self.scope({t.value: var}):

@@ -172,6 +172,17 @@ class _Row:
     notes: list = field(default_factory=list)
 
 
+def _nesting(tok: tuple, depth: int, env: int) -> tuple[int, int]:
+    """Brace depth and environment depth after ``tok`` (a top-level ``\\\\`` or ``&`` is one at 0, 0)."""
+    if tok[0] == BG:
+        return depth + 1, env
+    if tok[0] == EG:
+        return depth - 1, env
+    if tok[0] == CS and tok[1] in ("\\begin", "\\end"):
+        return depth, env + (1 if tok[1] == "\\begin" else -1)
+    return depth, env
+
+
 def _split_rows(tokens: list, rows: bool) -> list[list]:
     r"""Rows at top-level ``\\`` (outside braces and inner environments), for row environments."""
     if not rows:
@@ -181,15 +192,8 @@ def _split_rows(tokens: list, rows: bool) -> list[list]:
     k = 0
     while k < len(tokens):
         tok = tokens[k]
-        if tok[0] == BG:
-            depth += 1
-        elif tok[0] == EG:
-            depth -= 1
-        elif tok[0] == CS and tok[1] == "\\begin":
-            env += 1
-        elif tok[0] == CS and tok[1] == "\\end":
-            env -= 1
-        elif tok[0] == CS and tok[1] == "\\\\" and depth == 0 and env == 0:
+        depth, env = _nesting(tok, depth, env)
+        if tok[0] == CS and tok[1] == "\\\\" and depth == 0 and env == 0:
             out.append([])
             k += 1
             if k < len(tokens) and tokens[k][0] == CH and tokens[k][1] == "*":
@@ -254,15 +258,8 @@ def _markers(tokens: list) -> _Row:
 def _without_ampersands(tokens: list, keep_first: bool = False) -> list:
     out, depth, env, seen = [], 0, 0, False
     for tok in tokens:
-        if tok[0] == BG:
-            depth += 1
-        elif tok[0] == EG:
-            depth -= 1
-        elif tok[0] == CS and tok[1] == "\\begin":
-            env += 1
-        elif tok[0] == CS and tok[1] == "\\end":
-            env -= 1
-        elif tok[0] == CH and tok[1] == "&" and depth == 0 and env == 0:
+        depth, env = _nesting(tok, depth, env)
+        if tok[0] == CH and tok[1] == "&" and depth == 0 and env == 0:
             if keep_first and not seen:
                 seen = True
                 out.append(tok)
