@@ -648,7 +648,7 @@ def _check_other(other: str, ids: set[str], where: str) -> None:
     try:
         paper.get(eq_id)
     except UnknownEquationError:
-        ids = list(paper.equations)
+        ids = [eq.id for eq in paper.ordered()]
         shown = ", ".join(ids[:8]) + (", ..." if len(ids) > 8 else "")
         raise PaperFileError(f"{where}: paper {paper.id!r} has no equation {eq_id!r} (it has {len(ids)}: {shown})") from None
 

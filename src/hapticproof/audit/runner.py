@@ -165,7 +165,7 @@ class Paper:
         try:
             return self.equations[id]
         except KeyError:
-            known = ", ".join(self.equations)
+            known = ", ".join(eq.id for eq in self.ordered())
             raise UnknownEquationError(f"paper {self.id!r} has no equation {id!r} (known: {known})") from None
 
     @property
