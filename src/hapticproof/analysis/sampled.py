@@ -343,6 +343,15 @@ def _closed_loop_arb(loop: Loop) -> flint.arb_mat:
     return flint.arb_mat(size, size, [v for row in rows for v in row]) if size else flint.arb_mat(0, 0)
 
 
+def _scale_bits(loop: Any) -> int:
+    """About log2 of the largest entry of ``A T`` and ``B T``: scaling and squaring an exponential
+    of norm 2^k loses about k bits, so the certified exponentials start that much above."""
+    T = Fraction(loop.T)
+    entries = [abs(Fraction(v) * T) for v in (*loop.a.ravel(), *loop.bu.ravel())]
+    norm = max(entries, default=Fraction(0))
+    return max(0, norm.numerator.bit_length() - norm.denominator.bit_length()) if norm else 0
+
+
 def certified_radius(scene: Scene, bits: int = 128, decide: bool = False, max_bits: int = MAX_BITS) -> flint.arb:
     """A certified enclosure of the spectral radius of the (deflated) closed loop, at any scale.
 
@@ -363,12 +372,7 @@ def certified_radius(scene: Scene, bits: int = 128, decide: bool = False, max_bi
     >>> certified_radius(SingleUser(m="0.015", b="1e297", T="0.001", K="1e300")) < 1     # far beyond float64
     True
     """
-    loop = scene.loop("exact")
-    # scaling and squaring an exponential of norm 2^k loses about k bits: start above that
-    T = Fraction(loop.T)
-    entries = [abs(Fraction(v) * T) for v in (*loop.a.ravel(), *loop.bu.ravel())]
-    norm = max(entries, default=Fraction(0))
-    scale_bits = max(0, norm.numerator.bit_length() - norm.denominator.bit_length()) if norm else 0
+    scale_bits = _scale_bits(loop := scene.loop("exact"))
     precision = max(bits, 64 + 2 * scale_bits)
     last = None
     while precision <= max(max_bits, bits):
@@ -443,11 +447,7 @@ def certified_stability(scene: Scene, max_bits: int = 0) -> bool | None:
     >>> certified_stability(SingleUser(m="0.015", b="0.02", T="1e-300", K=30, delay=5))    # every eigenvalue near 0 or 1
     True
     """
-    loop = scene.loop("exact")
-    T = Fraction(loop.T)
-    entries = [abs(Fraction(v) * T) for v in (*loop.a.ravel(), *loop.bu.ravel())]
-    norm = max(entries, default=Fraction(0))
-    scale_bits = max(0, norm.numerator.bit_length() - norm.denominator.bit_length()) if norm else 0
+    scale_bits = _scale_bits(loop := scene.loop("exact"))
     precision, top = max(128, 64 + 2 * scale_bits), max(max_bits or DECIDE_BITS, 128 + 2 * scale_bits)
     while precision <= top:
         with flint_precision(precision):

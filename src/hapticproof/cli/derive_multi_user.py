@@ -23,7 +23,7 @@ from typing import Any
 import sympy as sp
 
 from hapticproof.report import latex as tex
-from hapticproof.report.readable import tidy
+from hapticproof.report.readable import tidy, witness_text
 from hapticproof.cli.common import add_output_option, build_model, add_scene_options, check_output, scene_from_args, write_output
 from hapticproof.cli.derive_single_user import add_design_options, design_answers
 from hapticproof.core.errors import InputFormatError
@@ -35,6 +35,16 @@ COS = r"\cos(\omega T)"
 #: ``sin(omega T)`` in the imaginary parts of M(c) (unequal delays), defined where it is printed.
 SIN_THETA = sp.Symbol("s_theta", real=True)
 GROUPS = {"b": "b", "K_0": "K0", "B_0": "B0", "z_a": "z_a", "K": "K", "B": "B"}
+
+
+def _decision_lines(data: dict) -> list[str]:
+    """The conditions, the verdict and (when disproved) the witness, as the report prints them."""
+    width = max(len(c.name) for c in data["conditions"])
+    lines = ["conditions:", *(f"  {c.name.ljust(width)}  {c.decision.value:<9}  {c.outcome.reason}" for c in data["conditions"]),
+             f"verdict:           {data['verdict']}  ({data['reason']})"]
+    if data["witness"] and data["verdict"] == "disproved":
+        lines.append("witness:           " + witness_text(data["witness"]))
+    return lines
 
 
 def register(systems: argparse._SubParsersAction) -> None:
@@ -174,7 +184,7 @@ def derive_by_modes(scene: Any, minors: str = "auto") -> dict[str, Any]:
 
 
 def _modes_text(data: dict[str, Any], verbose: bool = False) -> str:
-    from hapticproof.report.readable import brief, witness_text
+    from hapticproof.report.readable import brief
 
     graph = {"complete": "complete graph", "path": "path", "ring": "ring (circulant)", "star": "star"}.get(data["graph"], "graph")
     lines = [f"system:            {data['users']}-user HVE ({data['approximation']} difference, delay {data['delays'][0]}, "
@@ -188,12 +198,7 @@ def _modes_text(data: dict[str, Any], verbose: bool = False) -> str:
     lines.append("Re g_lambda and the residues T(K_0 + lambda K) are affine in lambda: the modes lambda = 0 and "
                  "lambda_max decide")
     lines.append(_worst_case_text(data, verbose))
-    lines.append("conditions:")
-    width = max(len(c.name) for c in data["conditions"])
-    lines += [f"  {c.name.ljust(width)}  {c.decision.value:<9}  {c.outcome.reason}" for c in data["conditions"]]
-    lines.append(f"verdict:           {data['verdict']}  ({data['reason']})")
-    if data["witness"] and data["verdict"] == "disproved":
-        lines.append("witness:           " + witness_text(data["witness"]))
+    lines += _decision_lines(data)
     lines += [f"not computed:      {why} [{how} computes it]" for why, how in data["skipped"].values()]
     return "\n".join(lines)
 
@@ -234,7 +239,7 @@ def _rows(label: str, matrix: Any, verbose: bool) -> list[str]:
 
 
 def _text(data: dict[str, Any], verbose: bool = False) -> str:
-    from hapticproof.report.readable import brief, witness_text
+    from hapticproof.report.readable import brief
 
     if data.get("by_modes"):
         return _modes_text(data, verbose)
@@ -253,12 +258,7 @@ def _text(data: dict[str, Any], verbose: bool = False) -> str:
     lines.append(_worst_case_text(data, verbose))
     if "sufficient_condition" in data:
         lines.append(f"sufficient (any graph, Loewner): {sp.sstr(data['sufficient_condition'])}")
-    lines.append("conditions:")
-    width = max(len(c.name) for c in data["conditions"])
-    lines += [f"  {c.name.ljust(width)}  {c.decision.value:<9}  {c.outcome.reason}" for c in data["conditions"]]
-    lines.append(f"verdict:           {data['verdict']}  ({data['reason']})")
-    if data["witness"] and data["verdict"] == "disproved":
-        lines.append("witness:           " + witness_text(data["witness"]))
+    lines += _decision_lines(data)
     return "\n".join(lines)
 
 
