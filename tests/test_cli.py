@@ -1,16 +1,14 @@
 """The command-line interface: outputs, formats and one-line errors with non-zero exit."""
 
 import json
+import sys
+from pathlib import Path
 
 import pytest
 
-from hapticproof.cli import main
+sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-
-def run(capsys, *argv):
-    code = main(list(argv))
-    out = capsys.readouterr()
-    return code, out.out, out.err
+from clirun import run  # noqa: E402
 
 
 def test_derive_single_user_json_numeric(capsys):

@@ -5,6 +5,8 @@ benchmarks measure them: benchmarks/bench_cli.py)."""
 from __future__ import annotations
 
 import json
+import sys
+from pathlib import Path
 from fractions import Fraction
 
 import pytest
@@ -13,19 +15,16 @@ import sympy as sp
 from hapticproof.analysis.design import delay_margin
 from hapticproof.analysis.fastpath import NumericScene, critical_damping
 from hapticproof.analysis.positivereal import positive_real
-from hapticproof.cli import main
 from hapticproof.core.evidence import Decision
 from hapticproof.report.summary import CFORM_LIMIT, summarize_single_user
 from hapticproof.systems.scene import Scene
 from hapticproof.systems.singleuser import SingleUserScene
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from clirun import run  # noqa: E402
+
 WALL = ["--param", "K=2", "--param", "T=0.001", "--param", "b=0.0201", "--param", "B=0.001"]
-
-
-def run(capsys, *argv):
-    code = main(list(argv))
-    out = capsys.readouterr()
-    return code, out.out, out.err
 
 
 def test_long_delay_skips_the_c_polynomial_and_says_so(capsys):

@@ -9,6 +9,8 @@ bundled paper instead of the sample (tens of minutes; see ``benchmarks/README.md
 from __future__ import annotations
 
 import json
+import sys
+from pathlib import Path
 import time
 
 import pytest
@@ -16,11 +18,14 @@ import sympy as sp
 
 from hapticproof.audit.runner import Paper
 from hapticproof.audit.compare import compare_bounds
-from hapticproof.cli import main
 from hapticproof.core.evidence import Evidence, Finding, Method, Verdict
 from hapticproof.audit.mutate import ENV_KNOB, Mutant, QuoteError, choose, generate, knob, mutants_of, mutate_paper, run_mutant
 from hapticproof.audit.reader.names import SymbolTable
 from hapticproof.audit.registry import get_paper, papers
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from clirun import run  # noqa: E402
 
 K, T, b, B = sp.symbols("K T b B", positive=True)
 TABLE = SymbolTable({"K": K, "T": T, "b": b, "B": B})
@@ -216,12 +221,6 @@ def _replaced(paper, mutant, old, new):
 # ---------------------------------------------------------------------------------------------
 # the command line
 # ---------------------------------------------------------------------------------------------
-
-
-def run(capsys, *argv):
-    code = main(list(argv))
-    out = capsys.readouterr()
-    return code, out.out, out.err
 
 
 def test_cli_mutate_prints_the_score(capsys):

@@ -4,6 +4,8 @@ paper files) follows them. A scene in its own names gets exactly the answers of 
 the papers' names."""
 
 import json
+import sys
+from pathlib import Path
 
 import pytest
 import sympy as sp
@@ -13,24 +15,15 @@ from hapticproof.analysis.passiverange import passive_range
 from hapticproof.analysis.positivereal import positive_real
 from hapticproof.audit.paperfile import loads as load_paper
 from hapticproof.audit.runner import audit_paper
-from hapticproof.cli import main
 from hapticproof.core.errors import SceneError
 from hapticproof.systems.roles import ROLES
 from hapticproof.systems.scene import Scene, SceneFileError, loads
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from clirun import one_line_error, run  # noqa: E402
+
 R = sp.Rational
-
-
-def run(capsys, *argv):
-    code = main(list(argv))
-    out = capsys.readouterr()
-    return code, out.out, out.err
-
-
-def one_line_error(capsys, *argv):
-    code, _, err = run(capsys, *argv)
-    assert code == 2 and err.count("\n") == 1 and "Traceback" not in err, err
-    return err
 
 
 WALL = {"K": 2, "B": "0.001", "T": "0.001", "b": "0.02"}

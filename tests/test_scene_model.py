@@ -3,6 +3,8 @@ reader, continuous designs, the designer's answers and readable output. Every fa
 lists has a test here (named after it)."""
 
 import json
+import sys
+from pathlib import Path
 import os
 
 import numpy as np
@@ -16,19 +18,11 @@ from hapticproof.systems.scene import Scene
 from hapticproof.systems.singleuser import SingleUserScene
 from hapticproof.core.symbols import s, z
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from clirun import one_line_error, run  # noqa: E402
+
 R = sp.Rational
-
-
-def run(capsys, *argv):
-    code = main(list(argv))
-    out = capsys.readouterr()
-    return code, out.out, out.err
-
-
-def one_line_error(capsys, *argv):
-    code, out, err = run(capsys, *argv)
-    assert code == 2 and err.count("\n") == 1 and "Traceback" not in err, err
-    return err
 
 
 # ---------------------------------------------------------------------------------------------

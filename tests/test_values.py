@@ -4,25 +4,24 @@ exit 2 (a specific exception from the API), never a symbol and never "verdict: s
 
 import json
 import math
+import sys
 from decimal import Decimal
+from pathlib import Path
 
 import pytest
 import sympy as sp
 
 from hapticproof.audit.paperfile import PaperFileError
 from hapticproof.audit.paperfile import loads as load_paper
-from hapticproof.cli import main
 from hapticproof.core.errors import HapticproofError
 from hapticproof.core.expr import ExpressionError, parameter_symbol, read_expression
 from hapticproof.systems.scene import Scene, SceneFileError, loads
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from clirun import run  # noqa: E402
+
 WALL = ["--param", "T=0.001", "--param", "b=0.02", "--param", "B=0"]
-
-
-def run(capsys, *argv):
-    code = main(list(argv))
-    out = capsys.readouterr()
-    return code, out.out, out.err
 
 
 def one_line_error(capsys, *argv):
