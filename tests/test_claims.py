@@ -216,3 +216,34 @@ def test_every_display_of_a_condition_gets_a_verdict(printed):
     finding = res["x"]
     assert finding.verdict.value in ("confirmed", "conservative", "typo", "wrong", "undecided")
     assert finding.evidence.method
+
+
+# A scaled name on one side of an inverse-transfer display (found by a definition oracle):
+# c G^{-1}(z) = X claims X/c, c G(z) = X claims c/X, c F_h(z) = X V_h(z) claims X/c.
+DELAYED_WALL = r"b + z^{-n}\left(K + \frac{B(z-1)}{Tz}\right)\frac{T}{z-1}"
+SCALED_NAMES = [
+    (r"-G(z) = " + DELAYED_WALL, False),
+    (r"-G^{-1}(z) = " + DELAYED_WALL, False),
+    (r"2G^{-1}(z) = " + DELAYED_WALL, False),
+    (r"2F_h(z) = bV_h(z) + z^{-n}\left(K + \frac{B(z-1)}{Tz}\right)\frac{T}{z-1}V_h(z)", False),
+    (r"F_h(z) = bV_h(z) + z^{-n}\left(K + \frac{B(z-1)}{Tz}\right)\frac{T}{z-1}V_h(z) = -G^{-1}(z)V_h(z)", False),
+    (r"G^{-1}(z) + 1 = " + DELAYED_WALL, False),
+    (r"-G^{-1}(z) = -b - z^{-n}\left(K + \frac{B(z-1)}{Tz}\right)\frac{T}{z-1}", True),
+    (r"2G^{-1}(z) = 2b + 2z^{-n}\left(K + \frac{B(z-1)}{Tz}\right)\frac{T}{z-1}", True),
+    (r"-G(z) = -\frac{1}{" + DELAYED_WALL + "}", True),
+    (r"-F_h(z) = -bV_h(z) - z^{-n}\left(K + \frac{B(z-1)}{Tz}\right)\frac{T}{z-1}V_h(z)", True),
+]
+
+
+@pytest.mark.parametrize("printed, right", SCALED_NAMES)
+def test_a_scaled_name_in_an_inverse_transfer_display_is_divided_out(printed, right):
+    from pathlib import Path
+
+    text = (Path(__file__).resolve().parents[1] / "derivations" / "hve" / "routine.toml").read_text()
+    shown = "printed = 'G^{-1}(z) = b + z^{-n} \\left(K + \\frac{B(z-1)}{Tz}\\right) \\frac{T}{z-1}'"
+    assert shown in text
+    paper = loads(text.replace(shown, "printed = '" + printed + "'"), "scaled.toml")
+    (result,) = audit_paper(paper.paper, ["22"]).results
+    assert (result.verdict.value == "confirmed") == right, (result.verdict.value, result.detail)
+    if not right:
+        assert result.verdict.value in ("wrong", "typo", "malformed"), result.detail

@@ -86,24 +86,94 @@ def inverse_transfer(state: State) -> Finding:
         from hapticproof.systems.multiuser import inverse_transfer_matrix
 
         derived = inverse_transfer_matrix(state.model)
-    written = display_members(state.statement)
-    members = claimed_members(state, written)
+    members, what, unread = transfer_members(state, display_members(state.statement))
+    if unread:
+        return malformed_finding(f"the display names G^-1(z) inside {unread}, which does not say what G^-1(z) is",
+                                 derived=derived)
     if not members:
         return malformed_finding("no member of the display states G^-1(z): every member is a signal, a name or an unknown function",
                           derived=derived)
-    if _names_g(written):
-        # G(z) = ... states G itself: its inverse is compared
-        members = [m.inv() if isinstance(m, sp.MatrixBase) else sp.cancel(1 / m) for m in members]
-        return _compare_members(state, members, derived, "G(z) (inverted)")
-    return _compare_members(state, members, derived, "G^-1(z)")
+    return _compare_members(state, members, derived, what)
 
 
-def _names_g(members: list[Any]) -> bool:
-    """Whether the display names ``G(z)`` (not ``G^{-1}(z)``) as one of its members."""
+_AppliedUndef = sp.core.function.AppliedUndef
+
+
+def _named_object(expr: sp.Expr) -> tuple[str, Any] | None:
+    """How a member names the transfer function: ``("inverse", c)`` for ``c G^{-1}(z)`` (any
+    declared function but ``G``, or ``c / G(z)``), ``("direct", c)`` for ``c G(z)``, ``("unread",
+    expr)`` for a function inside anything else (``G^{-1}(z) + 1``), None for no function."""
+    if not expr.atoms(_AppliedUndef):
+        return None
+    factors = sp.Mul.make_args(expr)
+    core = [f for f in factors if f.has(_AppliedUndef)]
+    scale = sp.Mul(*(f for f in factors if not f.has(_AppliedUndef)))
+    if len(core) == 1:
+        (named,) = core
+        if isinstance(named, _AppliedUndef):
+            return ("direct" if named.func.__name__ == "G" else "inverse", scale)
+        if named.is_Pow and named.exp == -1 and isinstance(named.base, _AppliedUndef) and named.base.func.__name__ == "G":
+            return ("inverse", scale)
+    return ("unread", expr)
+
+
+def transfer_members(state: State, members: list[Any]) -> tuple[list[Any], str, str | None]:
+    """The members of a display that state ``G^{-1}(z)``, each as the ``G^{-1}(z)`` it claims, with
+    how they were read, and the first member that names the transfer function in a way that
+    cannot be read (else None).
+
+    A member naming the object fixes how the others read: ``c G^{-1}(z) = X`` claims ``X/c``,
+    ``c G(z) = X`` claims ``c/X``, and ``c F_h(z) = X V_h(z)`` (the output signal: not the one
+    that a member multiplies by parameters) claims ``X/c``. A bare signal, a label name and a
+    ratio of signals state nothing (:func:`~hapticproof.audit.claimbase.claimed_members`).
+    Differently scaled names in one chain give every reading, so the display cannot be confirmed.
+    """
+    signals = state.source.signals()
+    values: list[tuple[Any, Any]] = []
+    named: list[tuple[str, Any, Any]] = []
     for member in members:
-        if isinstance(member, sp.core.function.AppliedUndef) and member.func.__name__ == "G":
-            return True
-    return False
+        if isinstance(member, sp.MatrixBase):
+            values.append((member, None))
+            continue
+        member = sp.sympify(member)
+        present = {x for x in member.free_symbols if x in signals}
+        if len(present) > 1:
+            continue
+        signal = next(iter(present), None)
+        coeff = sp.cancel(sp.together(member / signal)) if signal is not None else member
+        if signal is not None and coeff.has(signal):
+            continue
+        reading = _named_object(coeff)
+        if reading is not None:
+            if reading[0] == "unread":
+                return [], "", sp.sstr(member)
+            named.append((*reading, signal))
+        else:
+            values.append((coeff, signal))
+    inputs = {x for c, x in values if x is not None and not isinstance(c, sp.MatrixBase) and not c.is_number}
+    inputs |= {x for _, _, x in named if x is not None}
+    stated = []
+    for coeff, signal in values:
+        if signal is not None and inputs and signal not in inputs and coeff.is_number and coeff != 0:
+            named.append(("inverse", coeff, signal))          # c F_h(z): the output signal, scaled
+        elif signal is not None and coeff == 1:
+            continue                                         # a bare signal names the output
+        else:
+            stated.append(coeff)
+    stated = claimed_members(state, stated)
+    readings = sorted({(kind, scale) for kind, scale, _ in named} or {("inverse", sp.Integer(1))}, key=sp.srepr)
+    out = []
+    for kind, scale in readings:
+        for x in stated:
+            if kind == "direct":
+                y = scale * x.inv() if isinstance(x, sp.MatrixBase) else sp.cancel(scale / x)
+            else:
+                y = x if scale == 1 else (x / scale if isinstance(x, sp.MatrixBase) else sp.cancel(x / scale))
+            out.append(y)
+    what = "G(z) (inverted)" if all(kind == "direct" for kind, _ in readings) else "G^-1(z)"
+    if any(scale != 1 for _, scale in readings):
+        what += " (the named side's factor divided out)"
+    return out, what, None
 
 
 def residue(state: State) -> Finding:
