@@ -247,3 +247,38 @@ def test_a_scaled_name_in_an_inverse_transfer_display_is_divided_out(printed, ri
     assert (result.verdict.value == "confirmed") == right, (result.verdict.value, result.detail)
     if not right:
         assert result.verdict.value in ("wrong", "typo", "malformed"), result.detail
+
+
+def _routine_with(old: str, new: str, extra_scene: str = "") -> str:
+    from pathlib import Path
+
+    text = (Path(__file__).resolve().parents[1] / "derivations" / "hve" / "routine.toml").read_text()
+    assert old in text
+    if extra_scene:
+        text = text.replace("[scenes.delayed]", extra_scene + "\n\n[scenes.delayed]")
+    return text.replace(old, new)
+
+
+BACKWARD_18 = "printed = 'b + \\frac{KT}{2} + B > 0'"
+
+
+@pytest.mark.parametrize("printed", [r"b + \frac{KT}{2} + B\cos(\omega T) + B > 0", r"b > B\cos(\omega T) - B",
+                                     r"b + \frac{KT}{2} + 2B\cos^2\left(\frac{\omega T}{2}\right) > 0"])
+def test_a_display_that_always_holds_where_the_exact_condition_always_holds_is_confirmed(printed):
+    """Re G_2^-1 = b + KT/2 + B > 0 always; so is each display (affine in c, positive at c = -1 and 1):
+    equivalent conditions, not a 'conservative' display 'that is not necessary' without a witness."""
+    paper = loads(_routine_with(BACKWARD_18, "printed = '" + printed + "'"), "always.toml")
+    (result,) = audit_paper(paper.paper, ["18"]).results
+    assert result.verdict.value == "confirmed", result.detail
+
+
+def test_a_frequency_free_witness_is_rechecked_at_any_frequency():
+    """An active operator on the backward wall: Re G^-1 = b - z_a + KT/2 + B has no c, so the
+    witness has none; it is re-checked, not a KeyError (found by a definition oracle)."""
+    scene = '[scenes.active-backward]\nsystem = "single-user"\napproximation = "backward"\nactive = true'
+    text = _routine_with('scene = "backward"', 'scene = "active-backward"', scene)
+    (result,) = audit_paper(loads(text, "active.toml").paper, ["18"]).results
+    assert result.verdict.value == "wrong" and result.evidence.facts["recheck"]["decision"] == "disproved", result.detail
+    fixed = text.replace(BACKWARD_18, "printed = 'b - z_a + \\frac{KT}{2} + B > 0'")
+    (result,) = audit_paper(loads(fixed, "active.toml").paper, ["18"]).results
+    assert result.verdict.value == "confirmed", result.detail

@@ -881,10 +881,30 @@ def _disagree_somewhere(printed: Any, exact: Any, tries: int = 40) -> bool:
     return False
 
 
+def _proved_always(printed: Any) -> bool:
+    """A printed condition proved to hold for every admissible value by the parameters' signs:
+    ``lhs - rhs`` positive (or non-negative for ``>=``) by SymPy's sign rules, at both ends
+    ``c = -1, 1`` when it is affine in ``c = cos(omega T)`` (its least value is at an end)."""
+    parts = printed.args if isinstance(printed, sp.And) else (printed,)
+    for part in parts:
+        if not isinstance(part, sp.core.relational.Relational) or part.rel_op not in (">", ">=", "<", "<="):
+            return False
+        gap = sp.expand(part.lhs - part.rhs if part.rel_op in (">", ">=") else part.rhs - part.lhs)
+        strict = part.rel_op in (">", "<")
+        ends = [gap]
+        if gap.has(C_SYM):
+            if not gap.is_polynomial(C_SYM) or sp.degree(gap, C_SYM) > 1:
+                return False
+            ends = [gap.subs(C_SYM, -1), gap.subs(C_SYM, 1)]
+        if not all((e.is_positive if strict else e.is_nonnegative) is True for e in map(sp.expand, ends)):
+            return False
+    return True
+
+
 def _constant_exact(printed: Any, exact: Any, state: State, claim: str, what: str, derived: Any) -> Finding:
     """The exact condition holds for every admissible value (``True``) or for none (``False``)."""
     state.repairable = True
-    always = _drop_trivial(printed) is sp.true
+    always = _drop_trivial(printed) is sp.true or _proved_always(printed)
     free = sorted(sp.sympify(printed).free_symbols, key=str)
     points = Sampler(free, seed=3).draw(200 if not state.repairing else 40)
     fails = next((p for p in points if holds_at(printed, p) is False), None)
@@ -901,10 +921,13 @@ def _constant_exact(printed: Any, exact: Any, state: State, claim: str, what: st
                                "fails was found", Evidence(Method.INSTANCES, instances=len(points)), derived=derived)
             return _witness_finding(fails, state, None, what, derived, Decision.PROVED,
                                     "it fails at the witness, while the exact condition holds for every value (not necessary)")
+        if fails is None:       # no point where the display fails, and no proof that it never does
+            return Finding(Verdict.UNDECIDED, f"{what}: the exact condition holds for every admissible value; the display "
+                           f"held at all {len(points)} exact samples but was not proved to hold everywhere",
+                           Evidence(Method.INSTANCES, instances=len(points), facts={"exact": derived}), derived=derived)
         return Finding(Verdict.CONSERVATIVE, f"{what} implies the exact condition, which holds for every admissible value; "
-                       "it is not necessary" + (" (it fails at the witness)" if fails is not None else ""),
-                       Evidence(Method.CANONICAL_FORM, witness=witness_json(fails) if fails is not None else None,
-                                facts={"exact": derived}), derived=derived)
+                       "it is not necessary (it fails at the witness)",
+                       Evidence(Method.CANONICAL_FORM, witness=witness_json(fails), facts={"exact": derived}), derived=derived)
     if claim == "necessary":
         return Finding(Verdict.CONFIRMED, f"{what}: the exact condition holds for no admissible value, so any condition is "
                        "necessary", Evidence(Method.CANONICAL_FORM, facts={"exact": derived}), derived=derived)

@@ -464,6 +464,8 @@ def _verify_pointwise(state: State):
         by_name = {getattr(k, "name", k): v for k, v in point.items()}
         if "c" in by_name:
             c_value = by_name["c"]
+        elif "omega" not in by_name:       # neither condition depends on the frequency: any c will do
+            c_value = sp.Integer(0)
         else:
             period = state.scene.role("period") if state.scene is not None and state.scene.system != "network" else "T"
             T = by_name.get(period, period_of(state))
