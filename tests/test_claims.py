@@ -282,3 +282,18 @@ def test_a_frequency_free_witness_is_rechecked_at_any_frequency():
     fixed = text.replace(BACKWARD_18, "printed = 'b - z_a + \\frac{KT}{2} + B > 0'")
     (result,) = audit_paper(loads(fixed, "active.toml").paper, ["18"]).results
     assert result.verdict.value == "confirmed", result.detail
+
+
+@pytest.mark.parametrize("assumption", ["B >= 0", r"B \geq 0", "B > 0"])
+def test_a_sign_assumption_on_a_real_parameter_restricts_it(assumption):
+    """B declared real, the display b > KT/2 + B under "B >= 0": exact (b >= KT/2 + |B|) only
+    there, so needs-assumption, never "wrong even under the stated assumption" with B = -2 (found
+    by a new user)."""
+    text = "\n".join([
+        '[paper]', 'id = "sign"', 'title = "a sign assumption"',
+        '[symbols]', 'b = "positive"', 'K = "positive"', 'B = "real"', 'T = "positive"',
+        '[scenes.w]', 'system = "single-user"', 'approximation = "forward"', 'environment = "K + B*(z - 1)/(T*z)"',
+        '[[equations]]', 'id = "P"', "printed = 'b > \\frac{KT}{2} + B'", 'claim = "passivity-condition"', 'scene = "w"',
+        f"assumption = '{assumption}'"])
+    (result,) = audit_paper(loads(text, "sign.toml").paper).results
+    assert result.verdict.value == "needs-assumption", result.detail

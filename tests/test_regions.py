@@ -59,7 +59,9 @@ def test_restrictions_merge_and_imply_signs():
     (r,) = region.restrictions
     assert (r.lower, r.upper, r.lower_strict, r.upper_strict) == (sp.Rational(1, 3), 1, False, True)
     assert read_region("b_m >= b_s", NAMES).restrictions[0].sign_word() == "positive"
-    assert read_region(r"B \geq 0", NAMES).restrictions[0].only_sign()
+    # B >= 0 restricts a real B, and says nothing more about a non-negative one
+    assert not read_region(r"B \geq 0", NAMES).restrictions[0].only_sign()
+    assert read_region(r"B \geq 0", {"B": sp.Symbol("B", nonnegative=True)}).restrictions[0].only_sign()
     with pytest.raises(RegionError, match="outside"):
         Region(read_region("a = 2", NAMES).restrictions + read_region("0 <= a < 1", NAMES).restrictions)
 

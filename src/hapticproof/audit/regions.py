@@ -130,11 +130,18 @@ class Restriction:
         return None
 
     def only_sign(self) -> bool:
-        """Whether the restriction says no more than its sign word (``B >= 0``, ``b > 0``)."""
+        """Whether the restriction says no more than its symbol's sign assumption (``B >= 0`` of a
+        non-negative ``B``); the same words about a real ``B`` restrict it."""
         if self.value is not None:
             return False
         ends = [e for e in (self.lower, self.upper) if e is not None]
-        return len(ends) == 1 and sp.sympify(ends[0]) == 0
+        if len(ends) != 1 or sp.sympify(ends[0]) != 0:
+            return False
+        if self.lower is not None:
+            implied = self.symbol.is_positive if self.lower_strict else self.symbol.is_nonnegative
+        else:
+            implied = self.symbol.is_negative if self.upper_strict else self.symbol.is_nonpositive
+        return implied is True
 
     def contains(self, value: Any) -> bool | None:
         """Whether a number satisfies the restriction (None: its bounds are not numbers)."""
