@@ -81,7 +81,8 @@ def def3(ctx: AuditContext) -> Finding:
 
 #: The routine claims of Section 3.1.1, (17), (18), (21), (22) and (26): kept as a paper file
 #: beside this module and decided by the generic claim checkers.
-ROUTINE = register_claims(read_paper(Path(__file__).with_name("routine.toml")), PAPER)
+ROUTINE = read_paper(Path(__file__).with_name("routine.toml"))
+register_claims(ROUTINE, PAPER)
 
 
 def _approximation_check(ctx: AuditContext, approximation: str, restore_lhs: bool = False) -> Finding:

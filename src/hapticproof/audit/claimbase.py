@@ -904,17 +904,16 @@ def _proved_always(printed: Any) -> bool:
 def _constant_exact(printed: Any, exact: Any, state: State, claim: str, what: str, derived: Any) -> Finding:
     """The exact condition holds for every admissible value (``True``) or for none (``False``)."""
     state.repairable = True
-    always = _drop_trivial(printed) is sp.true or _proved_always(printed)
+    if exact is sp.true and (_drop_trivial(printed) is sp.true or _proved_always(printed)):
+        return Finding(Verdict.CONFIRMED, f"{what} and the exact condition both hold for every admissible value of the "
+                       "parameters", Evidence(Method.CANONICAL_FORM, facts={"exact": derived,
+                                                              "printed_form": ("holds for every admissible value",)}),
+                       derived=derived)
     free = sorted(sp.sympify(printed).free_symbols, key=str)
     points = Sampler(free, seed=3).draw(200 if not state.repairing else 40)
     fails = next((p for p in points if holds_at(printed, p) is False), None)
     holds = next((p for p in points if holds_at(printed, p) is True), None)
     if exact is sp.true:
-        if always:
-            return Finding(Verdict.CONFIRMED, f"{what} and the exact condition both hold for every admissible value of the "
-                           "parameters", Evidence(Method.CANONICAL_FORM, facts={"exact": derived,
-                                                                  "printed_form": ("holds for every admissible value",)}),
-                           derived=derived)
         if claim == "necessary":
             if fails is None:
                 return Finding(Verdict.UNDECIDED, f"{what}: the exact condition always holds; no point where the display "

@@ -894,7 +894,7 @@ def _derivation(spec: ClaimSpec, paper: PaperFile) -> str:
 def register_claims(source: PaperFile, onto: Paper) -> Paper:
     """Register the claims of a read paper file onto a paper (``onto``), each checked as the
     file says: how a paper file's claims are audited, and how a bundled paper takes the routine
-    claims kept in a paper file beside its derivation modules (``derivations/hve/single_user.toml``).
+    claims kept in a paper file beside its derivation modules (``derivations/hve/routine.toml``).
     An id ``onto`` already has is refused."""
     from hapticproof.audit.claims import check
 
