@@ -18,11 +18,18 @@ from hapticproof.audit.reader.lexer import ARROWS, ELLIPSES, FRACTIONS, MULTIPLY
 __all__ = ["DEFAULT_CONSTANTS", "SymbolTable", "IndexedFamily", "normalise_name", "symbol_for", "index_symbol"]
 
 
-def canonical_name(toks: Iterable[Token]) -> str:
-    """Canonical source text of a token run (whitespace dropped where it is not needed)."""
+#: Upright-text commands that only typeset a script's letters (``K_{\mathrm{w}}`` is ``K_w``).
+_UPRIGHT = ("\\mathrm", "\\text", "\\textrm", "\\mathit", "\\textit", "\\rm", "\\textnormal")
+
+
+def canonical_name(toks: Iterable[Token], script: bool = False) -> str:
+    r"""Canonical source text of a token run (whitespace dropped where it is not needed); in a
+    ``script``, upright text is its letters (``K_{\mathrm{w}}`` and ``K_w`` are one name)."""
     out = ""
     for t in toks:
-        if t.kind == "text":
+        if t.kind == "text" and script and t.value in _UPRIGHT and re.fullmatch(r"[A-Za-z0-9]+", t.arg.strip()):
+            piece = t.arg.strip()
+        elif t.kind == "text":
             piece = f"{t.value}{{{t.arg.strip()}}}"
         elif t.kind in ("begin", "end", "left", "right"):
             piece = describe_token(t)
@@ -51,9 +58,9 @@ class NameParts:
 def compose_name(base: str, primes: int, sub: Iterable[Token] | None, sup: Iterable[Token] | None) -> str:
     name = base + "'" * primes
     if sub is not None:
-        name += "_{" + canonical_name(sub) + "}"
+        name += "_{" + canonical_name(sub, script=True) + "}"
     if sup is not None:
-        name += "^{" + canonical_name(sup) + "}"
+        name += "^{" + canonical_name(sup, script=True) + "}"
     return name
 
 

@@ -128,6 +128,9 @@ class Display:
     row: int | None = None
     context: str = ""
     notes: tuple[str, ...] = ()
+    #: the prose since the display before, inline maths kept between ``$`` (for the claims a
+    #: sentence makes and the definitions inline maths states)
+    prose: str = ""
 
     @property
     def id(self) -> str:
@@ -297,6 +300,7 @@ class Reader:
         self.equation = 0
         self.within: int | None = None        # \numberwithin{equation}{...}: the level
         self.sub: tuple[str, int] | None = None   # subequations: (parent number, count)
+        self.last_prose = ""                  # the prose before the display being emitted
 
     # -- numbering ----------------------------------------------------------------------------
     def section_number(self, level: int) -> str:
@@ -402,7 +406,7 @@ class Reader:
                 line, last_line = self.files.line(file, lo), self.files.line(file, hi)
             self.displays.append(Display(content.strip(), original, label, tag, number, self.section, line, last_line,
                                          env, self.files.names[file], index if len(groups) > 1 else None, context,
-                                         tuple(group_notes)))
+                                         tuple(group_notes), self.last_prose))
 
 
     def raw_spans(self, groups: list[list[_Row]], start: tuple[int, int], end: tuple[int, int]) -> list | None:
@@ -486,9 +490,10 @@ class LatexReader(Reader):
         return m.end() if m else tok[3]
 
     def context(self) -> str:
-        text = " ".join("".join(self.prose[-400:]).split())
+        joined = " ".join("".join(self.prose[-3000:]).split())
+        self.last_prose = joined[-4000:]
         self.prose = []
-        return text[-300:]
+        return joined.replace("$", "")[-300:]
 
     def group_text(self, stream: _Peek) -> str | None:
         tok = stream.next()
@@ -621,9 +626,11 @@ class LatexReader(Reader):
                 if nxt is not None and nxt[0] == CH and nxt[1] == "$":
                     self.collect((CH, "$$", tok[2], tok[3], tok[4]), "$$", stream, tok[3] + 2)
                     continue
+                self.prose.append("$")                 # inline maths is prose context, kept delimited
                 while nxt is not None and not (nxt[0] == CH and nxt[1] == "$") and not is_par(nxt):
-                    self.prose.append(nxt[1])          # inline maths is prose context
+                    self.prose.append(nxt[1])
                     nxt = stream.next()
+                self.prose.append("$")
                 continue
             if kind == CS:
                 if text == "\\[":

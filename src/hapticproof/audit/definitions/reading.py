@@ -1,0 +1,488 @@
+r"""A paper read as its definitions: each display binds names, states an identity, or a condition.
+
+:class:`PaperReading` reads a paper's displays in order (and the inline ``$...$`` definitions of
+the prose before each), keeping the paper's namespace: a display ``H(z) = K + B\frac{z-1}{Tz}``
+*binds* ``H`` exactly (:mod:`~hapticproof.audit.definitions.values`); a display whose sides are both
+computable from bound names is an *identity*; an inequality is a *condition*, whose claim -- the
+property, its strength and the object it is about -- comes from the sentence that leads into it
+(:mod:`~hapticproof.audit.definitions.prose`). Trailing qualifiers (``, \quad K \ge 0``,
+``t_d = T``, ``0 < \omega \le \pi/T``, ``\star \in \{f, b, t\}``) are assumptions, substitutions,
+frequency ranges and index sets, never a side of the equation.
+
+>>> r = PaperReading()
+>>> r.read("1", r"H(z) = K + B\,\frac{z-1}{Tz}, \quad K \ge 0,\; B \ge 0 .").kind
+'definition'
+>>> r.read("2", r"G^{-1}(z) = b + H(z)\frac{T}{z-1}").binds
+('G^-1',)
+>>> r.read("3", r"\operatorname{Re} G^{-1}(e^{j\omega T}) = b - \frac{KT}{2} + B\cos\omega T").kind
+'identity'
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+import sympy as sp
+from sympy.core.function import AppliedUndef
+
+from hapticproof.audit.definitions.prose import ProseClaim, claim_of, inline_math
+from hapticproof.audit.definitions.values import (BOUNDARY, PARAM, TRANSFER, Binding, Environment, Unbound, Unsupported,
+                                                  Value, evaluate)
+from hapticproof.core.errors import HapticproofError, LatexParseError
+from hapticproof.core.symbols import omega as OMEGA
+from hapticproof.core.symbols import s as S_SYM
+from hapticproof.core.symbols import z as Z_SYM
+
+__all__ = ["PaperReading", "Reading", "definition_target", "DEFINITION", "IDENTITY", "CONDITION", "OTHER", "MALFORMED"]
+
+DEFINITION, IDENTITY, CONDITION, OTHER, MALFORMED = "definition", "identity", "condition", "other", "malformed"
+#: a display that introduces a new name as the result of a derivation ("eliminating ... gives")
+DERIVED = "derived"
+#: an equation among signals (a model: ``Z_m v_m = f_h - k_f f_e``)
+MODEL = "model"
+
+_DERIVATION = re.compile(r"\b(?:gives?|giving|yields?|we\s+obtain|one\s+obtains|we\s+get|one\s+(?:gets|finds)|it\s+follows|"
+                         r"follows\s+from|hence|thus|therefore|so\s+that|eliminating|solving|substituting|reduces?\s+to|"
+                         r"we\s+find|leads?\s+to|results?\s+in|is\s+found|we\s+have)\b", re.I)
+
+_INDEX_SET = re.compile(r",?\s*(?:\\q?quad|\\[,;: ]|~)*\s*\\?(\\[A-Za-z]+|[A-Za-z])\s*\\in\s*\\\{([^{}]{1,80})\\\}\s*[.,;]?\s*$")
+_ANGLES = ("theta", "vartheta")
+_RELATION_OPS = (">", "<", ">=", "<=")
+
+
+@dataclass
+class Reading:
+    """What one display is: ``kind`` (definition, identity, condition, other, malformed), the
+    names it ``binds``, its main relations, qualifiers and the claim of its sentence."""
+
+    id: str
+    text: str
+    kind: str
+    statement: Any = None
+    main: tuple[Any, ...] = ()
+    binds: tuple[str, ...] = ()
+    assumptions: tuple[Any, ...] = ()
+    substitutions: Mapping[str, Any] = field(default_factory=dict)
+    frequency_range: Any = None
+    claim: ProseClaim | None = None
+    #: the namespace the display is read in (names bound before it)
+    environment: Environment | None = None
+    #: name -> id of the display that bound it, at this display
+    defined_at: Mapping[str, str] = field(default_factory=dict)
+    note: str = ""
+    error: str = ""
+    #: the sentence presents the display as derived (``gives``, ``eliminating``): a definition
+    #: it makes is a claim the toolkit could not verify
+    derived: bool = False
+
+
+class PaperReading:
+    """The namespace of a paper read display by display (see the module doc)."""
+
+    def __init__(self, symbols: Mapping[str, sp.Symbol] | None = None, functions: Iterable[str] = ()) -> None:
+        from hapticproof.audit.reader.names import SymbolTable
+
+        self.symbols: dict[str, sp.Symbol] = dict(symbols or {})
+        self.functions: set[str] = set(functions)
+        self.bindings: dict[str, Binding] = {}
+        self.defined_at: dict[str, str] = {}
+        #: definitions over names no display binds (``\eta = ... z_{12} ...``): SymPy forms
+        self.formulas: dict[str, tuple[Any, str | None]] = {}
+        self.order: list[str] = []
+        self.assumptions: list[Any] = []
+        self.readings: list[Reading] = []
+        #: the periods: names multiplying the frequency (e^{j omega T}, cos(omega h)): positive
+        self.periods: set[str] = set()
+        #: names bound by derived displays the toolkit did not verify
+        self.tentative: set[str] = set()
+        self._last_lhs = ""
+        self._table_type = SymbolTable
+
+    # -- the symbol table ------------------------------------------------------------------------
+
+    def _table(self, text: str) -> Any:
+        """A symbol table knowing every name of ``text``: parse, and add each unknown name the
+        reader reports (a name followed by ``(z)``, ``(s)``, ``(e^{...})`` or ``(\\omega)`` is a
+        function)."""
+        from hapticproof.audit.reader.names import normalise_name, sympy_name
+        from hapticproof.audit.reader.printed import parse_printed
+
+        for _ in range(60):
+            table = self._make_table()
+            try:
+                return table, parse_printed(text, table)
+            except LatexParseError as err:
+                match = re.search(r"unknown name (.+?) at position (\d+)", str(err))
+                if not match:
+                    raise
+                position = int(match.group(2))
+                rest = text[position:]
+                name_end = _name_end(rest)
+                try:
+                    canonical = normalise_name(rest[:name_end])
+                except (LatexParseError, ValueError):
+                    canonical = normalise_name(match.group(1))
+                following = rest[name_end:].lstrip()
+                if canonical in self.symbols and (canonical in self.functions or not _applied(following)):
+                    canonical = normalise_name(match.group(1))
+                    if canonical in self.symbols:
+                        raise
+                if _applied(following):
+                    self.functions.add(canonical)
+                # every name is also a plain symbol: a bound function written without its argument
+                # (Z_c for Z_c(z)) is its value
+                self.symbols.setdefault(canonical, sp.Symbol(sympy_name(canonical), real=True))
+        raise LatexParseError("too many unknown names", text, 0)
+
+    def _make_table(self) -> Any:
+        from hapticproof.audit.reader.names import sympy_name
+
+        symbols = {"z": Z_SYM, "s": S_SYM, "\\omega": OMEGA}
+        symbols.update(self.symbols)
+        functions = {name: sp.Function(sympy_name(name)) for name in self.functions}
+        return self._table_type(symbols=symbols, functions=functions)
+
+    # -- reading ---------------------------------------------------------------------------------
+
+    def environment(self) -> Environment:
+        return Environment(dict(self.bindings), angles=frozenset(_ANGLES))
+
+    def read_inline(self, id: str, prose: str) -> list[Reading]:
+        """The inline ``$...$`` definitions of a prose passage (``$Z_m(s) = m_m s + b_m$``)."""
+        out = []
+        for k, math in enumerate(inline_math(prose)):
+            if "=" not in math or re.search(r"\\[lg]eq?\b|[<>]", math):
+                continue
+            if not re.match(r"\s*\\?[A-Za-z][^=]*\([zs]\)\s*=|\s*(?:\\mathbf\{?[A-Za-z]\}?|[A-Za-z])(?:_\{?[A-Za-z0-9]+\}?)?(?:\^\{-1\})?\s*=", math):
+                continue
+            try:
+                reading = self.read(f"{id}.inline{k + 1}", math, definitions_only=True)
+            except HapticproofError:
+                continue
+            if reading.kind == DEFINITION:
+                out.append(reading)
+        return out
+
+    def read(self, id: str, text: str, *, prose: str = "", after: str = "", definitions_only: bool = False) -> Reading:
+        """Read one display (its LaTeX as printed), binding what it defines."""
+        claim = claim_of(prose, after) if prose or after else None
+        self._periods(text)
+        if prose and not definitions_only:
+            self._prose_assumptions(prose)
+        if re.match(r"\s*(?:&\s*)?=", text) and self._last_lhs and not definitions_only:
+            # the next row of an aligned chain: "= z_{11} - ..." continues the row above
+            text = self._last_lhs + " " + re.sub(r"^\s*&\s*", "", text)
+        text, index = _index_set(text)
+        if index is not None:
+            return self._family(id, text, index, claim)
+        try:
+            table, statement = self._table(text)
+        except (LatexParseError, HapticproofError, ValueError) as err:
+            reading = Reading(id, text, MALFORMED, claim=claim, error=str(err), environment=self.environment())
+            self.readings.append(reading)
+            return reading
+        relations = list(statement.relations())
+        reading = Reading(id, text, OTHER, statement, claim=claim, environment=self.environment(),
+                          defined_at=dict(self.defined_at),
+                          derived=bool(claim is not None and _DERIVATION.search(_plain_sentence(claim.sentence))))
+        if not relations:
+            reading.kind = MALFORMED if claim is not None and claim.property else OTHER
+            reading.note = "an expression with no relation"
+            self.readings.append(reading)
+            return reading
+        main, qualifiers = _split(relations)
+        self._qualify(reading, qualifiers)
+        reading.main = tuple(main)
+        first = main[0]
+        lhs = _lhs_text(text)
+        if lhs and not definitions_only:
+            self._last_lhs = lhs
+        if all(op == "=" for r in main for op in r.ops):
+            self._equations(reading, main, definitions_only)
+        elif definitions_only:
+            reading.kind = OTHER
+        else:
+            reading.kind = CONDITION
+        self.readings.append(reading)
+        return reading
+
+    def _qualify(self, reading: Reading, qualifiers: list[Any]) -> None:
+        subs = {}
+        assumptions = []
+        for q in qualifiers:
+            expr = q.as_sympy()
+            free = expr.free_symbols
+            if OMEGA in free or any(s.name in _ANGLES for s in free):
+                reading.frequency_range = expr
+                continue
+            if q.ops == ("=",) and isinstance(q.terms[0], sp.Symbol):
+                subs[q.terms[0].name] = q.terms[1]
+                continue
+            assumptions.append(expr)
+        reading.substitutions = subs
+        reading.assumptions = tuple(assumptions)
+        if reading.claim is not None:
+            for text in reading.claim.assumptions:
+                for piece in _comma_list(text):
+                    try:
+                        _, st = self._table(piece)
+                    except (LatexParseError, HapticproofError, ValueError):
+                        continue
+                    for r in st.relations():
+                        if r.ops and all(op in _RELATION_OPS for op in r.ops):
+                            reading.assumptions += (r.as_sympy(),)
+
+    def _equations(self, reading: Reading, main: list[Any], definitions_only: bool) -> None:
+        """Equations: definitions of the names they introduce (several per display, bound in the
+        order their dependencies allow), otherwise an identity."""
+        pending = []
+        for relation in main:
+            terms = list(relation.terms)
+            target = definition_target(terms[0])
+            if target is None or target[0] in self.bindings or target[0] in self.formulas:
+                if definitions_only or pending or relation is not main[0]:
+                    continue
+                reading.kind = IDENTITY
+                reading.environment = self._env(reading)
+                return
+            if target[0] in self._parameters_used():
+                reading.kind = OTHER if definitions_only else IDENTITY
+                reading.note = f"{target[0]} is a parameter of an earlier definition: a value for it, not a definition"
+                reading.environment = self._env(reading)
+                return
+            pending.append((target, terms[-1]))
+        if not pending:
+            reading.kind = OTHER
+            return
+        bound: list[str] = []
+        notes: list[str] = []
+        for _ in range(len(pending)):
+            progress = False
+            for item in list(pending):
+                (name, variable), expr = item
+                done, note = self._bind(reading, name, variable, expr, final=False)
+                if done:
+                    pending.remove(item)
+                    bound.append(name)
+                    progress = True
+                    if note:
+                        notes.append(note)
+            if not progress:
+                break
+        for (name, variable), expr in pending:          # formulas over names no display binds
+            done, note = self._bind(reading, name, variable, expr, final=True)
+            if done:
+                bound.append(name)
+                if note:
+                    notes.append(note)
+        reading.environment = self._env(reading)
+        if not bound:
+            reading.kind = OTHER
+            reading.note = "; ".join(notes)
+            return
+        reading.kind = DERIVED if reading.derived else DEFINITION
+        reading.binds = tuple(bound)
+        reading.note = "; ".join(notes)
+        if reading.derived:
+            self.tentative.update(bound)
+        self.assumptions.extend(reading.assumptions)
+
+    def _env(self, reading: Reading) -> Environment:
+        return Environment(dict(self.bindings), angles=frozenset(_ANGLES), substitutions=reading.substitutions)
+
+    def _bind(self, reading: Reading, name: str, variable: str | None, expr: Any, *, final: bool) -> tuple[bool, str]:
+        env = self._env(reading)
+        try:
+            value = evaluate(expr, env)
+        except (Unbound, Unsupported) as err:
+            if not final:
+                return False, ""
+            if isinstance(err, Unbound):
+                generic = ", ".join(sorted(err.names))
+                note = f"{_public(name)} is a formula in {generic} (names no display binds)"
+            else:
+                note = f"{_public(name)} is a formula outside the exact algebra ({err})"
+            self.formulas[name] = (expr, variable)
+            self.defined_at[name] = reading.id
+            return True, note
+        except (ValueError, ZeroDivisionError) as err:
+            return (False, "") if not final else (False, f"the definition of {_public(name)} does not evaluate: {err}")
+        if variable is None and value.kind == TRANSFER:
+            variable = "z" if value.domain == "discrete" else "s"
+        self.bindings[name] = Binding(value, variable, reading.id)
+        self.defined_at[name] = reading.id
+        self.order.append(name)
+        return True, ""
+
+    def _prose_assumptions(self, prose: str) -> None:
+        """Signs and ranges the prose states of single names (``$K \\ge 0$``, ``$b_1, b_2 > 0$``,
+        ``$0 \\le a < 1$``): assumptions of the whole paper from there on."""
+        for math in inline_math(prose):
+            if not re.search(r"\\[lg]eq?\b|\\[lg]eqslant|[<>]", math) or re.search(r"\\omega|\\vartheta|\\theta|=\s*$", math):
+                continue
+            for piece in _comma_list(math):
+                try:
+                    _, st = self._table(piece)
+                except (LatexParseError, HapticproofError, ValueError):
+                    continue
+                for r in st.relations():
+                    if _is_assumption(r):
+                        expr = r.as_sympy()
+                        if expr not in self.assumptions:
+                            self.assumptions.append(expr)
+
+    def _periods(self, text: str) -> None:
+        from hapticproof.audit.reader.names import normalise_name, sympy_name
+
+        for m in re.finditer(r"\\omega\s*([A-Za-z](?:_\{?[A-Za-z0-9]+\}?)?)|e\^\{\s*s\s*([A-Za-z](?:_\{?[A-Za-z0-9]+\}?)?)\s*\}", text):
+            printed = m.group(1) or m.group(2)
+            try:
+                self.periods.add(sympy_name(normalise_name(printed)))
+            except (HapticproofError, ValueError):
+                continue
+
+    def _parameters_used(self) -> set[str]:
+        out: set[str] = set()
+        for b in self.bindings.values():
+            out |= set(b.value.names)
+        return out
+
+    def _family(self, id: str, text: str, index: tuple[str, list[str]], claim: ProseClaim | None) -> Reading:
+        r"""``G_\star^{-1}(z) = b + H(z) A_\star(z), \star \in \{f, b, t\}``: one display per member."""
+        letter, members = index
+        readings = []
+        for member in members:
+            instance = re.sub(r"(_\{?)" + re.escape(letter) + r"(\}?)", lambda m: m.group(1) + member + m.group(2), text)
+            readings.append(self.read(f"{id}[{member}]", instance))
+        self.readings = [r for r in self.readings if r not in readings]
+        kinds = {r.kind for r in readings}
+        binds = tuple(n for r in readings for n in r.binds)
+        reading = Reading(id, text, kinds.pop() if len(kinds) == 1 else OTHER, claim=claim, binds=binds,
+                          environment=self.environment(), note=f"a family over {letter} in {{{', '.join(members)}}}")
+        reading.main = tuple(m for r in readings for m in r.main)
+        self.readings.append(reading)
+        return reading
+
+
+# ---------------------------------------------------------------------------------------------
+
+
+def _plain_sentence(sentence: str) -> str:
+    return re.sub(r"\$[^$]*\$", " ", sentence)
+
+
+def _public(name: str) -> str:
+    return name.replace("^-1", "^{-1}")
+
+
+def _comma_list(text: str) -> list[str]:
+    r"""``b_1, b_2 > 0`` as ``b_1 > 0`` and ``b_2 > 0``; anything else unchanged."""
+    m = re.match(r"^\s*((?:[^,<>=]+,\s*)+[^,<>=]+?)\s*((?:\\[lg]eq?|[<>]=?|\\g?l?eqslant)\s*.+)$", text)
+    if not m:
+        return [text]
+    names = [n.strip() for n in m.group(1).split(",")]
+    if not all(re.fullmatch(r"\\?[A-Za-z]+(?:_\{?[A-Za-z0-9]+\}?)?", n) for n in names):
+        return [text]
+    return [f"{n} {m.group(2)}" for n in names]
+
+
+def _lhs_text(text: str) -> str:
+    """The left-hand side of a display's first equation (for a continued chain ``= ...``)."""
+    depth = 0
+    for k, ch in enumerate(text):
+        depth += (ch == "{") - (ch == "}")
+        if ch == "=" and depth == 0:
+            return text[:k].strip().lstrip("&").strip()
+    return ""
+
+
+def _name_end(text: str) -> int:
+    """The length of the printed name at the start of ``text`` (base and scripts)."""
+    m = re.match(r"\\(?:mathbf|mathrm|boldsymbol|bm|mathcal|hat|bar|tilde)\s*\{[^{}]*\}|\\[A-Za-z]+|[A-Za-z]", text)
+    k = m.end() if m else 1
+    while k < len(text) and text[k] in "_^":
+        k += 1
+        if k < len(text) and text[k] == "{":
+            depth = 0
+            while k < len(text):
+                depth += (text[k] == "{") - (text[k] == "}")
+                k += 1
+                if depth == 0:
+                    break
+        else:
+            m = re.match(r"\\[A-Za-z]+|.", text[k:])
+            k += m.end() if m else 1
+    return k
+
+
+def _applied(following: str) -> bool:
+    r"""Whether a name is applied: followed by ``(z)``, ``(s)``, ``(e^{...})``, ``(j\omega)``,
+    ``(\omega)`` or ``(z^{-1})``."""
+    following = re.sub(r"^\\(?:left|bigl|Bigl|big|Big)\s*", "", following)
+    return bool(re.match(r"\(\s*(?:z|s|e\^|j\s*\\omega|\\omega|\\vartheta|\\theta|z\^\{?-1\}?|1/z)", following))
+
+
+def _index_set(text: str) -> tuple[str, tuple[str, list[str]] | None]:
+    m = _INDEX_SET.search(text)
+    if not m:
+        return text, None
+    members = [x.strip() for x in m.group(2).split(",") if x.strip()]
+    if not members or not all(re.fullmatch(r"[A-Za-z0-9]+", x) for x in members):
+        return text, None
+    return text[:m.start()].rstrip(" ,"), (m.group(1), members)
+
+
+def definition_target(term: Any) -> tuple[str, str | None] | None:
+    """The name a left-hand side defines: ``F(z)``, ``F(s)`` (a function of that variable) or a
+    bare name (a value)."""
+    if isinstance(term, AppliedUndef) and len(term.args) == 1:
+        arg = term.args[0]
+        if arg == Z_SYM:
+            return term.func.__name__, "z"
+        if arg == S_SYM:
+            return term.func.__name__, "s"
+        if arg == OMEGA or getattr(arg, "name", None) in _ANGLES:
+            return term.func.__name__, None
+        return None
+    if isinstance(term, sp.Symbol) and term not in (Z_SYM, S_SYM, OMEGA):
+        return term.name, None
+    return None
+
+
+def _is_assumption(relation: Any) -> bool:
+    """A sign or range assumption: a single parameter against numbers (``K \\ge 0``, ``0 \\le a < 1``)."""
+    if not relation.ops or not all(op in _RELATION_OPS for op in relation.ops):
+        return False
+    symbols = [t for t in relation.terms if not sp.sympify(t).is_number]
+    if not symbols:
+        return False
+    return all(isinstance(t, sp.Symbol) for t in symbols) and len(symbols) <= len(relation.terms) - 1
+
+
+def _split(relations: list[Any]) -> tuple[list[Any], list[Any]]:
+    """The main relations of a display and its trailing qualifiers."""
+    main = [relations[0]]
+    qualifiers = []
+    first_equation = all(op == "=" for op in relations[0].ops)
+    for r in relations[1:]:
+        expr = r.as_sympy() if hasattr(r, "as_sympy") else None
+        free = getattr(expr, "free_symbols", set())
+        if OMEGA in free and not any(isinstance(t, AppliedUndef) for t in r.terms) and all(
+                not sp.sympify(t).has(sp.cos, sp.sin, sp.exp) for t in r.terms) and r.ops and all(op in _RELATION_OPS for op in r.ops):
+            qualifiers.append(r)
+        elif _is_assumption(r):
+            qualifiers.append(r)
+        elif r.ops == ("=",) and isinstance(r.terms[0], sp.Symbol) and not first_equation:
+            qualifiers.append(r)
+        elif r.ops == ("=",) and isinstance(r.terms[0], sp.Symbol) and first_equation and main and _uses(main[0], r.terms[0]):
+            qualifiers.append(r)
+        else:
+            main.append(r)
+    return main, qualifiers
+
+
+def _uses(relation: Any, symbol: sp.Symbol) -> bool:
+    return any(symbol in sp.sympify(t).free_symbols for t in relation.terms if not isinstance(t, sp.MatrixBase))
