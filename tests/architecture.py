@@ -21,8 +21,8 @@ PACKAGE = "hapticproof"
 
 #: The layers, lowest first: a module may import from its own layer and the layers before it.
 LAYERS = ("core", "exact", "systems", "analysis", "audit", "report", "bench", "cli", "derivations")
-#: Modules over this many lines are two concepts (the handbook's "~1000").
-MAX_LINES = 1000
+#: Modules over this many lines are two concepts (the handbook: cut by concept, "past ~2000 lines it is two").
+MAX_LINES = 2000
 
 
 @dataclass

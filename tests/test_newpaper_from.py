@@ -60,25 +60,28 @@ def test_new_paper_from_a_latex_folder_writes_a_file_that_audits(latex_paper, tm
     out = tmp_path / "draft.toml"
     assert main(["new-paper", str(out), "--from", str(latex_paper)]) == 0
     note = capsys.readouterr().err
-    assert "6 displays: 5 with a guessed claim, 1 commented out" in note
+    assert "6 displays: 6 with a guessed claim, 0 commented out" in note
     text = out.read_text(encoding="utf-8")
     data = tomllib.loads(text)
     ids = [e["id"] for e in data["equations"]]
-    assert ids == ["1", "line-12", "2", "line-8", "S"]      # the printed number or tag, else the line
+    assert ids == ["1", "line-12", "2", "3", "line-8", "S"]      # the printed number or tag, else the line
     assert data["paper"]["id"] == "draft"
     # verbatim (macros expanded), sections, guesses marked for the reviewer
     first = data["equations"][0]
     assert first["printed"] == r"G^{-1}(z) = b + \frac{KT}{z-1} + \frac{B}{z}" and first["section"] == "1"
-    assert first["claim"] == "inverse-transfer"
+    # "the device and the wall give G^{-1}": a definition the paper derives, checked against a wall's model
+    assert first["claim"] == "definition" and first["derived"] is True and first["scene"] == "wall"
     assert text.count("# guessed:") >= 10 and "-- confirm" in text
-    assert data["equations"][3]["claim"] == "sufficient-condition"         # "a sufficient condition is"
-    # the model equation kept, commented out, with the reason
-    assert "# not classified: an equation (a model or a definition)" in text
-    assert "# printed = 'x_h(k+1) = x_h(k) + T v_h(k)'" in text and "# id = '3'" in text
+    line8 = data["equations"][4]
+    assert (line8["claim"], line8["strength"], line8["about"]) == ("condition", "sufficient", "G^{-1}")  # "a sufficient condition is"
+    # the model equation (a recurrence among signals) is a model, kept with the reason
+    model = data["equations"][3]
+    assert model["printed"] == "x_h(k+1) = x_h(k) + T v_h(k)" and model["claim"] == "identity"
     assert "# source: conditions.tex:4 (align)" in text
     # it loads and audits as it is
     report = {r.id: r.verdict.value for r in audit_paper(read_paper(out).paper).results}
-    assert report == {"1": "confirmed", "line-12": "confirmed", "2": "confirmed", "line-8": "conservative", "S": "typo"}
+    assert report == {"1": "confirmed", "line-12": "confirmed", "2": "confirmed", "3": "confirmed", "line-8": "conservative",
+                      "S": "typo"}
 
 
 def test_new_paper_from_a_transcription(tmp_path, capsys):
@@ -88,8 +91,8 @@ def test_new_paper_from_a_transcription(tmp_path, capsys):
     assert main(["new-paper", str(out), "--from", str(source), "--id", "wall-1997"]) == 0
     capsys.readouterr()
     paper = read_paper(out)
-    assert paper.id == "wall-1997" and [c.id for c in paper.claims] == ["3"]
-    assert "# id = '4'" in out.read_text(encoding="utf-8")
+    # (3) is about no object the note defines: the scene's model is its object; (4) defines e
+    assert paper.id == "wall-1997" and [(c.id, c.claim) for c in paper.claims] == [("3", "passivity-condition"), ("4", "identity")]
 
 
 def test_new_paper_from_mistakes_are_one_line(tmp_path, capsys):
@@ -235,5 +238,5 @@ def test_a_wall_in_the_papers_own_names_gets_its_scene_and_roles(tmp_path):
     assert main(["new-paper", str(out), "--from", str(tmp_path / "main.tex")]) == 0
     text = out.read_text()
     assert 'roles = { device_damping = "d", period = "T_s" }' in text
-    verdicts = [r.verdict.value for r in audit_paper(read_paper(out).paper).results]
-    assert verdicts == ["confirmed"] * 3
+    verdicts = {r.id: r.verdict.value for r in audit_paper(read_paper(out).paper).results}
+    assert set(verdicts.values()) == {"confirmed"} and len(verdicts) == 4      # H and G^{-1} defined, Re and Res derived

@@ -37,6 +37,9 @@ NAMES = {"a": a, "B": B, "K": K, "T": T, "b_s": b_s, "b_m": b_m}
     ("B <= K*T/2", "B <= K*T/2"),
     ("B = 0", "B = 0"),
     ("B = 0, a < 1/2", "B = 0, a <= 1/2".replace("<=", "<")),
+    # a linear relation among parameters bounds its first name by the others (issue 28: g_0 + g_1 >= 0)
+    ("a + B < 1", "B < 1 - a"),
+    (r"2a - b_m \ge 0", "a >= b_m/2"),
 ])
 def test_regions_read_in_latex_and_expression_syntax(text, expected):
     assert read_region(text, NAMES).text() == expected
@@ -44,7 +47,7 @@ def test_regions_read_in_latex_and_expression_syntax(text, expected):
 
 @pytest.mark.parametrize("text, words", [
     ("1 < a < 0", "no value of a"),
-    ("a + B < 1", "does not bound a parameter alone"),
+    ("a*B < 1", "does not bound a parameter alone"),
     ("0 < a > 1", "a chain reads one way"),
     ("B", "is not a relation"),
     ("a = 1, a = 2", "contradict"),

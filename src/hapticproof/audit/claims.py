@@ -79,6 +79,7 @@ def checkers() -> dict[str, Checker]:
     """The checker of each claim kind (:mod:`hapticproof.audit.claimcheckers`, :mod:`hapticproof.audit.claimconditions`)."""
     from hapticproof.audit import claimcheckers as ce
     from hapticproof.audit import claimconditions as cc
+    from hapticproof.audit.definitions.checks import check as by_definitions
 
     return {
         "inverse-transfer": ce.inverse_transfer,
@@ -88,6 +89,9 @@ def checkers() -> dict[str, Checker]:
         "sufficient-condition": functools.partial(cc.condition, claim="sufficient"),
         "necessary-condition": functools.partial(cc.condition, claim="necessary"),
         "stability-condition": cc.stability,
+        "definition": by_definitions,
+        "identity": by_definitions,
+        "condition": by_definitions,
         "same-as": cc.same_as,
     }
 
@@ -368,6 +372,10 @@ def describe(spec: Any, paper: Any) -> str:
         "stability-condition": (f"exact ZOH sampled-data stability{where}" if spec.order == "exact"
                                 else f"leading order of the exact ZOH stability boundary{where}"),
         "same-as": f"equation {spec.other}" + (" with " + ", ".join(f"{k} = {v}" for k, v in spec.under) if spec.under else ""),
+        "definition": "a definition of the paper: it binds its names" + (" (derived by the paper)" if spec.derived else ""),
+        "identity": "both sides from the paper's definitions, exactly",
+        "condition": (f"exact condition for {spec.about or 'the object'} {(spec.property or 'its property').replace('-', ' ')}"
+                      f" ({spec.strength or 'strength not stated'})"),
     }
     text = texts[spec.claim]
     region = getattr(paper, "region", None)
@@ -375,4 +383,6 @@ def describe(spec: Any, paper: Any) -> str:
         text += "; in the region " + region.restricted_to(scene.names() | set(dict(scene.params))).text()
     if spec.assumption:
         text += "; stated assumption " + spec.assumption.text()
+    if spec.stated:
+        text += "; stated assumption " + spec.stated
     return text

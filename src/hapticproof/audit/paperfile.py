@@ -106,12 +106,17 @@ __all__ = [
 
 #: The claim kinds of a paper file.
 CLAIMS = ("inverse-transfer", "hermitian-part", "residue", "passivity-condition", "sufficient-condition",
-          "necessary-condition", "stability-condition", "same-as")
+          "necessary-condition", "stability-condition", "same-as", "definition", "identity", "condition")
+#: Claims read from the paper's own definitions (:mod:`hapticproof.audit.definitions`): no scene.
+DEFINITION_CLAIMS = ("definition", "identity", "condition")
 #: Claims about a condition (``assumption`` and ``solve_for`` apply).
 CONDITION_CLAIMS = ("passivity-condition", "sufficient-condition", "necessary-condition", "stability-condition")
 #: Fields of an ``[[equations]]`` entry.
 EQUATION_FIELDS = ("id", "printed", "claim", "scene", "section", "other", "under", "order", "form", "assumption",
-                   "solve_for", "notes")
+                   "solve_for", "notes", "about", "property", "strength", "derived")
+#: The properties and strengths a ``condition`` claim names.
+PROPERTIES = ("positive-real", "absolutely-stable")
+STRENGTHS = ("iff", "sufficient", "necessary")
 #: Fields of ``[paper]``.
 PAPER_FIELDS = ("id", "title", "authors", "source")
 #: Words of ``[symbols]``: sign assumptions, ``function`` and ``signal`` (a declared name whose
@@ -147,6 +152,13 @@ class ClaimSpec:
     solve_for: str | None = None
     notes: str = ""
     line: int | None = None
+    #: definitions claims: the object a condition is about, its property and strength, the
+    #: stated assumption as written, and whether the paper presents a definition as derived
+    about: str | None = None
+    property: str | None = None
+    strength: str | None = None
+    stated: str = ""
+    derived: bool = False
 
     def __post_init__(self) -> None:
         if self.claim not in CLAIMS:
@@ -181,6 +193,19 @@ class PaperFile:
     region: Any = None
     paper: Any = field(repr=False, default=None)
     _tables: dict = field(repr=False, compare=False, default_factory=dict)
+
+    @functools.cached_property
+    def definitions(self) -> Any:
+        """The paper read as its definitions (:class:`~hapticproof.audit.definitions.reading.PaperReading`)
+        over its definition, identity and condition claims, in file order."""
+        from hapticproof.audit.definitions.checks import verified_by_scene
+        from hapticproof.audit.definitions.reading import PaperReading
+
+        reading = PaperReading.of_claims(self.claims, self.symbols, self.region)
+        for spec in self.claims:
+            if spec.claim == "definition" and spec.derived and spec.scene and verified_by_scene(self, spec):
+                reading.verified(spec.id)
+        return reading
 
     def claim(self, id: str) -> ClaimSpec:
         for spec in self.claims:
@@ -667,6 +692,24 @@ def _assumption(text: str, table: Any, where: str, region: Any) -> Any:
     return stated
 
 
+def _definition_fields(entry: Mapping[str, Any], claim: str, fields: dict[str, Any], where: Any) -> None:
+    """The fields of a definition, identity or condition claim (``about``, ``property``,
+    ``strength`` for conditions; ``derived`` for definitions)."""
+    for key in ("about", "property", "strength"):
+        if key in entry:
+            if claim != "condition":
+                raise PaperFileError(f"{where(key)}: {key} applies to condition claims")
+            fields[key] = _text_field(entry[key], where(key), key).strip()
+    if fields.get("property") is not None and fields["property"] not in PROPERTIES:
+        raise PaperFileError(f"{where('property')}: the property is one of {', '.join(PROPERTIES)}, got {fields['property']!r}")
+    if fields.get("strength") is not None and fields["strength"] not in STRENGTHS:
+        raise PaperFileError(f"{where('strength')}: the strength is one of {', '.join(STRENGTHS)}, got {fields['strength']!r}")
+    if "derived" in entry:
+        if claim != "definition" or not isinstance(entry["derived"], bool):
+            raise PaperFileError(f"{where('derived')}: derived is true or false, on definition claims")
+        fields["derived"] = entry["derived"]
+
+
 def _read_equations(raw: Any, path: str, text: str, table: Any, scenes: Mapping[str, Any],
                     region: Any = None) -> tuple[ClaimSpec, ...]:
     from hapticproof.audit.reader.printed import parse_printed
@@ -717,7 +760,12 @@ def _read_equations(raw: Any, path: str, text: str, table: Any, scenes: Mapping[
             raise PaperFileError(f"{where('claim')}: unknown claim {claim!r}{hint}")
         fields: dict[str, Any] = {"id": eq_id, "printed": printed, "claim": claim, "line": start}
         scene_name = entry.get("scene")
-        if scene_name is None and claim != "same-as":
+        if claim in DEFINITION_CLAIMS:
+            _definition_fields(entry, claim, fields, where)
+        elif any(key in entry for key in ("about", "property", "strength", "derived")):
+            key = next(key for key in ("about", "property", "strength", "derived") if key in entry)
+            raise PaperFileError(f"{where(key)}: {key} applies to definition, identity and condition claims")
+        if scene_name is None and claim not in ("same-as",) + DEFINITION_CLAIMS:
             raise PaperFileError(f"{_at(path, start)}: {label}: missing field 'scene' (a {claim} claim is about a scene)")
         if scene_name is not None:
             scene_name = _text_field(scene_name, where("scene"), "scene").strip()
@@ -763,7 +811,9 @@ def _read_equations(raw: Any, path: str, text: str, table: Any, scenes: Mapping[
             for key in ("other", "under"):
                 if key in entry:
                     raise PaperFileError(f"{where(key)}: {key} applies to same-as claims")
-        if "assumption" in entry:
+        if "assumption" in entry and claim == "condition":
+            fields["stated"] = _text_field(entry["assumption"], where("assumption"), "assumption").strip()
+        elif "assumption" in entry:
             if claim not in CONDITION_CLAIMS:
                 raise PaperFileError(f"{where('assumption')}: assumption applies to condition claims")
             fields["assumption"] = _assumption(_text_field(entry["assumption"], where("assumption"), "assumption"),
@@ -775,7 +825,9 @@ def _read_equations(raw: Any, path: str, text: str, table: Any, scenes: Mapping[
         try:
             parse_printed(printed, check_table)
         except LatexParseError as err:
-            if err.reason.startswith("unknown name"):
+            # a definitions claim is read with every name the paper uses (its own reader): only
+            # the claims of scenes need each name declared
+            if err.reason.startswith("unknown name") and claim not in DEFINITION_CLAIMS:
                 raise PaperFileError(f"{where('printed')}: {err.reason} at position {err.position} "
                                      f"(declare it in [symbols])") from None
         except LimitError as err:      # work the display would ask for: refused with its place
@@ -869,8 +921,10 @@ def _assumptions_text(words: Mapping[str, str]) -> str:
 
 
 def _kind(spec: ClaimSpec, table: Any) -> str:
-    if spec.claim in CONDITION_CLAIMS:
+    if spec.claim in CONDITION_CLAIMS or spec.claim == "condition":
         return "condition"
+    if spec.claim in ("definition", "identity"):
+        return "expression"
     if spec.claim in ("inverse-transfer", "residue"):
         return "expression"
     if spec.claim == "hermitian-part" and spec.form != "auto":

@@ -469,8 +469,33 @@ def parse_relations(text: str, parse: Any) -> list[tuple[tuple[str, ...], tuple[
 _FLIP = {"<": ">", "<=": ">=", ">": "<", ">=": "<=", "=": "="}
 
 
+def _solved(ops: tuple[str, ...], terms: tuple[Any, ...], key: str | None) -> tuple[tuple[str, ...], tuple[Any, ...]]:
+    """A linear relation between parameters (``g_0 + g_1 \\ge 0``) solved for ``key`` (else for
+    its first symbol with a numeric coefficient): ``g_0 >= -g_1``; other relations unchanged."""
+    if len(terms) != 2 or ops[0] == "=" and key is None:
+        return ops, terms
+    left, right = (sp.sympify(t) for t in terms)
+    if isinstance(left, sp.Symbol) or isinstance(right, sp.Symbol):
+        if key is None or any(isinstance(t, sp.Symbol) and t.name == key for t in (left, right)):
+            return ops, terms
+    diff = sp.expand(left - right)
+    candidates = sorted(diff.free_symbols, key=lambda s: (s.name != key, s.name))
+    for target in candidates:
+        if key is not None and target.name != key:
+            continue
+        coeff = diff.coeff(target)
+        rest = sp.expand(diff - coeff * target)
+        if not coeff.is_number or coeff == 0 or target in rest.free_symbols:
+            continue
+        op = ops[0] if coeff > 0 else _FLIP[ops[0]]
+        return (op,), (target, sp.expand(-rest / coeff))
+    return ops, terms
+
+
 def _restriction(ops: tuple[str, ...], terms: tuple[Any, ...], key: str | None, text: str) -> Restriction:
-    """One relation chain as a restriction of one parameter (``key``, else the lone symbol)."""
+    """One relation chain as a restriction of one parameter (``key``, else the lone symbol); a
+    linear relation among parameters is solved for it (``g_0 + g_1 >= 0`` bounds ``g_0`` by ``-g_1``)."""
+    ops, terms = _solved(ops, terms, key)
     if any(op not in ("<", "<=", ">", ">=", "=") for op in ops):
         raise RegionError(f"{text!r}: only =, <, <=, > and >= restrict a parameter")
     if len(terms) > 3:

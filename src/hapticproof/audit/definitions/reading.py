@@ -50,6 +50,9 @@ _DERIVATION = re.compile(r"\b(?:gives?|giving|yields?|we\s+obtain|one\s+obtains|
 
 _INDEX_SET = re.compile(r",?\s*(?:\\q?quad|\\[,;: ]|~)*\s*\\?(\\[A-Za-z]+|[A-Za-z])\s*\\in\s*\\\{([^{}]{1,80})\\\}\s*[.,;]?\s*$")
 _ANGLES = ("theta", "vartheta")
+#: words before an inline inequality that make it a result, not an assumption
+_CLAIMED = re.compile(r"reduces?\s+to|becomes?|gives?|yields?|if\s+and\s+only\s+if|\biff\b|condition|requires?|necessary|"
+                      r"sufficient|\bbound\b|holds?|positive\s+real|passive|stable|implies|so\s+that|hence|thus|therefore", re.I)
 _RELATION_OPS = (">", "<", ">=", "<=")
 
 
@@ -77,6 +80,12 @@ class Reading:
     #: the sentence presents the display as derived (``gives``, ``eliminating``): a definition
     #: it makes is a claim the toolkit could not verify
     derived: bool = False
+    #: the display as the file or the source prints it (before a continued chain is completed)
+    printed: str = ""
+    #: an assumption stated for this claim (a paper file's ``assumption``)
+    stated: str = ""
+    #: printed names the display uses beyond its statement's (a family's ``G_\\star^{-1}`` and ``\\star``)
+    extra_names: tuple[str, ...] = ()
 
 
 class PaperReading:
@@ -98,8 +107,74 @@ class PaperReading:
         self.periods: set[str] = set()
         #: names bound by derived displays the toolkit did not verify
         self.tentative: set[str] = set()
+        #: the index letters of families (``\\star`` in ``G_\\star``)
+        self.indices: set[str] = set()
         self._last_lhs = ""
         self._table_type = SymbolTable
+
+    @classmethod
+    def of_claims(cls, claims: Iterable[Any], table: Any = None, region: Any = None) -> PaperReading:
+        """The reading of a paper file: its ``definition``, ``identity`` and ``condition`` claims in
+        order (each claim's kind decides whether it binds), with the file's names and assumptions."""
+        from hapticproof.audit.reader.names import normalise_name
+
+        symbols: dict[str, sp.Symbol] = {}
+        functions: set[str] = set()
+        if table is not None:
+            for printed, value in dict(table.symbols).items():
+                if isinstance(value, sp.Symbol) and printed not in ("z", "s", "\\omega"):
+                    symbols[normalise_name(printed)] = value
+            for printed in dict(table.functions):
+                functions.add(normalise_name(printed))
+                symbols.setdefault(normalise_name(printed), sp.Symbol(_sympy_name(printed), real=True))
+        reading = cls(symbols, functions)
+        for sym in symbols.values():
+            if sym.is_positive:
+                reading.assumptions.append(sp.StrictGreaterThan(sp.Symbol(sym.name, real=True), 0))
+            elif sym.is_nonnegative:
+                reading.assumptions.append(sp.GreaterThan(sp.Symbol(sym.name, real=True), 0))
+        if region:
+            for r in region.restrictions:
+                sym = sp.Symbol(r.name, real=True)
+                if r.lower is not None:
+                    reading.assumptions.append((sp.StrictGreaterThan if r.lower_strict else sp.GreaterThan)(sym, r.lower))
+                if r.upper is not None:
+                    reading.assumptions.append((sp.StrictLessThan if r.upper_strict else sp.LessThan)(sym, r.upper))
+        for spec in claims:
+            if spec.claim not in ("definition", "identity", "condition"):
+                continue
+            reading.read(spec.id, spec.printed, mode=spec.claim, derived=spec.derived, stated=spec.stated)
+        return reading
+
+    def verified(self, id: str) -> None:
+        """The names display ``id`` derived are verified (a scene's model gives them): no longer tentative."""
+        for r in self.readings:
+            if r.id == id:
+                self.tentative.difference_update(r.binds)
+
+    def reading_for(self, id: str, text: str) -> Reading:
+        """The reading of display ``id`` as printed, or of another text (a repair's trial edit) in
+        the namespace the display sees, without binding anything."""
+        index = next((k for k, r in enumerate(self.readings) if r.id == id), None)
+        if index is None:
+            raise KeyError(id)
+        original = self.readings[index]
+        if text == original.printed:
+            return original
+        trial = PaperReading(self.symbols, self.functions)
+        trial.bindings = dict(original.environment.bindings) if original.environment else {}
+        trial.defined_at = dict(original.defined_at)
+        trial.formulas = dict(self.formulas)
+        trial.assumptions = list(self.assumptions)
+        trial.periods = set(self.periods)
+        trial.tentative = set(self.tentative)
+        trial.readings = list(self.readings[:index])
+        trial.order = list(self.order)
+        mode = {DEFINITION: "definition", DERIVED: "definition", IDENTITY: "identity", CONDITION: "condition"}.get(original.kind, "auto")
+        out = trial.read(id, text, mode=mode if mode != "definition" else "identity", derived=original.derived,
+                         stated=original.stated)
+        out.claim = original.claim
+        return out
 
     # -- the symbol table ------------------------------------------------------------------------
 
@@ -159,16 +234,25 @@ class PaperReading:
             if not re.match(r"\s*\\?[A-Za-z][^=]*\([zs]\)\s*=|\s*(?:\\mathbf\{?[A-Za-z]\}?|[A-Za-z])(?:_\{?[A-Za-z0-9]+\}?)?(?:\^\{-1\})?\s*=", math):
                 continue
             try:
-                reading = self.read(f"{id}.inline{k + 1}", math, definitions_only=True)
+                reading = self.read(f"{id}.inline{len(out) + 1}", math, definitions_only=True)
             except HapticproofError:
                 continue
             if reading.kind == DEFINITION:
                 out.append(reading)
+            elif reading in self.readings:
+                self.readings.remove(reading)
         return out
 
-    def read(self, id: str, text: str, *, prose: str = "", after: str = "", definitions_only: bool = False) -> Reading:
-        """Read one display (its LaTeX as printed), binding what it defines."""
+    def read(self, id: str, text: str, *, prose: str = "", after: str = "", definitions_only: bool = False,
+             mode: str = "auto", derived: bool = False, stated: str = "") -> Reading:
+        """Read one display (its LaTeX as printed), binding what it defines.
+
+        ``mode`` is ``auto`` (classify from the display and its sentence), or the kind a paper file
+        gives: ``definition`` (binds), ``identity`` or ``condition`` (binds nothing)."""
+        printed = text
         claim = claim_of(prose, after) if prose or after else None
+        if stated:
+            claim = _with_stated(claim, stated)
         self._periods(text)
         if prose and not definitions_only:
             self._prose_assumptions(prose)
@@ -186,8 +270,9 @@ class PaperReading:
             return reading
         relations = list(statement.relations())
         reading = Reading(id, text, OTHER, statement, claim=claim, environment=self.environment(),
-                          defined_at=dict(self.defined_at),
-                          derived=bool(claim is not None and _DERIVATION.search(_plain_sentence(claim.sentence))))
+                          defined_at=dict(self.defined_at), printed=printed, stated=stated,
+                          derived=derived or bool(mode == "auto" and claim is not None
+                                                  and _DERIVATION.search(_plain_sentence(claim.sentence))))
         if not relations:
             reading.kind = MALFORMED if claim is not None and claim.property else OTHER
             reading.note = "an expression with no relation"
@@ -200,9 +285,13 @@ class PaperReading:
         lhs = _lhs_text(text)
         if lhs and not definitions_only:
             self._last_lhs = lhs
-        if all(op == "=" for r in main for op in r.ops):
+        equations = all(op == "=" for r in main for op in r.ops)
+        if mode in ("identity", "condition"):
+            reading.kind = IDENTITY if mode == "identity" else CONDITION
+            reading.environment = self._env(reading)
+        elif equations:
             self._equations(reading, main, definitions_only)
-        elif definitions_only:
+        elif definitions_only or mode == "definition":
             reading.kind = OTHER
         else:
             reading.kind = CONDITION
@@ -319,10 +408,17 @@ class PaperReading:
 
     def _prose_assumptions(self, prose: str) -> None:
         """Signs and ranges the prose states of single names (``$K \\ge 0$``, ``$b_1, b_2 > 0$``,
-        ``$0 \\le a < 1$``): assumptions of the whole paper from there on."""
-        for math in inline_math(prose):
+        ``$0 \\le a < 1$``): assumptions of the whole paper from there on; "sampling period $h$"
+        names the period."""
+        for m in re.finditer(r"(?:sampling|sample)\s+(?:period|interval|time)s?\s+(?:of\s+|is\s+)?\$([^$]{1,20})\$|"
+                             r"(?:sampled|samples?)\s+(?:with|at|every)\s+(?:a\s+)?(?:period\s+)?\$([^$]{1,20})\$", prose, re.I):
+            self._periods("\\omega " + (m.group(1) or m.group(2)).strip())
+        for m in re.finditer(r"\$([^$]{1,400})\$", prose):
+            math = m.group(1).strip()
             if not re.search(r"\\[lg]eq?\b|\\[lg]eqslant|[<>]", math) or re.search(r"\\omega|\\vartheta|\\theta|=\s*$", math):
                 continue
+            if _CLAIMED.search(prose[max(0, m.start() - 60):m.start()]):
+                continue                      # "it reduces to $c_d \\ge 0$": a result, not an assumption
             for piece in _comma_list(math):
                 try:
                     _, st = self._table(piece)
@@ -353,21 +449,52 @@ class PaperReading:
     def _family(self, id: str, text: str, index: tuple[str, list[str]], claim: ProseClaim | None) -> Reading:
         r"""``G_\star^{-1}(z) = b + H(z) A_\star(z), \star \in \{f, b, t\}``: one display per member."""
         letter, members = index
+        self.indices.add(letter)
         readings = []
         for member in members:
             instance = re.sub(r"(_\{?)" + re.escape(letter) + r"(\}?)", lambda m: m.group(1) + member + m.group(2), text)
             readings.append(self.read(f"{id}[{member}]", instance))
         self.readings = [r for r in self.readings if r not in readings]
+        # the family's own names (G_\\star^{-1}) are functions of the paper too
+        extra: set[str] = set()
+        for member in members:
+            for name in [n for n in list(self.functions) if f"_{{{member}}}" in n]:
+                template = name.replace(f"_{{{member}}}", "_{" + letter + "}")
+                self.functions.add(template)
+                self.symbols.setdefault(template, sp.Symbol(_sympy_name(template), real=True))
+                extra.add(template)
+        for r in readings:
+            if r.statement is not None:
+                for relation in r.statement.relations():
+                    for term in relation.terms:
+                        extra |= {p for p in self.symbols if _sympy_name(p) in {getattr(a, "name", "") for a in getattr(term, "free_symbols", ())}}
+                        extra |= {p for p in self.functions if _sympy_name(p) in {f.func.__name__ for f in getattr(term, "atoms", lambda *a: ())(AppliedUndef)}}
         kinds = {r.kind for r in readings}
         binds = tuple(n for r in readings for n in r.binds)
         reading = Reading(id, text, kinds.pop() if len(kinds) == 1 else OTHER, claim=claim, binds=binds,
                           environment=self.environment(), note=f"a family over {letter} in {{{', '.join(members)}}}")
         reading.main = tuple(m for r in readings for m in r.main)
+        reading.extra_names = tuple(sorted(extra))
         self.readings.append(reading)
         return reading
 
 
 # ---------------------------------------------------------------------------------------------
+
+
+def _sympy_name(printed: str) -> str:
+    from hapticproof.audit.reader.names import normalise_name, sympy_name
+
+    return sympy_name(normalise_name(printed))
+
+
+def _with_stated(claim: ProseClaim | None, stated: str) -> ProseClaim:
+    """A claim with a paper file's stated assumption (``K_c > 0, b > 0``) among its assumptions."""
+    from dataclasses import replace
+
+    pieces = tuple(p.strip() for p in re.split(r";|\band\b", stated) if p.strip())
+    base = claim or ProseClaim()
+    return replace(base, assumptions=tuple(base.assumptions) + pieces)
 
 
 def _plain_sentence(sentence: str) -> str:
@@ -462,12 +589,28 @@ def _is_assumption(relation: Any) -> bool:
     return all(isinstance(t, sp.Symbol) for t in symbols) and len(symbols) <= len(relation.terms) - 1
 
 
+def _linear_assumption(relation: Any) -> bool:
+    """A relation among parameters alone, such as ``g_0 + g_1 \\ge 0`` (no function, no frequency)."""
+    if not relation.ops or not all(op in _RELATION_OPS for op in relation.ops):
+        return False
+    for t in relation.terms:
+        t = sp.sympify(t)
+        if isinstance(t, sp.MatrixBase) or t.atoms(AppliedUndef) or t.has(sp.cos, sp.sin, sp.exp, sp.re, sp.im, sp.Abs):
+            return False
+        if t.free_symbols & {OMEGA, Z_SYM, S_SYM}:
+            return False
+    return True
+
+
 def _split(relations: list[Any]) -> tuple[list[Any], list[Any]]:
     """The main relations of a display and its trailing qualifiers."""
     main = [relations[0]]
     qualifiers = []
     first_equation = all(op == "=" for op in relations[0].ops)
     for r in relations[1:]:
+        if first_equation and _linear_assumption(r):
+            qualifiers.append(r)             # "H(z) = ..., \\quad g_0 + g_1 \\ge 0": an assumption
+            continue
         expr = r.as_sympy() if hasattr(r, "as_sympy") else None
         free = getattr(expr, "free_symbols", set())
         if OMEGA in free and not any(isinstance(t, AppliedUndef) for t in r.terms) and all(

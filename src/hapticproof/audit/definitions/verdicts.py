@@ -32,9 +32,11 @@ from hapticproof.core.evidence import Decision, Evidence, Finding, Method, Verdi
 from hapticproof.exact.boundaryvalue import C_NAME, X_NAME
 from hapticproof.exact.rational import RationalFunction
 
-__all__ = ["verdict", "identity_finding", "condition_finding"]
+__all__ = ["verdict", "identity_finding", "condition_finding", "resolved_condition"]
 
 _STRENGTH_CLAIM = {"iff": "passivity", "sufficient": "sufficient", "necessary": "necessary"}
+#: the frequency and angle names: never a parameter an object must carry
+_FREQUENCY = {"omega", "theta", "vartheta"}
 
 
 _NEGATIVE = (Verdict.WRONG, Verdict.TYPO, Verdict.INCONSISTENT, Verdict.NEEDS_ASSUMPTION, Verdict.CONSERVATIVE)
@@ -273,6 +275,8 @@ def _object(reading: Reading, paper: PaperReading, names: list[str], prop: str, 
         name = _object_name(text)
         if name is not None and env.lookup(name) is not None and env.lookup(name).value.kind != PARAM:
             return name, env.lookup(name).value, "named"
+        if name is not None and name in paper.bindings and paper.bindings[name].value.kind != PARAM:
+            return name, paper.bindings[name].value, "named, defined later in the paper"
 
     def fits(value: Value) -> bool:
         if value.kind == PARAM or value.shape[0] != value.shape[1]:
@@ -326,7 +330,10 @@ def _signs(reading: Reading, paper: PaperReading) -> tuple[dict[str, dict[str, b
     and the other relations (ranges, orderings) of this display."""
     signs: dict[str, dict[str, bool]] = {name: {"positive": True} for name in paper.periods}
     relations = []
+    flat = []
     for a in list(paper.assumptions) + list(reading.assumptions):
+        flat += list(a.args) if isinstance(a, sp.And) else [a]
+    for a in flat:
         if not isinstance(a, sp.core.relational.Relational):
             continue
         if a.lhs.is_Symbol and a.rhs.is_number and a.rhs == 0 and a.rel_op in (">", ">="):
@@ -347,6 +354,49 @@ def _symbol_map(names: set[str], signs: dict[str, dict[str, bool]]) -> dict[str,
 
 def _retyped(expr: Any, table: dict[str, sp.Symbol]) -> Any:
     return expr.xreplace({s: table[s.name] for s in expr.free_symbols if s.name in table})
+
+
+def resolved_condition(reading: Reading, paper: PaperReading, any_object: bool = False) -> Any:
+    """``(about, property, strength, how)`` of a condition as its sentence and the namespace settle
+    them (``about`` in printed form), or ``None`` when the sentence leaves the property or the
+    strength open, or no defined object carries the condition's names."""
+    prop, strength, named = _claimed(reading, paper, None, None)
+    printed = _printed_condition(reading)
+    guessed = ""
+    if printed is not None and prop is None and strength is None and _damping_bound(printed):
+        # a bare lower bound on a damping with no word around it: read as the passivity condition
+        prop, strength, guessed = "positive-real", "iff", " (the sentence says nothing: read as the exact passivity condition)"
+    if printed is None or prop not in ("positive-real", "absolutely-stable") or strength is None:
+        return None
+    if reading.claim is not None and reading.claim.for_any:
+        return None
+    wanted = {s.name for s in printed.free_symbols} - set(reading.substitutions) - _FREQUENCY
+    found = _object(reading, paper, [named] if named else [], prop, wanted)
+    if found is None:
+        return "no object" if any_object else None
+    if any_object:
+        return None
+    name, _value, how = found
+    return _printed_name(name, paper), prop, strength, how + guessed
+
+
+def _damping_bound(printed: Any) -> bool:
+    """A lower bound on a device damping (``b > ...``, ``c_d \\ge ...``, ``b_m > ...``)."""
+    import re
+
+    from hapticproof.audit.definitions.proofs import lower_bound
+
+    dampings = [s for s in printed.free_symbols if re.match(r"(?:b|c_d|c)(?:_|$)", s.name)]
+    return isinstance(printed, sp.core.relational.Relational) and lower_bound(printed, dampings) is not None
+
+
+def _printed_name(name: str, paper: PaperReading) -> str:
+    from hapticproof.audit.reader.names import sympy_name
+
+    for printed in list(paper.functions) + list(paper.symbols):
+        if sympy_name(printed) == name:
+            return printed
+    return _shown(name)
 
 
 def condition_finding(reading: Reading, paper: PaperReading, *, about: str | None = None, prop: str | None = None,
@@ -370,7 +420,7 @@ def condition_finding(reading: Reading, paper: PaperReading, *, about: str | Non
     if strength is None:
         return Finding(Verdict.UNDECIDED, "the sentence does not say whether the condition is necessary, sufficient or both",
                        Evidence(Method.PARSE))
-    wanted = {s.name for s in printed.free_symbols} - set(reading.substitutions)
+    wanted = {s.name for s in printed.free_symbols} - set(reading.substitutions) - _FREQUENCY
     found = _object(reading, paper, [n for n in (about, named) if n], prop, wanted)
     if found is None:
         return Finding(Verdict.UNDECIDED, f"no defined object carries every name of the condition ({', '.join(sorted(wanted))})",

@@ -2,12 +2,17 @@ r"""The paper file ``hapticproof new-paper --from SOURCE`` writes: a draft for t
 
 Every display of the source (:func:`~hapticproof.audit.source.displays.read_source`) becomes an
 ``[[equations]]`` entry with its text verbatim (macros expanded), its ``\label``/``\tag`` or
-number as id and its section. Where the shape says what the display claims
-(:func:`~hapticproof.audit.source.guess.guess_claim`) the entry is active, its claim and scene
-marked ``# guessed:`` with the reason, for the reviewer to confirm; the names it uses are
-declared in ``[symbols]`` with a guessed assumption, each marked the same way. A display the
-guesses cannot classify, or whose names the guessed scene does not have, is kept commented out
-with the reason. The draft is read back before it is returned: an entry the paper-file reader
+number as id and its section. The paper is first read as its definitions
+(:mod:`hapticproof.audit.definitions.guesses`): a display that defines a name is a ``definition``
+(``derived`` when its sentence derives it), one whose sides the definitions give an ``identity``,
+an inequality a ``condition`` with the object, property and strength its sentence gives; the
+inline ``$...$`` definitions of the prose are entries too. Where the definitions say nothing --
+names the paper never defines, a condition about no object of its own -- the shape of the display
+says what it claims (:func:`~hapticproof.audit.source.guess.guess_claim`) against a guessed scene,
+the toolkit's model. Every guess is marked ``# guessed:`` with the words it came from, for the
+reviewer to confirm; names are declared in ``[symbols]`` with the signs the paper states (or their
+letter's convention, marked so). A display whose claim neither reading settles is kept commented
+out with the reason. The draft is read back before it is returned: an entry the paper-file reader
 refuses is commented out with the reader's message, so the written file loads and audits as it
 is (:func:`draft`).
 
@@ -21,8 +26,8 @@ edits into the paper's system.
 ... \begin{equation} b > \frac{KT}{2} + B \label{eq:wall} \end{equation}
 ... \begin{equation} x_h(k+1) = x_h(k) + T v_h(k) \end{equation}''', "wall.tex")
 >>> result = draft(src)
->>> result.active, result.commented
-(1, 1)
+>>> result.active, result.commented          # b > KT/2 + B is about no object of the paper: the scene's
+(2, 0)
 >>> print("\n".join(result.text.split("[[equations]]")[1].strip().splitlines()[:6]))   # doctest: +ELLIPSIS
 # source: wall.tex:2 (equation)
 id = '1'
@@ -32,7 +37,7 @@ scene = 'wall'                       # guessed: the names of a virtual wall
 section = '1'
 >>> from hapticproof.audit.paperfile import loads
 >>> [c.claim for c in loads(result.text).claims]
-['passivity-condition']
+['passivity-condition', 'identity']
 """
 
 from __future__ import annotations
@@ -41,7 +46,12 @@ import json
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
+
+from sympy.core.function import AppliedUndef
+
 from hapticproof.audit.source.displays import Display, Source
+from hapticproof.core.errors import LatexParseError
 from hapticproof.audit.source.guess import guess_claim, guess_form, symbol_guesses
 
 __all__ = ["Draft", "Entry", "draft", "paper_id_of", "contexts"]
@@ -80,6 +90,14 @@ class Entry:
     guessed: str | None = None
     #: ``"condition"`` for a hermitian-part display without a relation listed among conditions
     form: str | None = None
+    #: the fields of a definitions claim (:mod:`hapticproof.audit.definitions.guesses`)
+    about: str | None = None
+    property: str | None = None
+    strength: str | None = None
+    derived: bool = False
+    assumption: str = ""
+    #: the printed text when it is not the display's (an inline definition of the prose)
+    printed: str | None = None
 
 
 @dataclass(frozen=True)
@@ -306,7 +324,72 @@ def contexts(source: Source) -> list[str]:
     return out
 
 
+def _names_of(reading: Any, words: dict[str, str]) -> dict[str, tuple[str, str]]:
+    """The ``[symbols]`` words of the names a read display uses (from the paper's definitions reading)."""
+    from hapticproof.audit.reader.names import sympy_name
+
+    statement = getattr(reading, "statement", None)
+    extra = set(getattr(reading, "extra_names", ()))
+    if statement is None and not extra:
+        return {}
+    used: set[str] = {sympy_name(p) for p in extra}
+    for relation in (statement.relations() if statement is not None else ()) or ():
+        for term in relation.terms:
+            atoms = term.free_symbols if hasattr(term, "free_symbols") else set()
+            used |= {getattr(a, "name", "") for a in atoms}
+            if hasattr(term, "atoms"):
+                used |= {f.func.__name__ for f in term.atoms(AppliedUndef)}
+    for expr in (getattr(statement, "expressions", lambda: [])() if statement is not None else ()):
+        used |= {getattr(a, "name", "") for a in getattr(expr, "free_symbols", set())}
+    from hapticproof.audit.definitions.guesses import conventional
+
+    out = {}
+    for printed, word in words.items():
+        if sympy_name(printed) in used:
+            if conventional(printed, word):
+                why = f"{word} by the convention of its letter (the paper states no sign)"
+            else:
+                why = "stated by the paper" if word not in ("real", "function") else (
+                    "applied to (z), (s) or a frequency" if word == "function" else "no sign stated")
+            out[printed] = (word, why)
+    return out
+
+
+#: The scene claims that check an expression against the scene's model (a derived definition is
+#: confirmed when the scene's G^-1 is what the paper derived).
+_SCENE_EXPRESSIONS = ("inverse-transfer", "hermitian-part", "residue")
+
+
+def _scene_guess(display: Display, ident: str, context: str, designs: dict[str, tuple[str, str]],
+                 cache: dict[str, set[str]]) -> Entry:
+    """The entry the display's shape and a guessed scene give (the reading before definitions)."""
+    claim, why = guess_claim(display.text, context=context)
+    form = guess_form(display.text, claim, context)
+    if form is not None:
+        why += "; the sentence before lists it among conditions, so read as Re G^{-1} >= 0 ('> 0' is not printed)"
+    names = symbol_guesses(display.text)
+    if claim is None:
+        used = [k for k, (_t, i) in designs.items() if i == display.id]
+        if used:
+            why += f"; its right-hand side is the guessed scenes' {'environment' if used[0] == 'H' else 'controller'}"
+        return Entry(display, ident, None, f"not classified: {why}", symbols=names)
+    scene, scene_why = _guess_scene(set(names))
+    missing = [n for n in _outside(names, _scene_names(scene, cache, designs)) if n != _label(display.text, claim)]
+    if missing:
+        return Entry(display, ident, None, f"guessed {claim} ({why}), but the guessed scene '{scene}' has no "
+                     f"{', '.join(missing)}: write its scene, then uncomment", scene=scene, symbols=names,
+                     guessed=claim, form=form)
+    return Entry(display, ident, claim, why, scene, scene_why, names, guessed=claim, form=form)
+
+
 def _entries(source: Source, designs: dict[str, tuple[str, str]]) -> list[Entry]:
+    from hapticproof.audit.definitions.guesses import read_claims
+
+    claims = read_claims(source)
+    read = {c.display.id: c for c in claims.displays}
+    inline_before: dict[str, list[Any]] = {}
+    for c in claims.inline:
+        inline_before.setdefault(c.display.id, []).append(c)
     seen: dict[str, int] = {}
     cache: dict[str, set[str]] = {}
     out = []
@@ -317,25 +400,34 @@ def _entries(source: Source, designs: dict[str, tuple[str, str]]) -> list[Entry]
             ident = f"{ident}-{seen[ident]}"
         else:
             seen[ident] = 1
-        claim, why = guess_claim(display.text, context=context)
-        form = guess_form(display.text, claim, context)
-        if form is not None:
-            why += "; the sentence before lists it among conditions, so read as Re G^{-1} >= 0 ('> 0' is not printed)"
-        names = symbol_guesses(display.text)
-        if claim is None:
-            used = [k for k, (_t, i) in designs.items() if i == display.id]
-            if used:
-                why += f"; its right-hand side is the guessed scenes' {'environment' if used[0] == 'H' else 'controller'}"
-            out.append(Entry(display, ident, None, f"not classified: {why}", symbols=names))
+        for c in inline_before.pop(display.id, []) if seen[display.id] == 1 else []:
+            out.append(Entry(display, c.id, "definition", c.why, symbols=_names_of(c.reading, claims.words),
+                             guessed="definition", printed=c.printed))
+        rc = read.get(display.id)
+        guess = _scene_guess(display, ident, context, designs, cache)
+        if rc is not None and seen[display.id] == 1 and rc.claim is not None:
+            scene_claim = guess.claim in _SCENE_EXPRESSIONS and guess.scene is not None
+            if rc.claim == "identity" and rc.unbound and guess.claim is not None:
+                out.append(guess)             # names the paper never defines: the scene's model says what they are
+                continue
+            out.append(Entry(display, ident, rc.claim, rc.why, scene=guess.scene if (rc.derived and scene_claim) else None,
+                             scene_why=guess.scene_why if rc.derived and scene_claim else "",
+                             symbols={**(guess.symbols if rc.derived and scene_claim else {}),
+                                      **_names_of(rc.reading, claims.words)},
+                             guessed=rc.claim, about=rc.about, property=rc.property, strength=rc.strength,
+                             derived=rc.derived, assumption=rc.assumption,
+                             printed=rc.printed if rc.printed != display.text else None))
             continue
-        scene, scene_why = _guess_scene(set(names))
-        missing = [n for n in _outside(names, _scene_names(scene, cache, designs)) if n != _label(display.text, claim)]
-        if missing:
-            out.append(Entry(display, ident, None, f"guessed {claim} ({why}), but the guessed scene '{scene}' has no "
-                             f"{', '.join(missing)}: write its scene, then uncomment", scene=scene, symbols=names,
-                             guessed=claim, form=form))
+        if rc is not None and rc.claim is None and rc.no_object and guess.claim is not None:
+            out.append(guess)                 # no object of the paper's: the scene's model is the object
             continue
-        out.append(Entry(display, ident, claim, why, scene, scene_why, names, guessed=claim, form=form))
+        if rc is not None and rc.claim is None and rc.reading is not None and rc.reading.kind != "other" \
+                and not rc.why.startswith("the reader cannot read"):
+            # the definitions reading understood the display but could not settle its claim: a
+            # scene guess would be worse than the reviewer's word
+            out.append(Entry(display, ident, None, f"not settled: {rc.why}", symbols=_names_of(rc.reading, claims.words)))
+            continue
+        out.append(guess)
     return out
 
 
@@ -353,9 +445,14 @@ def _render(source: Source, entries: list[Entry], paper_id: str, title: str, dro
               f"source = {_toml_string(str(source.path))}", ""]
     active = [e for e in entries if e.claim is not None and e.id not in dropped]
     symbols: dict[str, tuple[str, str]] = {}
+    seen_names: dict[str, str] = {}
     for entry in active:
         for name, guess in entry.symbols.items():
-            symbols.setdefault(name, guess)
+            key = _canonical_key(name)
+            if key in seen_names:
+                continue                      # T_s and T_{s} are one name
+            seen_names[key] = name
+            symbols[name] = guess
     lines.append("[symbols]                            # every name the active displays use, with its assumption")
     for name, (word, why) in symbols.items():
         lines.append(f"{_toml_key(name) + ' = ' + _toml_string(word):36s} # guessed: {_comment(why)}")
@@ -369,6 +466,16 @@ def _render(source: Source, entries: list[Entry], paper_id: str, title: str, dro
     for entry in entries:
         lines += _entry_lines(entry, entry in active, dropped.get(entry.id), str(source.path))
     return "\n".join(lines).rstrip() + "\n"
+
+
+def _canonical_key(name: str) -> str:
+    from hapticproof.audit.paperfile import printed_key
+    from hapticproof.audit.reader.names import normalise_name
+
+    try:
+        return normalise_name(printed_key(name))
+    except (ValueError, LatexParseError):
+        return name
 
 
 def _shown_file(file: str, source_path: str) -> str:
@@ -386,8 +493,20 @@ def _shown_file(file: str, source_path: str) -> str:
 
 def _entry_lines(entry: Entry, active: bool, refused: str | None, source_path: str = "") -> list[str]:
     d = entry.display
-    body = [f"id = {_toml_string(entry.id)}", f"printed = {_toml_string(d.text)}"]
-    if active:
+    body = [f"id = {_toml_string(entry.id)}", f"printed = {_toml_string(entry.printed or d.text)}"]
+    if active and entry.claim in ("definition", "identity", "condition"):
+        body.append(f"{'claim = ' + _toml_string(entry.claim):36s} # guessed: {_comment(entry.why)} -- confirm")
+        for key in ("about", "property", "strength"):
+            if getattr(entry, key):
+                body.append(f"{key} = {_toml_string(getattr(entry, key))}")
+        if entry.derived:
+            body.append("derived = true                       # the paper derives it: bound as printed, not verified")
+            if entry.scene:
+                body.append(f"{'scene = ' + _toml_string(entry.scene):36s} # guessed: checked against this scene's model "
+                            f"({_comment(entry.scene_why)})")
+        if entry.assumption:
+            body.append(f"{'assumption = ' + _toml_string(entry.assumption):36s} # from the sentence")
+    elif active:
         body.append(f"{'claim = ' + _toml_string(entry.claim):36s} # guessed: {_comment(entry.why)} -- confirm")
         body.append(f"{'scene = ' + _toml_string(entry.scene):36s} # guessed: {_comment(entry.scene_why)}")
     else:
@@ -398,7 +517,7 @@ def _entry_lines(entry: Entry, active: bool, refused: str | None, source_path: s
         body.append(f"{'form = ' + _toml_string(entry.form):36s} # guessed: listed among conditions")
     if d.section is not None and d.section.id:
         body.append(f"section = {_toml_string(d.section.id)}")
-    notes = [f"{_shown_file(d.file, source_path)}:{d.line} ({d.environment})"]
+    notes = [f"{_shown_file(d.file, source_path)}:{d.line} ({'inline, in the prose before the display' if entry.printed and entry.claim == 'definition' and '.inline' in entry.id else d.environment})"]
     notes += list(d.notes)
     original = re.sub(r"\\(?:label|tag\*?)\s*\{[^{}]*\}|\\(?:nonumber|notag)(?![A-Za-z])", " ", d.original)
     if original.strip() and " ".join(original.split()) != " ".join(d.text.split()):
