@@ -284,7 +284,7 @@ MAX_EDITS = 80
 
 
 #: The edits tried first when a display has more than :data:`MAX_EDITS`: the commonest slips.
-_LIKELY = ("sign", "half", "index", "relation", "scale", "swap", "drop", "symbol")
+_LIKELY = ("sign", "half", "index", "relation", "scale", "swap", "modulus", "drop", "symbol")
 
 
 def _most_likely(mutants: list[Any]) -> list[Any]:
@@ -340,7 +340,7 @@ def _repair(state: State, finding: Finding) -> Finding:
 
 _EDITS = {"sign": "flipping the sign", "scale": "a factor 2", "drop": "dropping a term", "swap": "swapping the indices",
           "relation": "reversing the relation", "symbol": "another symbol", "index": "another index",
-          "half": "halving a term"}
+          "half": "halving a term", "modulus": "dropping a modulus"}
 
 
 def _describe_edit(mutant: Any) -> str:

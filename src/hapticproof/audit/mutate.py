@@ -120,7 +120,7 @@ OPERATORS = ("sign", "scale", "drop", "swap", "relation", "symbol")
 #: The edits a repair search tries: the operators, index slips (``K_{02}`` for ``K_{01}``: one
 #: index of a name replaced so that it names another parameter of the scene) and a lost half
 #: (``KT`` for ``KT/2``, the commonest slip of these papers).
-REPAIR_OPERATORS = OPERATORS + ("index", "half")
+REPAIR_OPERATORS = OPERATORS + ("index", "half", "modulus")
 OUTCOMES = ("killed", "equivalent", "survived", "crashed")
 #: Environment variable: ``all`` runs every mutant in the test suite, a number N samples N per paper.
 ENV_KNOB = "HAPTICPROOF_MUTANTS"
@@ -515,6 +515,11 @@ def generate(equation: Equation, paper: Paper, *, text: str | None = None, table
             if slips and sub is not None:
                 for new in _index_slips(base, sub, table):
                     add("index", name_lo, name_hi, new)
+    if slips:
+        # a modulus the derivation does not have: |g_1| -> g_1
+        for m in re.finditer(r"\\left\s*\|([^|]{1,80})\\right\s*\||\\lvert([^|]{1,80})\\rvert|(?<!\\)\|([^|]{1,80})\|", text):
+            inner = next(g for g in m.groups() if g is not None)
+            add("modulus", m.start(), m.end(), inner.strip())
     return sorted(found.values(), key=lambda m: (m.position, REPAIR_OPERATORS.index(m.operator), m.replacement))
 
 

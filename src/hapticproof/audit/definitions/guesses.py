@@ -32,8 +32,8 @@ from typing import Any
 
 import sympy as sp
 
-from hapticproof.audit.definitions.reading import (CONDITION, DEFINITION, DERIVED, IDENTITY, MALFORMED, PaperReading,
-                                                   Reading)
+from hapticproof.audit.definitions.reading import (CONDITION, DEFINITION, DERIVED, IDENTITY, MALFORMED, REDEFINED,
+                                                   PaperReading, Reading)
 
 __all__ = ["ReadClaim", "ReadClaims", "read_claims", "conventional"]
 
@@ -101,6 +101,8 @@ def _sentence(reading: Reading) -> str:
 def _claim_of(display: Any, reading: Reading, paper: PaperReading, resolve: Any) -> ReadClaim:
     said = _sentence(reading)
     base = dict(display=display, id=display.id, printed=reading.printed or display.text, reading=reading)
+    if reading.kind == REDEFINED:
+        return ReadClaim(claim="definition", why=f"defines {', '.join(reading.binds)} again: {reading.note}", **base)
     if reading.kind in (DEFINITION, DERIVED):
         names = ", ".join(n.replace("^-1", "^{-1}") for n in reading.binds)
         if reading.kind == DERIVED:

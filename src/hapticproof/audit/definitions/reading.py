@@ -43,6 +43,11 @@ DEFINITION, IDENTITY, CONDITION, OTHER, MALFORMED = "definition", "identity", "c
 DERIVED = "derived"
 #: an equation among signals (a model: ``Z_m v_m = f_h - k_f f_e``)
 MODEL = "model"
+#: a bound name defined again, differently, with no word tying it to the first definition
+REDEFINED = "redefined"
+#: words that tie a display to an earlier one: then it is an identity with it, not a new definition
+_REFERENCE = re.compile(r"\\eqref|\\ref|rewritten|restated|\bi\.e\.|\bthat\s+is\b|\brecall|\bagain\b|as\s+before|"
+                        r"equivalently|in\s+other\s+words|\bsame\b", re.I)
 
 _DERIVATION = re.compile(r"\b(?:gives?|giving|yields?|we\s+obtain|one\s+obtains|we\s+get|one\s+(?:gets|finds)|it\s+follows|"
                          r"follows\s+from|hence|thus|therefore|so\s+that|eliminating|solving|substituting|reduces?\s+to|"
@@ -110,6 +115,7 @@ class PaperReading:
         #: the index letters of families (``\\star`` in ``G_\\star``)
         self.indices: set[str] = set()
         self._last_lhs = ""
+        self._mode = "auto"
         self._table_type = SymbolTable
 
     @classmethod
@@ -144,6 +150,11 @@ class PaperReading:
             if spec.claim not in ("definition", "identity", "condition"):
                 continue
             reading.read(spec.id, spec.printed, mode=spec.claim, derived=spec.derived, stated=spec.stated)
+            if spec.claim == "definition" and reading.readings and reading.readings[-1].kind == IDENTITY:
+                # a definition claim of a bound name: the file says it is a new definition
+                last = reading.readings.pop()
+                reading.read(spec.id, spec.printed, mode="redefine", derived=spec.derived, stated=spec.stated)
+                del last
         return reading
 
     def verified(self, id: str) -> None:
@@ -186,7 +197,7 @@ class PaperReading:
         from hapticproof.audit.reader.printed import parse_printed
 
         for _ in range(60):
-            table = self._make_table()
+            table = self._make_table(text)
             try:
                 return table, parse_printed(text, table)
             except LatexParseError as err:
@@ -212,11 +223,13 @@ class PaperReading:
                 self.symbols.setdefault(canonical, sp.Symbol(sympy_name(canonical), real=True))
         raise LatexParseError("too many unknown names", text, 0)
 
-    def _make_table(self) -> Any:
+    def _make_table(self, text: str = "") -> Any:
         from hapticproof.audit.reader.names import sympy_name
 
         symbols = {"z": Z_SYM, "s": S_SYM, "\\omega": OMEGA}
         symbols.update(self.symbols)
+        if re.search(r"(?<![A-Za-z\\])e(?![A-Za-z^])", text) and not re.search(r"(?<![A-Za-z\\])e\s*\^", text):
+            symbols["e"] = sp.Symbol("e", real=True)      # "e = x_m - x_s": a name, not Euler's number
         functions = {name: sp.Function(sympy_name(name)) for name in self.functions}
         return self._table_type(symbols=symbols, functions=functions)
 
@@ -250,6 +263,7 @@ class PaperReading:
         ``mode`` is ``auto`` (classify from the display and its sentence), or the kind a paper file
         gives: ``definition`` (binds), ``identity`` or ``condition`` (binds nothing)."""
         printed = text
+        self._mode = mode
         claim = claim_of(prose, after) if prose or after else None
         if stated:
             claim = _with_stated(claim, stated)
@@ -331,6 +345,9 @@ class PaperReading:
         for relation in main:
             terms = list(relation.terms)
             target = definition_target(terms[0])
+            if target is not None and target[0] in self.bindings and relation is main[0] and len(main) == 1 \
+                    and not definitions_only and self._redefines(reading, target, terms[-1]):
+                return
             if target is None or target[0] in self.bindings or target[0] in self.formulas:
                 if definitions_only or pending or relation is not main[0]:
                     continue
@@ -343,6 +360,10 @@ class PaperReading:
                 reading.environment = self._env(reading)
                 return
             pending.append((target, terms[-1]))
+            for middle in terms[1:-1]:            # C_s(z) = C_m(z) = K + ...: each name of the chain
+                other = definition_target(middle)
+                if other is not None and other[0] not in self.bindings and other[0] != target[0]:
+                    pending.append((other, terms[-1]))
         if not pending:
             reading.kind = OTHER
             return
@@ -378,6 +399,33 @@ class PaperReading:
         if reading.derived:
             self.tentative.update(bound)
         self.assumptions.extend(reading.assumptions)
+
+    def _redefines(self, reading: Reading, target: tuple[str, str | None], expr: Any) -> bool:
+        """A bound name defined again without a word that ties it to the first definition
+        ("rewritten", "\\eqref", "i.e.", "recall"): a new definition from here on (a scaled case,
+        another section's system) when it differs from the first; bound again, and ``REDEFINED``."""
+        claim = reading.claim
+        if self._mode != "redefine" and (claim is None or _REFERENCE.search(claim.sentence)):
+            return False
+        name, variable = target
+        env = self._env(reading)
+        try:
+            value = evaluate(expr, env)
+            old = self.bindings[name].value
+            if (value - old).is_zero:
+                return False                  # the same: an identity, confirmed as a restatement
+        except (Unbound, Unsupported, ValueError, ZeroDivisionError):
+            return False
+        if variable is None and value.kind == TRANSFER:
+            variable = "z" if value.domain == "discrete" else "s"
+        previous = self.defined_at.get(name, "?")
+        self.bindings[name] = Binding(value, variable, reading.id)
+        self.defined_at[name] = reading.id
+        reading.kind = REDEFINED
+        reading.binds = (name,)
+        reading.note = f"defined again, differently from ({previous}): read as a new definition from here on"
+        reading.environment = env
+        return True
 
     def _env(self, reading: Reading) -> Environment:
         return Environment(dict(self.bindings), angles=frozenset(_ANGLES), substitutions=reading.substitutions)

@@ -25,10 +25,13 @@ from typing import Any
 
 import sympy as sp
 
-from hapticproof.audit.definitions.reading import CONDITION, DEFINITION, DERIVED, IDENTITY, MALFORMED, PaperReading, Reading
+from hapticproof.audit.definitions.reading import (CONDITION, DEFINITION, DERIVED, IDENTITY, MALFORMED, REDEFINED, PaperReading,
+                                                   Reading)
 from hapticproof.audit.definitions.values import BOUNDARY, PARAM, Environment, Unbound, Unsupported, Value, evaluate
 from hapticproof.core.errors import HapticproofError
 from hapticproof.core.evidence import Decision, Evidence, Finding, Method, Verdict
+from hapticproof.core.symbols import omega as OMEGA
+from sympy.core.function import AppliedUndef
 from hapticproof.exact.boundaryvalue import C_NAME, X_NAME
 from hapticproof.exact.rational import RationalFunction
 
@@ -64,6 +67,9 @@ def _verdict(reading: Reading, paper: PaperReading, *, about: str | None, prop: 
         if reading.error and not _syntax_error(reading.error):
             return Finding(Verdict.UNDECIDED, f"the reader cannot read the display: {what}", Evidence(Method.PARSE))
         return Finding(Verdict.MALFORMED, f"the display does not read: {what}", Evidence(Method.PARSE))
+    if reading.kind == REDEFINED:
+        return Finding(Verdict.UNDECIDED, f"{', '.join(_shown(n) for n in reading.binds)} is {reading.note}",
+                       Evidence(Method.PARSE, facts={"binds": list(reading.binds)}))
     if reading.kind == DERIVED:
         names = ", ".join(_shown(n) for n in reading.binds)
         return Finding(Verdict.UNDECIDED, f"the paper derives {names} here; the toolkit binds it as printed but cannot re-derive "
@@ -100,6 +106,14 @@ def _shown(name: str) -> str:
 def identity_finding(reading: Reading, paper: PaperReading) -> Finding:
     """Every side of the display's equations against the first, exactly."""
     env = reading.environment or Environment()
+    signals = _signals(reading, paper)
+    if signals:
+        return Finding(Verdict.CONFIRMED, f"a model equation among the signals {', '.join(sorted(signals))} "
+                       "(it defines how they are related; nothing to derive)",
+                       Evidence(Method.PARSE, facts={"signals": sorted(signals)}))
+    cases = _sign_cases([t for r in reading.main for t in r.terms])
+    if cases:
+        return _identity_by_cases(reading, paper, cases)
     values = []
     try:
         for relation in reading.main:
@@ -117,11 +131,6 @@ def identity_finding(reading: Reading, paper: PaperReading) -> Finding:
             except Unsupported as err:
                 return Finding(Verdict.UNDECIDED, f"the sides are not comparable: {err}", Evidence(Method.PARSE))
             if not diff.is_zero:
-                signals = _signals(reading, paper)
-                if signals:
-                    return Finding(Verdict.CONFIRMED, f"a model equation among the signals {', '.join(sorted(signals))} "
-                                   "(it defines how they are related; nothing to derive)",
-                                   Evidence(Method.PARSE, facts={"signals": sorted(signals)}))
                 return _differ(reading, first, other, diff)
     earlier = _earlier_definition(reading)
     if earlier:
@@ -130,34 +139,107 @@ def identity_finding(reading: Reading, paper: PaperReading) -> Finding:
                    Evidence(Method.CANONICAL_FORM, facts={"kind": values[0][0].kind}))
 
 
-_SIGNAL_BASES = ("f", "v", "x", "F", "V", "X", "u", "y", "q", "p", "tau")
+def _sign_cases(terms: list[Any]) -> list[dict[sp.Symbol, sp.Expr]]:
+    """The sign cases of the parameters a display takes the modulus of (``|g_1|``): each symbol
+    ``x`` under ``|x|`` is ``u`` or ``-u`` with ``u >= 0``; none when there is no such modulus."""
+    from itertools import product
+
+    symbols = set()
+    for t in terms:
+        if isinstance(t, sp.MatrixBase):
+            continue
+        for a in sp.sympify(t).atoms(sp.Abs):
+            if a.args[0].is_Symbol and a.args[0] != OMEGA:
+                symbols.add(a.args[0])
+    if not symbols or len(symbols) > 4:
+        return []
+    ordered = sorted(symbols, key=lambda s: s.name)
+    fresh = {x: sp.Symbol(x.name, nonnegative=True) for x in ordered}
+    return [{x: sign * fresh[x] for x, sign in zip(ordered, signs)} for signs in product((1, -1), repeat=len(ordered))]
+
+
+def _identity_by_cases(reading: Reading, paper: PaperReading, cases: list[dict[sp.Symbol, sp.Expr]]) -> Finding:
+    """An identity with moduli of parameters, decided in each sign case (the modulus is then the
+    parameter or its negative): equal in every case, or a witness in the case where it is not."""
+    import dataclasses
+
+    env = reading.environment or Environment()
+    for case in cases:
+        relations = []
+        for relation in reading.main:
+            terms = tuple(sp.sympify(t).xreplace(case) if not isinstance(t, sp.MatrixBase) else t for t in relation.terms)
+            relations.append(dataclasses.replace(relation, terms=terms))
+        try:
+            values = [[evaluate(t, env) for t in r.terms] for r in relations]
+        except (Unbound, Unsupported, ZeroDivisionError, ValueError) as err:
+            return Finding(Verdict.UNDECIDED, f"the display is outside the exact algebra: {err}", Evidence(Method.PARSE))
+        for row in values:
+            for other in row[1:]:
+                diff = row[0] - other
+                if diff.is_zero:
+                    continue
+                shown = ", ".join(f"{x} {'>= 0' if v.could_extract_minus_sign() is False else '<= 0'}" for x, v in case.items())
+                witness = _witness(diff)
+                if witness is None:
+                    return Finding(Verdict.UNDECIDED, f"the sides differ where {shown}, but no point was found",
+                                   Evidence(Method.CANONICAL_FORM))
+                difference = witness.pop("difference")
+                # the witness in the paper's own names: u is |x|, the case's sign gives x
+                point = {}
+                for k, v in witness.items():
+                    x = next((x for x in case if x.name == k), None)
+                    point[k] = str(-sp.Rational(v)) if x is not None and case[x].could_extract_minus_sign() else v
+                return Finding(Verdict.WRONG, f"the sides differ where {shown}: at {_point_text(point)} the difference is "
+                               f"{difference}", Evidence(Method.COUNTEREXAMPLE, witness=point, facts={"case": shown}))
+    return Finding(Verdict.CONFIRMED, f"both sides are equal identically in each sign case of "
+                   f"{', '.join(sorted({x.name for c in cases for x in c}))}", Evidence(Method.CANONICAL_FORM))
+
+
+_SIGNAL_BASES = ("f", "v", "x", "F", "V", "X", "u", "y", "q", "p", "tau", "e", "E")
+_DECORATED = ("dot", "ddot", "tilde", "hat")
 
 
 def _signals(reading: Reading, paper: PaperReading) -> set[str]:
-    """The signals of a model equation: at least two names, in a signal's letters (``f_h``,
-    ``v_m``, ``x``), that no definition of the paper binds or uses, each term carrying one."""
+    r"""The signals of a model equation (``f_h - f_m = m_m \ddot{x}_m + b_m \dot{x}_m``,
+    ``Z_m v_m = f_h - k_f f_e``, ``s X_m(s) = ...``): at least two names that are a signal's --
+    a signal's letter (``f``, ``v``, ``x``, ``F``, ...), a time derivative or estimate
+    (``\dot{x}``, ``\tilde{F}``), or a transform no definition binds (``X_m(s)``) -- that no
+    definition of the paper binds or uses, and every term of the equation carrying one."""
     import re
 
-    names = set()
-    for relation in reading.main:
-        for term in relation.terms:
-            if isinstance(term, sp.MatrixBase):
-                return set()
-            names |= {s.name for s in sp.sympify(term).free_symbols}
     used = set(paper.bindings) | {n for b in paper.bindings.values() if not _renames(b.value) for n in b.value.names}
-    signals = {n for n in names if n not in used and re.match(r"(?:" + "|".join(_SIGNAL_BASES) + r")(?:_|$)", n)}
+    pattern = re.compile(r"(?:\\(?:" + "|".join(_DECORATED) + r")\{)?(?:" + "|".join(_SIGNAL_BASES) + r")(?:\}|_|$|\^)")
+
+    def is_signal(name: str) -> bool:
+        return name not in used and bool(pattern.match(name))
+
+    diffs = []
+    signals: set[str] = set()
+    for relation in reading.main:
+        terms = [sp.sympify(t) for t in relation.terms]
+        if any(isinstance(t, sp.MatrixBase) for t in terms):
+            return set()
+        replaced = []
+        for t in terms:
+            def swap(e: Any) -> Any:
+                name = e.func.__name__
+                if name in paper.bindings:
+                    return e
+                return sp.Symbol(f"{name}(" + ",".join(map(str, e.args)) + ")", real=True)
+            t = t.replace(lambda e: isinstance(e, AppliedUndef), swap)
+            replaced.append(t)
+        for t in replaced:
+            signals |= {s.name for s in t.free_symbols if is_signal(s.name.split("(")[0]) or (
+                "(" in s.name and s.name.split("(")[0] not in paper.bindings)}
+        for a, b in zip(replaced, replaced[1:]):
+            diffs.append(sp.expand(a - b))
     if len(signals) < 2:
         return set()
-    sig = [sp.Symbol(n, real=True) for n in signals]
-    for relation in reading.main:
-        for term in relation.terms:
-            term = sp.sympify(term)
-            plain = term.replace(lambda e: isinstance(e, sp.core.function.AppliedUndef), lambda e: sp.Symbol("__applied", real=True) * e.args[0])
-            plain = plain.xreplace({s: sp.Symbol(s.name, real=True) for s in plain.free_symbols})
-            for t in sp.Add.make_args(sp.expand(plain)):
-                if sum(sp.degree(t, s) for s in sig if t.has(s)) != 1:
-                    return set()
-    return signals
+    for diff in diffs:
+        for term in sp.Add.make_args(diff):
+            if term != 0 and not ({s.name for s in term.free_symbols} & signals):
+                return set()
+    return {n.split("(")[0] for n in signals}
 
 
 def _renames(value: Value) -> bool:
@@ -430,11 +512,15 @@ def condition_finding(reading: Reading, paper: PaperReading, *, about: str | Non
         return Finding(Verdict.UNDECIDED, f"{_shown(name)} is a value on the boundary, not a transfer function", Evidence(Method.PARSE))
     matrix = value.matrix()
     signs, relations = _signs(reading, paper)
+    what = f"the printed condition for {_shown(name)} {prop.replace('-', ' ')}"
+    cases = _sign_cases([printed])
+    if cases:
+        return _condition_by_cases(printed, matrix, prop, strength, what, signs, relations, cases,
+                                   {"object": _shown(name), "object_from": how, "property": prop, "strength": strength})
     table = _symbol_map({s.name for s in printed.free_symbols} | set(matrix.parameters), signs)
     printed = _retyped(printed, table)
     relations = [_retyped(r, table) for r in relations if {s.name for s in r.free_symbols} <= set(table)]
     exact = exact_condition(matrix, prop, table)
-    what = f"the printed condition for {_shown(name)} {prop.replace('-', ' ')}"
     facts = {"object": _shown(name), "object_from": how, "property": prop, "strength": strength, "exact_method": exact.method}
     f = _compared(printed, exact, strength, what, relations, facts)
     if f.verdict != Verdict.WRONG:
@@ -452,6 +538,47 @@ def condition_finding(reading: Reading, paper: PaperReading, *, about: str | Non
                        Evidence(f.evidence.method, witness=f.evidence.witness, facts={**facts, "region": inside}),
                        corrected=None)
     return f
+
+
+def _condition_by_cases(printed: Any, matrix: Any, prop: str, strength: str, what: str, signs: dict[str, dict[str, bool]],
+                        relations: list[Any], cases: list[dict[sp.Symbol, sp.Expr]], facts: dict[str, Any]) -> Finding:
+    """A condition with moduli of parameters (``\\alpha|g_0|``): decided in each sign case, where
+    ``x <= 0`` is read as ``x -> -x`` with ``x >= 0`` in the condition and the object alike; a
+    witness is told in the paper's signs."""
+    from hapticproof.analysis.immittance import exact_condition
+    from hapticproof.exact.rational import RationalFunction
+
+    found = []
+    for case in cases:
+        flipped = {x.name for x, v in case.items() if v.could_extract_minus_sign()}
+        case_signs = {k: dict(v) for k, v in signs.items()}
+        for x in case:
+            case_signs.setdefault(x.name, {})
+            if not case_signs[x.name].get("positive"):
+                case_signs[x.name]["nonnegative"] = True
+        table = _symbol_map({s.name for s in printed.free_symbols} | set(matrix.parameters), case_signs)
+        swap = {x: table[x.name] * (-1 if x.name in flipped else 1) for x in case}
+        case_printed = _retyped(printed.xreplace({x: sp.Symbol(x.name, real=True) for x in case}).xreplace(
+            {sp.Symbol(x.name, real=True): swap[x] for x in case}), table)
+        case_matrix = matrix.subs({n: -RationalFunction.variable(n) for n in flipped if n in matrix.parameters})
+        case_relations = [_retyped(r.xreplace({sp.Symbol(n, real=True): -sp.Symbol(n, real=True) for n in flipped}), table)
+                          for r in relations if {s.name for s in r.free_symbols} <= set(table)]
+        exact = exact_condition(case_matrix, prop, table)
+        f = _compared(case_printed, exact, strength, what, case_relations, {**facts, "exact_method": exact.method})
+        if f.verdict == Verdict.WRONG:
+            witness = {k: (str(-sp.Rational(v)) if k in flipped else v) for k, v in (f.evidence.witness or {}).items()}
+            shown = ", ".join(f"{n} <= 0" for n in sorted(flipped)) or "every modulus of a non-negative parameter"
+            return Finding(Verdict.WRONG, f"{f.detail} (in the case {shown})", Evidence(f.evidence.method, witness=witness,
+                                                                                       facts=dict(f.evidence.facts)))
+        found.append(f.verdict)
+    names = ", ".join(sorted({x.name for c in cases for x in c}))
+    if all(v == Verdict.CONFIRMED for v in found):
+        return Finding(Verdict.CONFIRMED, f"{what}: right in every sign case of {names}", Evidence(Method.ENDPOINT_ANALYSIS, facts=facts))
+    if all(v in (Verdict.CONFIRMED, Verdict.CONSERVATIVE) for v in found):
+        return Finding(Verdict.CONSERVATIVE, f"{what}: sufficient in every sign case of {names}, not necessary in some",
+                       Evidence(Method.ENDPOINT_ANALYSIS, facts=facts))
+    return Finding(Verdict.UNDECIDED, f"{what}: not settled in every sign case of {names} ({', '.join(v.value for v in found)})",
+                   Evidence(Method.INSTANCES, facts=facts))
 
 
 def _compared(printed: Any, exact: Any, strength: str, what: str, relations: list[Any], facts: dict[str, Any]) -> Finding:
@@ -548,7 +675,8 @@ def _decided(printed: Any, exact: Any, strength: str, what: str, relations: list
     forms = [sp.sympify(p.form).subs(change, simultaneous=True) for p in exact.parts if p.form is not None]
     pole_parts = [p.condition for p in exact.parts if p.form is None]
     poles_ok = all(c is sp.true or (c is not None and c is not sp.false and all(
-        _holds_in_range(link, ranges) for link in (c.args if isinstance(c, sp.And) else [c]))) for c in pole_parts)
+        _holds_in_range(link, ranges) or _stated(link, relations) for link in (c.args if isinstance(c, sp.And) else [c])))
+        for c in pole_parts)
     lo, hi = (-1, 1) if exact.matrix.domain == "discrete" else (0, None)
     printed = printed.subs({x: e for x, e in change.items()}, simultaneous=True) if change else printed
     order = sorted(printed.free_symbols, key=lambda s: (s.name not in ("b", "c_d"), s.name))
@@ -581,6 +709,20 @@ def _decided(printed: Any, exact: Any, strength: str, what: str, relations: list
     return Finding(Verdict.UNDECIDED, f"{what}: no closed form of the exact condition; the exact decision agrees at {count} "
                    f"sample points{note}",
                    Evidence(Method.INSTANCES, instances=count, witness=stronger[0] if note else None, facts=facts))
+
+
+def _stated(link: Any, relations: list[Any]) -> bool:
+    """A pole condition that a stated relation implies (``g_0 + g_1 >= 0`` for the residue ``h(g_0 + g_1)``)."""
+    from hapticproof.audit.definitions.proofs import implies
+
+    target = _nonnegative_form(link) if isinstance(link, sp.core.relational.Relational) else None
+    if target is None:
+        return False
+    for r in relations:
+        form = _nonnegative_form(r) if isinstance(r, sp.core.relational.Relational) else None
+        if form is not None and implies(form, target):
+            return True
+    return False
 
 
 def _holds_in_range(link: Any, ranges: Mapping[sp.Symbol, tuple[Any, Any]]) -> bool:

@@ -345,6 +345,8 @@ def _names_of(reading: Any, words: dict[str, str]) -> dict[str, tuple[str, str]]
 
     out = {}
     for printed, word in words.items():
+        if re.search(r"_\{[^}]*[-+,*/][^}]*\}", printed):
+            continue                          # z_{3i-2,3j-2}: an index expression, not a name of the paper
         if sympy_name(printed) in used:
             if conventional(printed, word):
                 why = f"{word} by the convention of its letter (the paper states no sign)"

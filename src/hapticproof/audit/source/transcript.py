@@ -213,6 +213,7 @@ class TextReader(Reader):
             body = list(self.expander.run(tokenize(text, file, self.files, latex=False, base=region.inner,
                                                     end=region.inner_end), file))
             before = len(self.displays)
+            self.last_prose = " ".join(prose.split())[-4000:]     # the prose with its inline $...$ maths
             self.emit(body, region.env, (file, region.inner), (file, region.inner_end),
                       " ".join(prose.split())[-300:], region.notes)
             if region.number and len(self.displays) > before and self.displays[-1].number is None:
