@@ -28,7 +28,8 @@ from typing import Any
 import sympy as sp
 from sympy.core.function import AppliedUndef
 
-from hapticproof.audit.definitions.prose import ProseClaim, claim_of, inline_math
+from hapticproof.audit.definitions.ports import SignalSystem
+from hapticproof.audit.definitions.prose import ProseClaim, claim_of, inline_math, last_sentence
 from hapticproof.audit.definitions.values import (BOUNDARY, PARAM, TRANSFER, Binding, Environment, Unbound, Unsupported,
                                                   Value, evaluate)
 from hapticproof.core.errors import HapticproofError, LatexParseError
@@ -91,6 +92,10 @@ class Reading:
     stated: str = ""
     #: printed names the display uses beyond its statement's (a family's ``G_\\star^{-1}`` and ``\\star``)
     extra_names: tuple[str, ...] = ()
+    #: what the paper's model or port relations say the display's left-hand name is (an identity
+    #: then compares the printed right-hand side with it), and how it was found
+    expected: Any = None
+    expected_how: str = ""
 
 
 class PaperReading:
@@ -114,6 +119,8 @@ class PaperReading:
         self.tentative: set[str] = set()
         #: the index letters of families (``\\star`` in ``G_\\star``)
         self.indices: set[str] = set()
+        #: signals, the model's relations, port descriptions and terminations
+        self.system = SignalSystem()
         self._last_lhs = ""
         self._mode = "auto"
         self._table_type = SymbolTable
@@ -288,7 +295,7 @@ class PaperReading:
                           derived=derived or bool(mode == "auto" and claim is not None
                                                   and _DERIVATION.search(_plain_sentence(claim.sentence))))
         if not relations:
-            reading.kind = MALFORMED if claim is not None and claim.property else OTHER
+            reading.kind = MALFORMED if (claim is not None and claim.property) or mode == "condition" else OTHER
             reading.note = "an expression with no relation"
             self.readings.append(reading)
             return reading
@@ -300,9 +307,13 @@ class PaperReading:
         if lhs and not definitions_only:
             self._last_lhs = lhs
         equations = all(op == "=" for r in main for op in r.ops)
-        if mode in ("identity", "condition"):
+        if equations and mode != "condition" and self._signal_equations(reading, main, prose or "", definitions_only):
+            pass                              # ports, a model or a termination: relations among signals
+        elif mode in ("identity", "condition"):
             reading.kind = IDENTITY if mode == "identity" else CONDITION
             reading.environment = self._env(reading)
+            if mode == "identity":
+                self._derivable(reading, main)
         elif equations:
             self._equations(reading, main, definitions_only)
         elif definitions_only or mode == "definition":
@@ -353,11 +364,14 @@ class PaperReading:
                     continue
                 reading.kind = IDENTITY
                 reading.environment = self._env(reading)
+                self._derivable(reading, main)
                 return
             if target[0] in self._parameters_used():
                 reading.kind = OTHER if definitions_only else IDENTITY
                 reading.note = f"{target[0]} is a parameter of an earlier definition: a value for it, not a definition"
                 reading.environment = self._env(reading)
+                return
+            if not definitions_only and len(main) == 1 and len(terms) == 2 and self._determined(reading, target, terms):
                 return
             pending.append((target, terms[-1]))
             for middle in terms[1:-1]:            # C_s(z) = C_m(z) = K + ...: each name of the chain
@@ -399,6 +413,69 @@ class PaperReading:
         if reading.derived:
             self.tentative.update(bound)
         self.assumptions.extend(reading.assumptions)
+
+    # -- signals, ports and what the model determines ------------------------------------------------
+
+    def _signal_equations(self, reading: Reading, main: list[Any], prose: str, definitions_only: bool) -> bool:
+        """Relations among signals: port descriptions (``[f_1; f_2] = \\mathbf{Z}(s)[v_1; v_2]``),
+        a model (``Z_m v_m = f_h - k_f f_e``), port variables (``f_1 = f_h``) and terminations
+        (``f_2 = -Z_e v_2``, kept apart): registered in :attr:`system`, the reading ``MODEL``."""
+        from hapticproof.audit.definitions.signals import port_relation, signal_rows
+
+        env = self._env(reading)
+        ports = [port_relation(r) for r in main]
+        if all(p is not None for p in ports) and ports:
+            for p in ports:
+                self.system.add_port(*p, source=reading.id)
+                self.functions.add(_printed_of(p[0], self))
+            reading.kind, reading.environment = MODEL, env
+            reading.note = "defines " + ", ".join(f"{_public(p[0])} by {list(p[1])} = {_public(p[0])} {list(p[2])}" for p in ports)
+            return True
+        rows = []
+        for relation in main:
+            row = signal_rows(relation, env, self)
+            if row is None:
+                return False
+            rows.append(row)
+        terminal = bool(re.search(r"terminat", last_sentence(prose), re.I))
+        for row, termination in rows:
+            self.system.add_relation(row, termination=termination or terminal)
+        reading.kind, reading.environment = MODEL, env
+        reading.note = "a termination of a port" if all(t or terminal for _, t in rows) else "a model equation among signals"
+        return True
+
+    def _derivable(self, reading: Reading, main: list[Any]) -> None:
+        """What the paper's own model or port relations say the left-hand name is (a port matrix,
+        a generic entry of one): ``reading.expected``, compared by the identity's verdict."""
+        from hapticproof.audit.definitions.signals import expected_value
+
+        if len(main) != 1 or len(main[0].terms) != 2:
+            return
+        found = expected_value(main[0].terms[0], main[0].terms[1], self, self._env(reading))
+        if found is not None:
+            reading.expected, reading.expected_how = found
+
+    def _determined(self, reading: Reading, target: tuple[str, str | None], terms: list[Any]) -> bool:
+        """A new name the paper's model or port relations determine (a port matrix "eliminating
+        variables gives", a generic entry of a conversion, the transmitted impedance): an identity
+        with the determined value, which is bound (verified) whatever the display prints."""
+        from hapticproof.audit.definitions.signals import expected_value
+
+        found = expected_value(terms[0], terms[1], self, self._env(reading))
+        if found is None:
+            return False
+        value, how = found
+        name, variable = target
+        if variable is None and value.kind == TRANSFER:
+            variable = "z" if value.domain == "discrete" else "s"
+        reading.kind = IDENTITY
+        reading.expected, reading.expected_how = value, how
+        reading.environment = self._env(reading)
+        self.bindings[name] = Binding(value, variable, reading.id)
+        self.defined_at[name] = reading.id
+        self.order.append(name)
+        reading.binds = (name,)
+        return True
 
     def _redefines(self, reading: Reading, target: tuple[str, str | None], expr: Any) -> bool:
         """A bound name defined again without a word that ties it to the first definition
@@ -528,6 +605,14 @@ class PaperReading:
 
 
 # ---------------------------------------------------------------------------------------------
+
+
+def _printed_of(name: str, paper: PaperReading) -> str:
+    """The printed (canonical) name of a SymPy name the paper knows."""
+    for printed in list(paper.symbols) + list(paper.functions):
+        if _sympy_name(printed) == name:
+            return printed
+    return name
 
 
 def _sympy_name(printed: str) -> str:

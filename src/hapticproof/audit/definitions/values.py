@@ -369,6 +369,10 @@ class _Evaluator:
             return self.value(e.args[0]).determinant()
         if isinstance(e, sp.Transpose):
             return self.value(e.args[0]).transpose()
+        if isinstance(e, sp.Subs):
+            return self._at(self.value(e.args[0]), e.args[1], e.args[2], limit=False)
+        if type(e).__name__ == "PrintedLimit":
+            return self._at(self.value(e.args[0]), (e.args[1],), (e.args[2],), limit=True)
         raise Unsupported(f"{type(e).__name__} is not in the exact algebra")
 
     def _domain_of(self, e: Any) -> str | None:
@@ -441,6 +445,29 @@ class _Evaluator:
 
     def _power_abs(self, base: Any, k: int) -> Value:
         raise Unsupported("an odd power of a modulus |.|")
+
+    def _at(self, value: Value, variables: Any, targets: Any, limit: bool) -> Value:
+        """``value|_{x = a}`` and ``lim_{x -> a} value`` for a parameter ``x`` (a rational function of
+        it: the limit at infinity from the leading coefficients)."""
+        for variable, target in zip(variables, targets):
+            if not isinstance(variable, sp.Symbol) or variable.name in (OMEGA.name,) or variable in (Z_SYM, S_SYM):
+                raise Unsupported(f"a limit or evaluation in {variable}")
+            name = variable.name
+            if target in (sp.oo, -sp.oo):
+                if not limit:
+                    raise Unsupported("an evaluation at infinity")
+                value = Value(value.kind, tuple(tuple(_at_infinity(e, name, target == sp.oo) for e in row) for row in value.rows),
+                              value.domain)
+                continue
+            point = self.value(sp.sympify(target))
+            if point.kind != PARAM:
+                raise Unsupported("a limit at a frequency-dependent point")
+            image = point.rows[0][0]
+            try:
+                value = Value(value.kind, tuple(tuple(_substituted(e, name, image) for e in row) for row in value.rows), value.domain)
+            except ZeroDivisionError:
+                raise Unsupported(f"{name} = {target} is a pole (a limit there is not a substitution)") from None
+        return value
 
     # -- frequency ---------------------------------------------------------------------------------
 
@@ -522,6 +549,25 @@ class _Evaluator:
             image = a.rows[0][0]
             return Value(PARAM, tuple(tuple(f.subs({internal: image}) for f in row) for row in value.rows))
         raise Unsupported(f"{e.func.__name__} applied to {arg}")
+
+
+def _substituted(e: Any, name: str, image: RationalFunction) -> Any:
+    if isinstance(e, BoundaryValue):
+        return BoundaryValue(*(p.subs({name: image}) for p in (e.re0, e.re1, e.im0, e.im1)), e.domain)
+    return e.subs({name: image})
+
+
+def _at_infinity(e: Any, name: str, positive: bool) -> Any:
+    """The limit of a rational function as the parameter ``name`` grows without bound (a finite
+    limit only: the numerator's degree in ``name`` at most the denominator's)."""
+    if isinstance(e, BoundaryValue):
+        return BoundaryValue(*(_at_infinity(p, name, positive) for p in (e.re0, e.re1, e.im0, e.im1)), e.domain)
+    num, den = e.coefficients(name)
+    if len(num) > len(den):
+        raise Unsupported(f"the limit as {name} grows is infinite")
+    if len(num) < len(den):
+        return RationalFunction.constant(0)
+    return num[-1] / den[-1]
 
 
 def _compose_boundary(f: RationalFunction, name: str, point: BoundaryValue) -> BoundaryValue:

@@ -25,8 +25,8 @@ from typing import Any
 
 import sympy as sp
 
-from hapticproof.audit.definitions.reading import (CONDITION, DEFINITION, DERIVED, IDENTITY, MALFORMED, REDEFINED, PaperReading,
-                                                   Reading)
+from hapticproof.audit.definitions.reading import (CONDITION, DEFINITION, DERIVED, IDENTITY, MALFORMED, MODEL, REDEFINED,
+                                                   PaperReading, Reading)
 from hapticproof.audit.definitions.values import BOUNDARY, PARAM, Environment, Unbound, Unsupported, Value, evaluate
 from hapticproof.core.errors import HapticproofError
 from hapticproof.core.evidence import Decision, Evidence, Finding, Method, Verdict
@@ -79,6 +79,11 @@ def _verdict(reading: Reading, paper: PaperReading, *, about: str | None, prop: 
         note = f" ({reading.note})" if reading.note else ""
         return Finding(Verdict.CONFIRMED, f"a definition: it binds {names}{note}",
                        Evidence(Method.CANONICAL_FORM, facts={"binds": list(reading.binds)}))
+    if reading.kind == MODEL:
+        return Finding(Verdict.CONFIRMED, f"{reading.note}: it defines how the signals are related (nothing to derive)",
+                       Evidence(Method.PARSE))
+    if reading.kind == IDENTITY and reading.expected is not None:
+        return _against_expected(reading)
     if reading.kind == IDENTITY:
         return identity_finding(reading, paper)
     if reading.kind == CONDITION:
@@ -131,12 +136,60 @@ def identity_finding(reading: Reading, paper: PaperReading) -> Finding:
             except Unsupported as err:
                 return Finding(Verdict.UNDECIDED, f"the sides are not comparable: {err}", Evidence(Method.PARSE))
             if not diff.is_zero:
+                general = _instantiated(first, other, paper)
+                if general is not None:
+                    first, other, diff = general
+                    if diff.is_zero:
+                        return Finding(Verdict.CONFIRMED, "both sides are equal identically once the general two-port's "
+                                       "entries are those the model gives", Evidence(Method.CANONICAL_FORM))
                 return _differ(reading, first, other, diff)
     earlier = _earlier_definition(reading)
     if earlier:
         return Finding(Verdict.CONFIRMED, f"the display restates {earlier}: equal identically", Evidence(Method.CANONICAL_FORM))
     return Finding(Verdict.CONFIRMED, "both sides are equal identically (the difference cancels exactly)",
                    Evidence(Method.CANONICAL_FORM, facts={"kind": values[0][0].kind}))
+
+
+def _instantiated(first: Value, other: Value, paper: PaperReading) -> tuple[Value, Value, Value] | None:
+    """One side written for a general two-port (``z_{ij}``), the other for the section's: the
+    general side with the entries the model determines."""
+    from hapticproof.audit.definitions.signals import generic_names, instantiate
+
+    a, b = generic_names(first, paper), generic_names(other, paper)
+    if bool(a) == bool(b):
+        return None
+    try:
+        if a:
+            first = instantiate(first, paper)
+        else:
+            other = instantiate(other, paper)
+        if first is None or other is None:
+            return None
+        return first, other, first - other
+    except (Unsupported, ZeroDivisionError, ValueError):
+        return None
+
+
+def _against_expected(reading: Reading) -> Finding:
+    """The printed right-hand side against what the paper's model or port relations give."""
+    env = reading.environment or Environment()
+    try:
+        printed = evaluate(reading.main[0].terms[1], env)
+        diff = printed - reading.expected
+    except Unbound as err:
+        return Finding(Verdict.UNDECIDED, f"{err} (names: {', '.join(sorted(err.names))})", Evidence(Method.PARSE))
+    except (Unsupported, ZeroDivisionError, ValueError) as err:
+        return Finding(Verdict.UNDECIDED, f"the display is outside the exact algebra: {err}", Evidence(Method.PARSE))
+    if diff.is_zero:
+        return Finding(Verdict.CONFIRMED, f"the printed display is {reading.expected_how}: equal identically",
+                       Evidence(Method.CANONICAL_FORM))
+    witness = _witness(diff)
+    if witness is None:
+        return Finding(Verdict.UNDECIDED, f"the printed display differs from {reading.expected_how}, but no point was found",
+                       Evidence(Method.CANONICAL_FORM))
+    difference = witness.pop("difference")
+    return Finding(Verdict.WRONG, f"the printed display differs from {reading.expected_how}: at {_point_text(witness)} the "
+                   f"difference is {difference}", Evidence(Method.COUNTEREXAMPLE, witness=witness))
 
 
 def _sign_cases(terms: list[Any]) -> list[dict[sp.Symbol, sp.Expr]]:

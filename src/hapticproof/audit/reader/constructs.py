@@ -150,7 +150,15 @@ class ConstructRules:
             target = self.parse_sum()
         if not isinstance(variable, sp.Symbol):
             raise self.error("the evaluation bar needs a symbol before '='", script.op)
-        return self.combine(lambda: sp.sympify(value).subs(variable, target), script.op, "an evaluation")
+
+        def evaluated() -> Any:
+            v = sp.sympify(value)
+            if variable in v.free_symbols or not v.free_symbols:
+                return v.subs(variable, target)
+            # Z_t|_{Z_e = 0}: a name whose value depends on Z_e only through its definition
+            return sp.Subs(v, variable, target)
+
+        return self.combine(evaluated, script.op, "an evaluation")
 
     # -- operators --------------------------------------------------------------------------------
     def parse_fraction(self) -> Any:

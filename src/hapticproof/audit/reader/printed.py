@@ -88,6 +88,8 @@ hapticproof.core.errors.LatexParseError: relation symbol '=' inside the argument
 
 from __future__ import annotations
 
+import re
+
 from collections.abc import Iterator
 from dataclasses import replace
 from typing import Any
@@ -294,9 +296,19 @@ def parse_printed(text: str, table: SymbolTable) -> Statement:
         raise LimitError("printed display: nested too deeply") from None
 
 
+_ROW_SPACING = re.compile(r"(?<=\\\\)\s*\[\s*-?[\d.]+\s*(?:pt|em|ex|mm|cm|in|bp|mu|pc|sp|dd)\s*\]")
+
+
+def _without_row_spacing(text: str) -> str:
+    r"""``\\[2pt]`` is a row break with extra space: the ``[2pt]`` is blanked (same length, so
+    positions in the text stay right)."""
+    return _ROW_SPACING.sub(lambda m: " " * len(m.group(0)), text)
+
+
 def _parse_printed(text: str, table: SymbolTable) -> Statement:
     # bounded before the recursive parser starts: nesting, and (in the lexer and the grammar)
     # the size of numbers and exponents
+    text = _without_row_spacing(text)
     check_depth(text, "printed display")
     lo, hi = strip_math_delimiters(text)
     toks = demote_separators(tokenize(text, lo, hi))
