@@ -44,6 +44,7 @@ from typing import Any
 import flint
 import sympy as sp
 
+from hapticproof.core.naming import DEFAULT
 from hapticproof.core.notation import shorten_numbers
 from hapticproof.core.errors import SceneError
 from hapticproof.core.evidence import Decision, Evidence, Method, Outcome, to_jsonable
@@ -82,6 +83,8 @@ class DelayMargin:
     failing: Outcome | None = None
     proof: dict = field(default_factory=dict)
     seconds: float = 0.0
+    #: the scene's names (:class:`~hapticproof.core.naming.Naming`) the texts speak
+    names: Any = field(default=DEFAULT, repr=False, compare=False)
 
     @property
     def unbounded(self) -> bool:
@@ -111,9 +114,14 @@ class DelayMargin:
             head = "delay margin: none (not passive even without delay)"
         else:
             t = self.time_margin()
-            head = f"delay margin: N = {self.margin}" + (f" (t_d <= {t})" if t is not None else "") + \
+            head = f"delay margin: {self.names.helper('margin')} = {self.margin}" + (f" (t_d <= {t})" if t is not None else "") + \
                 f": passive for every n <= {self.margin}, not at n = {self.margin + 1}"
-        lines = [head, f"  how: {self.reason}" if self.decision == Decision.PROVED else ""]
+        f = _formula_names(self.names)
+        renamed = [f"{f['a']} = {f['b']} - z_a" if f["a"] != "a" else "", f"{f['R']} = Res(F, 1)" if f["R"] != "R" else "",
+                   f"{f['F_0']} = F - {f['R']}/(z - 1)" if f["F_0"] != "F_0" else ""]
+        defined = ", ".join(d for d in renamed if d)      # the proof's names that are not the papers'
+        lines = [head, f"  how: {self.reason}" + (f" ({defined})" if defined and self.proof else "")
+                 if self.decision == Decision.PROVED else ""]
         if self.failing is not None:
             lines.append(f"  at n = {self.margin + 1 if self.margin is not None else '?'}: {_short(self.failing.reason)}")
         return "\n".join(line for line in lines if line)
@@ -209,12 +217,24 @@ def _bound_route(ns: Any) -> dict[str, Any] | None:
     return {"a": a, "R": R, "M0": M0, "F0_1": F0_at_1, "certificate": cert}
 
 
-def _decide_single(ns: Any, n: int) -> Outcome:
+def _decide_single(ns: Any, n: int, names: Any = DEFAULT) -> Outcome:
     """The whole decision at delay ``n`` (:func:`hapticproof.analysis.fastpath.decide`, the numeric
-    route of :func:`hapticproof.analysis.positivereal.positive_real`)."""
+    route of :func:`hapticproof.analysis.positivereal.positive_real`), its reason in the scene's
+    naming (numbers and the toolkit's words only)."""
     from hapticproof.analysis.fastpath import decide
 
-    return decide(replace(ns, delay=n), minimum=False)
+    out = decide(replace(ns, delay=n), minimum=False)
+    if names.is_default:
+        return out
+    return Outcome(out.decision, out.evidence, names.words(out.reason), minimiser=out.minimiser, minimum=out.minimum)
+
+
+def _formula_names(names: Any) -> dict[str, str]:
+    """The toolkit's symbols of the bound's proof in the scene's naming: ``a = b - z_a``, ``R``,
+    ``F_0``, ``c``, ``w``, the period, ``M``, ``lambda``."""
+    return {"a": names.helper("excess"), "b": names.role("device_damping", "b"), "R": names.helper("residue"),
+            "F_0": names.helper("rest"), "c": names.helper("cos"), "w": names.w, "T": names.period,
+            "M": names.helper("matrix"), "lambda": names.helper("eigenvalue")}
 
 
 #: A delay-margin search stops after this many seconds unless told otherwise; it then ends
@@ -242,14 +262,14 @@ def delay_margin(scene: Any, max_delay: int = 2000, *, deadline: float | None = 
     model = scene_model(scene)
     clock = _Clock(start, deadline, progress)
     if isinstance(model, MultiUserScene):
-        return _multi_margin(model, max_delay, clock)
+        return replace(_multi_margin(model, max_delay, clock), names=model.naming())
     if not isinstance(model, SingleUserScene):
         raise SceneError("the delay margin applies to single- and multi-user scenes (the teleoperator bound (32) "
                          "has no delay)")
     free = model.parameters - ({model.delay} if model.delay.is_Symbol else set())
     if free:
         raise SceneError(f"the delay margin needs numbers for {', '.join(sorted(map(str, free)))}")
-    return _single_margin(_numeric(model), max_delay, clock)
+    return _single_margin(_numeric(model), max_delay, clock, model.naming())
 
 
 @dataclass
@@ -275,18 +295,24 @@ class _Clock:
         return time.perf_counter() - self.start
 
 
-def _single_margin(ns: Any, max_delay: int, clock: _Clock) -> DelayMargin:
+def _single_margin(ns: Any, max_delay: int, clock: _Clock, names: Any = DEFAULT) -> DelayMargin:
+    return replace(_single_margin_of(ns, max_delay, clock, names), names=names)
+
+
+def _single_margin_of(ns: Any, max_delay: int, clock: _Clock, names: Any) -> DelayMargin:
     T = _rational(ns.T)
     route = _bound_route(ns)
     decided: list[int] = []
-    decide = lambda n: _decide_single(ns, n)  # noqa: E731
+    decide = lambda n: _decide_single(ns, n, names)  # noqa: E731
+    f = _formula_names(names)
     if route is None:
-        return _scan(decide, 0, None, max_delay, T, "exact", clock, {}, None)
+        return _scan(decide, 0, None, max_delay, T, "exact", clock, {}, None, names=names)
     a, R, M0, F01 = route["a"], route["R"], route["M0"], route["F0_1"]
-    proof = {"a = b - z_a": to_rational(a), "R = Res(F, 1)": to_rational(R), "M_0 >= max|F_0|": to_rational(M0),
-             "F_0(1)": to_rational(F01)}
+    proof = {f"{f['a']} = {f['b']} - z_a": to_rational(a), f"{f['R']} = Res(F, 1)": to_rational(R),
+             f"M_0 >= max|{f['F_0']}|": to_rational(M0), f"{f['F_0']}(1)": to_rational(F01)}
     if route["certificate"] is not None:
-        proof["M_0 certificate"] = route["certificate"].to_json()
+        cert = route["certificate"]
+        proof["M_0 certificate"] = {**cert.to_json(), "reason": names.words(cert.reason)}
     if R < 0:
         out = decide(0)
         return DelayMargin(Decision.PROVED, -1, T, "exact", "the residue at z = 1 is negative for every delay",
@@ -295,9 +321,9 @@ def _single_margin(ns: Any, max_delay: int, clock: _Clock) -> DelayMargin:
         if a >= M0:
             first = decide(0)
             if first.decision == Decision.PROVED:
-                return DelayMargin(Decision.PROVED, None, T, "bound", "Re G^-1 >= a - max|F| >= 0 for every n (no "
-                                   "pole on the circle)", decided=(0,), proof=proof, seconds=clock.elapsed())
-        return _scan(decide, 0, None, max_delay, T, "exact", clock, proof, None)
+                return DelayMargin(Decision.PROVED, None, T, "bound", f"Re G^-1 >= {f['a']} - max|F| >= 0 for every n "
+                                   "(no pole on the circle)", decided=(0,), proof=proof, seconds=clock.elapsed())
+        return _scan(decide, 0, None, max_delay, T, "exact", clock, proof, None, names=names)
     low = math.floor(to_rational((a - M0) / R - flint.fmpq(1, 2)))
     fail = math.floor(to_rational((a + F01) / R - flint.fmpq(1, 2))) + 1
     low = max(low, -1)
@@ -313,16 +339,17 @@ def _single_margin(ns: Any, max_delay: int, clock: _Clock) -> DelayMargin:
     if fail - low > 1 and low + 1 > max_delay:
         # the bound proves every n <= low and disproves n = fail, and the delays between are beyond
         # what one-by-one exact decisions reach (a degree-n polynomial each): say so
-        return DelayMargin(Decision.UNDECIDED, None, T, "bound", f"passive for every n <= {low} (bound Re G^-1 >= a - "
-                           f"R(n + 1/2) - M_0 >= 0), not passive from n = {fail} on; the {fail - low - 1} delays between "
+        return DelayMargin(Decision.UNDECIDED, None, T, "bound", f"passive for every n <= {low} (bound Re G^-1 >= {f['a']} - "
+                           f"{f['R']}(n + 1/2) - M_0 >= 0), not passive from n = {fail} on; the {fail - low - 1} delays between "
                            f"are beyond --max-delay {max_delay}", lower=low, upper=fail - 1, proved_up_to=low,
                            decided=tuple(decided), proof=proof, seconds=clock.elapsed())
     at_fail = Outcome(Decision.DISPROVED,
                       Evidence(Method.ENDPOINT_ANALYSIS, witness={"c": "-> 1", "limit": limit},
-                               facts={"limit": f"a + F_0(1) - R(n + 1/2) at n = {fail}"}),
-                      f"Re G^-1 -> a + F_0(1) - R(n + 1/2) = {limit} < 0 as c -> 1 (w -> 0) at n = {fail}")
+                               facts={"limit": f"{f['a']} + {f['F_0']}(1) - {f['R']}(n + 1/2) at n = {fail}"}),
+                      f"Re G^-1 -> {f['a']} + {f['F_0']}(1) - {f['R']}(n + 1/2) = {limit} < 0 as {f['c']} -> 1 "
+                      f"({f['w']} -> 0) at n = {fail}")
     return _scan(lambda n: at_fail if n == fail else decide(n), low + 1, fail, max_delay, T,
-                 "bound+exact", clock, proof, low if low >= 0 else None, decided)
+                 "bound+exact", clock, proof, low if low >= 0 else None, decided, names=names)
 
 
 def _rational(value: Any) -> sp.Rational:
@@ -330,12 +357,13 @@ def _rational(value: Any) -> sp.Rational:
 
 
 def _scan(decide, first: int, last: int | None, max_delay: int, T: Any, method: str, clock: _Clock,
-          proof: dict, proved_up_to: int | None, decided: list[int] | None = None) -> DelayMargin:
+          proof: dict, proved_up_to: int | None, decided: list[int] | None = None, names: Any = DEFAULT) -> DelayMargin:
     decided = list(decided or [])
     stop = last if last is not None else max_delay
     stop = min(stop, max(first, 0) + max_delay) if last is not None else stop
-    how = (f"every n <= {proved_up_to} by the bound Re G^-1 >= a - R(n + 1/2) - M_0 >= 0; " if proved_up_to is not None
-           else "")
+    f = _formula_names(names)
+    how = (f"every n <= {proved_up_to} by the bound Re G^-1 >= {f['a']} - {f['R']}(n + 1/2) - M_0 >= 0; "
+           if proved_up_to is not None else "")
     total = stop - first + 1
     cost = 0.0
     for n in range(first, stop + 1):
@@ -382,6 +410,8 @@ def _multi_margin(model: Any, max_delay: int, clock: _Clock) -> DelayMargin:
     if len(set(model.delays)) > 1:
         raise SceneError("the delay margin asks for one common delay n; this scene has per-user delays")
     m = model.users
+    names = model.naming()
+    f = _formula_names(names)
     if by_modes(model):
         return _modes_margin(model, max_delay, clock)
     base = replace(model, delays=(0,) * m)
@@ -409,9 +439,10 @@ def _multi_margin(model: Any, max_delay: int, clock: _Clock) -> DelayMargin:
                 else:
                     hi = mid
             last = lo
-    proof = {"upper": "M(1)/2 -> D + F_0(1) - (n + 1/2) T Kmat is not PSD from n = %s on" % last} if last is not None else {}
+    proof = ({"upper": f"{f['M']}(1)/2 -> D + {f['F_0']}(1) - (n + 1/2) {f['T']} Kmat is not PSD from n = {last} on"}
+             if last is not None else {})
     decide = lambda n: positive_real(replace(model, delays=(n,) * m))  # noqa: E731
-    return _scan(decide, 0, last, max_delay, model.T, "exact", clock, proof, None)
+    return _scan(decide, 0, last, max_delay, model.T, "exact", clock, proof, None, names=names)
 
 
 def _modes_margin(model: Any, max_delay: int, clock: _Clock) -> DelayMargin:
@@ -420,8 +451,10 @@ def _modes_margin(model: Any, max_delay: int, clock: _Clock) -> DelayMargin:
     an irrational ``lambda_max`` is bracketed, ``N(hi) <= N(lambda_max) <= N(lo)``."""
     from hapticproof.analysis.modes import largest_eigenvalue, mode_wall
 
+    names = model.naming()
+    lam = names.helper("eigenvalue")
     top = largest_eigenvalue(model)
-    zero = _single_margin(mode_wall(model, 0), max_delay, clock)
+    zero = _single_margin(mode_wall(model, 0), max_delay, clock, names)
     if top == 0:
         return replace(zero, method="modes: " + zero.method, seconds=clock.elapsed())
     if top.is_Rational:
@@ -429,7 +462,7 @@ def _modes_margin(model: Any, max_delay: int, clock: _Clock) -> DelayMargin:
     else:
         mid = Fraction(str(sp.N(top, 40)))
         ends = [mid - Fraction(1, 2**100), mid + Fraction(1, 2**100)]
-    margins = [_single_margin(mode_wall(model, lam), max_delay, clock) for lam in dict.fromkeys(ends)]
+    margins = [_single_margin(mode_wall(model, end), max_delay, clock, names) for end in dict.fromkeys(ends)]
     margins = [zero] + (margins if len(margins) == 2 else margins * 2)
     value = lambda dm: math.inf if dm.unbounded else dm.margin  # noqa: E731
     if all(dm.decision == Decision.PROVED for dm in margins):
@@ -437,7 +470,7 @@ def _modes_margin(model: Any, max_delay: int, clock: _Clock) -> DelayMargin:
         if lo_bound == hi_bound:
             winner = min(margins, key=value)
             n = None if lo_bound == math.inf else int(lo_bound)
-            reason = (f"uniform couplings: the modes lambda = 0 and lambda_max = {sp.sstr(top)} decide every delay; "
+            reason = (f"uniform couplings: the modes {lam} = 0 and {lam}_max = {sp.sstr(top)} decide every delay; "
                       f"their margins {', '.join(str(dm.margin) for dm in margins[:2 if top.is_Rational else 3])}: "
                       + winner.reason)
             return DelayMargin(Decision.PROVED, n, model.T, "modes: " + winner.method, reason, lower=n, upper=n,
@@ -446,6 +479,6 @@ def _modes_margin(model: Any, max_delay: int, clock: _Clock) -> DelayMargin:
     lowers = [dm.lower if dm.decision != Decision.PROVED else dm.margin for dm in margins]
     return DelayMargin(Decision.UNDECIDED, None, model.T, "modes",
                        "the modes' margins do not settle it: " + ("; ".join(dm.reason for dm in margins if dm.decision != Decision.PROVED)
-                                                                  or f"lambda_max = {sp.sstr(top)} is bracketed too widely"),
+                                                                  or f"{lam}_max = {sp.sstr(top)} is bracketed too widely"),
                        lower=min((v for v in lowers if v is not None), default=None),
                        proof={"modes": [dm.to_json() for dm in margins]}, seconds=clock.elapsed())

@@ -71,6 +71,7 @@ from hapticproof.core.lazy import stage
 from hapticproof.systems.models import integrator
 from hapticproof.exact.conditions import Condition, combine
 from hapticproof.analysis.modes import decides_by_modes, largest_eigenvalue, mode_conditions, spectrum
+from hapticproof.analysis.positivereal import named_conditions
 from hapticproof.analysis.positivereal import worst_case as single_worst_case
 from hapticproof.exact.psd import HermitianPart, Minor, PolyRing, affine_worst_case, decide_psd_on_circle, nonnegative_certificate, residue_matrices as matrix_residues
 from hapticproof.exact.psd import principal_minors as psd_minors
@@ -491,6 +492,7 @@ def worst_case(scene: MultiUserScene) -> MatrixWorstCase:
         holds = decision.decision == Decision.PROVED
         return MatrixWorstCase(decision.outcome, sp.true if holds else sp.false, "root-isolation",
                                decision.witness, {"failing_k": decision.failing})
+    w = scene.naming().words           # the toolkit's words of the reasons below, in the scene's names
     if scene.is_uniform and (not scene.has_delay or not scene.damped) and decides_by_modes(scene):
         conditions = []
         modes = extreme_modes(scene)
@@ -504,8 +506,8 @@ def worst_case(scene: MultiUserScene) -> MatrixWorstCase:
         outcome = Outcome(settled or Decision.SYMBOLIC,
                           Evidence(Method.STRUCTURAL, facts={"modes": [(md.eigenvalue, md.multiplicity) for md in modes],
                                                             "mode_conditions": conditions}),
-                          "uniform couplings: G^-1 decouples into single-user walls K_0 + lambda K, B_0 + lambda B "
-                          "(lambda: Laplacian eigenvalues); exact per mode")
+                          w("uniform couplings: G^-1 decouples into single-user walls K_0 + lambda K, B_0 + lambda B "
+                            "(lambda: Laplacian eigenvalues); exact per mode"))
         minimiser = sp.Integer(-1) if not scene.has_delay else kernel_bounds(scene.approximation, scene.delays[0]).argmin_K
         return MatrixWorstCase(outcome, condition, "uniform-modes", minimiser)
     if by_modes(scene):
@@ -520,8 +522,8 @@ def worst_case(scene: MultiUserScene) -> MatrixWorstCase:
             conditions = _minor_conditions(aff.minors, H.ring, aff.matrix.matrix())
             outcome = Outcome(Decision.SYMBOLIC,
                               Evidence(Method.STRUCTURAL, facts={"endpoint": aff.endpoint, "certificate": aff.slope_certificate}),
-                              f"M(c) = M0 + c M1 with M1 certified semidefinite: the worst case is c = {aff.endpoint} "
-                              "(Loewner order); PR iff every principal minor of M(endpoint) is >= 0")
+                              w(f"M(c) = M0 + c M1 with M1 certified semidefinite: the worst case is c = {aff.endpoint} "
+                                "(Loewner order); PR iff every principal minor of M(endpoint) is >= 0"))
             return MatrixWorstCase(outcome, _and(conditions), "loewner-affine", sp.Integer(aff.endpoint),
                                    {"minors": aff.minors})
     if scene.equal_delays and not scene.damped:
@@ -533,8 +535,8 @@ def worst_case(scene: MultiUserScene) -> MatrixWorstCase:
         kb = kernel_bounds(scene.approximation, scene.delays[0])
         outcome = Outcome(Decision.SYMBOLIC,
                           Evidence(Method.STRUCTURAL, facts={"kappa_K": kb.kappa_K, "argmin": kb.argmin_K}),
-                          f"B = 0: M(c) = 2 diag(b - z_a) + 2 Re k_K(c) T Kmat with Kmat >= 0 and min Re k_K = "
-                          f"-{kb.kappa_K} attained at c = {kb.argmin_K}: exact")
+                          w(f"B = 0: M(c) = 2 diag(b - z_a) + 2 Re k_K(c) T Kmat with Kmat >= 0 and min Re k_K = "
+                            f"-{kb.kappa_K} attained at c = {kb.argmin_K}: exact"))
         return MatrixWorstCase(outcome, _and(conditions), "loewner-dirichlet", kb.argmin_K, {"minors": minors})
     outcome = Outcome(Decision.UNDECIDED, Evidence(Method.STRUCTURAL, facts={"reason": "no structure applies"}),
                       "symbolic parameters with delays and damping (or unequal delays): substitute numbers for an exact decision")
@@ -587,8 +589,9 @@ def conditions(scene: MultiUserScene) -> list[Condition]:
     Uniform scenes with :data:`MODE_USERS` users or more are decided by their extreme modes
     (:func:`hapticproof.analysis.modes.mode_conditions`: two single-user decisions, any ``m``).
     """
+    names = scene.naming()
     if scene.is_numeric and by_modes(scene):
-        return mode_conditions(scene)
+        return named_conditions(mode_conditions(scene), names, numeric=True)
     dens = flint.fmpq_poly([1])
     for n in sorted(set(scene.delays)):
         for _, den in _kernel_polynomials(scene.approximation, n):
@@ -626,9 +629,10 @@ def conditions(scene: MultiUserScene) -> list[Condition]:
     wc = worst_case(scene)
     herm = wc.outcome
     if wc.decision == Decision.SYMBOLIC and wc.condition is not None:
-        herm = Outcome(Decision.SYMBOLIC, herm.evidence, f"{sp.sstr(wc.condition)} ({herm.reason})", minimiser=wc.minimiser)
-    return [Condition("poles in |z| <= 1", poles_ok), Condition("unit-circle poles simple", simple_ok),
-            Condition("residue matrix at z = 1 PSD", residue), Condition("M(c) = G^-1 + G^-H PSD for all c", herm)]
+        herm = Outcome(Decision.SYMBOLIC, herm.evidence, f"{names.text(wc.condition)} ({herm.reason})", minimiser=wc.minimiser)
+    conds = [Condition("poles in |z| <= 1", poles_ok), Condition("unit-circle poles simple", simple_ok),
+             Condition("residue matrix at z = 1 PSD", residue), Condition("M(c) = G^-1 + G^-H PSD for all c", herm)]
+    return named_conditions(conds, names, numeric=scene.is_numeric)
 
 
 def _mode_residue(scene: MultiUserScene) -> Outcome:
@@ -636,23 +640,27 @@ def _mode_residue(scene: MultiUserScene) -> Outcome:
     top = largest_eigenvalue(scene)
     K = scene.K[0] if scene.K else sp.Integer(0)
     ends = [sp.expand(scene.T * scene.K0[0]), sp.expand(scene.T * (scene.K0[0] + top * K))]
-    what = "the residue matrix T Kmat at z = 1 (eigenvalues T(K_0 + lambda K), lambda in [0, lambda_max])"
+    names = scene.naming()
+    what = names.words("the residue matrix T Kmat at z = 1 (eigenvalues T(K_0 + lambda K), lambda in [0, lambda_max])")
     if all(v.is_nonnegative for v in ends):
         return Outcome(Decision.PROVED, Evidence(Method.STRUCTURAL, facts={"eigenvalues": ends}),
-                       f"{what} is PSD: T K_0 >= 0 and T(K_0 + lambda_max K) >= 0 under the parameters' signs")
+                       f"{what} is PSD: " + names.words("T K_0 >= 0 and T(K_0 + lambda_max K) >= 0") + " under the "
+                       "parameters' signs")
     if any(v.is_negative for v in ends):
         return Outcome(Decision.DISPROVED, Evidence(Method.STRUCTURAL, witness={"eigenvalue": min(ends)}), f"{what} is not PSD")
     cond = sp.And(*[sp.Ge(v, 0) for v in ends if not v.is_nonnegative])
-    return Outcome(Decision.SYMBOLIC, Evidence(Method.STRUCTURAL, facts={"condition": cond}), f"{what} is PSD iff {sp.sstr(cond)}")
+    return Outcome(Decision.SYMBOLIC, Evidence(Method.STRUCTURAL, facts={"condition": cond}), f"{what} is PSD iff {names.text(cond)}")
 
 
 def _matrix_residue(scene: MultiUserScene) -> Outcome:
     R = sp.Matrix(scene.T * stiffness_matrix(scene))
+    # a numeric scene's reasons are worded once, with its conditions; a symbolic one's here
+    what = "the residue matrix T Kmat at z = 1" if scene.is_numeric else scene.naming().words("the residue matrix T Kmat at z = 1")
     if R.free_symbols:
         from hapticproof.exact.psd import psd_outcome
 
-        return psd_outcome(R, "the residue matrix T Kmat at z = 1")
-    return decide_constant_psd(R, "the residue matrix T Kmat at z = 1")
+        return psd_outcome(R, what)
+    return decide_constant_psd(R, what)
 
 
 @stage("positive_real")

@@ -38,7 +38,7 @@ from hapticproof.core.symbols import z as Z_SYM
 from hapticproof.exact.unitcircle import CRational, ThetaForm, circle_real_part, hermitian_part_rational, numerator_denominator, theta_form
 from hapticproof.exact.conditions import HERMITIAN, RESIDUES, Condition, POLES_IN_DISK, POLES_SIMPLE, combine, pole_conditions, properness_condition
 
-__all__ = ["conditions", "transfer_polynomials", "numeric_scene", "Pole", "Residue", "WorstCase", "poles_of", "unit_circle_residues", "hermitian_of", "decide_hermitian", "symbolic_minimum", "bernstein_sign", "symbolic_c_degree", "SYMBOLIC_CFORM_LIMIT", "poles", "residues", "hermitian", "worst_case", "positive_real", "definition_object", "pole_location_outcome"]
+__all__ = ["conditions", "transfer_polynomials", "numeric_scene", "Pole", "Residue", "WorstCase", "poles_of", "unit_circle_residues", "hermitian_of", "decide_hermitian", "symbolic_minimum", "bernstein_sign", "symbolic_c_degree", "SYMBOLIC_CFORM_LIMIT", "poles", "residues", "hermitian", "worst_case", "positive_real", "definition_object", "pole_location_outcome", "named_conditions"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -230,12 +230,14 @@ def real_roots_in(den: flint.fmpq_poly, lo: int = -1, hi: int = 1) -> bool:
     return den.degree() > 0 and bool(real_roots(den, lo, hi))
 
 
-def symbolic_minimum(expr: sp.Expr, var: sp.Symbol = C_SYM) -> WorstCase:
+def symbolic_minimum(expr: sp.Expr, var: sp.Symbol = C_SYM, names: Any = None) -> WorstCase:
     """Worst case of a symbolic ``Re F(c)`` over ``c`` in ``[-1, 1]`` by endpoint analysis.
 
     Exact when ``Re F`` is affine or concave-quadratic in ``c`` with a denominator that is a
     positive constant; the sign of the slope is taken from the symbols' assumptions
     (``positive=True`` ...), and when it is unknown the exact condition keeps ``|slope|``.
+    The reasons speak the scene's naming ``names`` (:class:`~hapticproof.core.naming.Naming`:
+    ``c`` under its printed name).
 
     >>> K, T, b = sp.symbols('K T b', positive=True)
     >>> B = sp.Symbol('B', nonnegative=True)
@@ -243,6 +245,26 @@ def symbolic_minimum(expr: sp.Expr, var: sp.Symbol = C_SYM) -> WorstCase:
     >>> wc.condition, wc.minimiser
     (b >= B + K*T/2, -1)
     """
+    wc = _symbolic_minimum(expr, var)
+    if names is None or names.is_default:
+        return wc
+    out = wc.outcome
+    facts = dict(out.evidence.facts)
+    if isinstance(facts.get("reason"), str):
+        facts["reason"] = names.words(facts["reason"])
+    low = sp.sympify(out.minimum) if out.minimum is not None else None
+    if out.decision == Decision.SYMBOLIC:
+        reason = names.words(out.reason)
+    else:   # 'the minimum <expression> over c is ... (<why>)': the toolkit's words renamed, not the expression's
+        told = f"the minimum {names.text(low)} over {names.helper('cos')}" if low is not None else "Re G^-1"
+        reason = f"{told} is {'>= 0' if out.decision == Decision.PROVED else '< 0'} for every value the parameters' " \
+                 f"signs allow ({facts['reason']})"
+    outcome = Outcome(out.decision, Evidence(out.evidence.method, witness=out.evidence.witness, facts=facts), reason,
+                      minimiser=out.minimiser, minimum=out.minimum)
+    return WorstCase(outcome, wc.condition, wc.minimiser, wc.minimum)
+
+
+def _symbolic_minimum(expr: sp.Expr, var: sp.Symbol) -> WorstCase:
     num, den = sp.fraction(sp.cancel(sp.together(expr)))
     den_poly = sp.Poly(den, var)
     if den_poly.degree() > 0:
@@ -529,8 +551,9 @@ def worst_case(scene: SingleUserScene) -> WorstCase:
         return WorstCase(out, sp.true if out.decision == Decision.PROVED else sp.false, out.minimiser, out.minimum)
     if not scene.delay.is_Symbol and symbolic_c_degree(scene) > SYMBOLIC_CFORM_LIMIT:
         d = symbolic_c_degree(scene)
-        reason = (f"Re G^-1 is a polynomial of degree up to {d} in c with parameters: no closed-form worst case (not built; "
-                  "give the parameters numbers for the exact decision, or keep the delay symbolic, n)")
+        reason = scene.naming().words(f"Re G^-1 is a polynomial of degree up to {d} in c with parameters: no closed-form "
+                                      "worst case (not built; give the parameters numbers for the exact decision, or keep "
+                                      "the delay symbolic, n)")
         return WorstCase(Outcome(Decision.SYMBOLIC, Evidence(Method.STRUCTURAL, facts={"degree": d, "reason": reason}), reason), None)
     form = hermitian(scene)
     if isinstance(form, ThetaForm):
@@ -540,7 +563,7 @@ def worst_case(scene: SingleUserScene) -> WorstCase:
             "symbolic delay n: the worst case depends on n (fix the delay, or ask for the delay margin)",
         )
         return WorstCase(outcome, None)
-    return symbolic_minimum(form.expr())
+    return symbolic_minimum(form.expr(), names=scene.naming())
 
 
 #: A symbolic scene's ``Re G^{-1}`` is built as a polynomial in ``c`` up to this degree (a
@@ -561,14 +584,27 @@ def conditions(scene: SingleUserScene) -> list[Condition]:
     """The three conditions of Definition 2 (HVE paper) for ``G^{-1}``, each decided: poles in the
     closed disk, unit-circle poles simple with ``Res/z0 >= 0``, and ``Re G^{-1} >= 0``.
 
+    The names and reasons speak the scene's naming (``scene.naming()``).
+
     >>> sc = SingleUserScene.virtual_wall(K=2, B=0, b="0.0012", T="0.001")
     >>> [(c.name, c.decision.value) for c in conditions(sc)]     # doctest: +NORMALIZE_WHITESPACE
     [('poles in |z| <= 1', 'proved'), ('unit-circle poles simple', 'proved'),
      ('Res/z0 >= 0 at unit-circle poles', 'proved'), ('Re G^-1 >= 0 for all w', 'proved')]
     """
     if scene.is_numeric:
-        return _numeric_conditions(scene)
-    return _symbolic_conditions(scene)
+        return named_conditions(_numeric_conditions(scene), scene.naming(), numeric=True)
+    return named_conditions(_symbolic_conditions(scene), scene.naming(), numeric=False)
+
+
+def named_conditions(conds: list[Condition], names: Any, numeric: bool) -> list[Condition]:
+    """Conditions in a scene's naming: their names (the toolkit's words) renamed; the reasons of a
+    numeric scene too (numbers and the toolkit's words only); a symbolic scene's reasons are
+    written in its naming where they are made (they hold the user's expressions)."""
+    if names.is_default:
+        return conds
+    if numeric:          # the reasons of the outcomes in the evidence too (a mode's decision...)
+        return [names.worded(cond) for cond in conds]
+    return [Condition(names.words(cond.name), cond.outcome) for cond in conds]
 
 
 def _numeric_conditions(scene: SingleUserScene) -> list[Condition]:
@@ -617,7 +653,7 @@ def _symbolic_conditions(scene: SingleUserScene) -> list[Condition]:
     wc = worst_case(scene)
     herm = wc.outcome
     if herm.decision == Decision.SYMBOLIC and wc.condition is not None:
-        herm = Outcome(Decision.SYMBOLIC, herm.evidence, f"{sp.sstr(wc.condition)} ({herm.reason})",
+        herm = Outcome(Decision.SYMBOLIC, herm.evidence, f"{scene.naming().text(wc.condition)} ({herm.reason})",
                        minimiser=herm.minimiser, minimum=herm.minimum)
     return [Condition(POLES_IN_DISK, pole_out), Condition(POLES_SIMPLE, simple), Condition(RESIDUES, residue),
             Condition(HERMITIAN, herm)]

@@ -96,9 +96,10 @@ import flint
 import sympy as sp
 
 from hapticproof.analysis.classics import leak_bound
-from hapticproof.analysis.positivereal import pole_location_outcome, poles_of, symbolic_minimum, unit_circle_residues
+from hapticproof.analysis.positivereal import named_conditions, pole_location_outcome, poles_of, symbolic_minimum, unit_circle_residues
 from hapticproof.core.evidence import Decision, Evidence, Method, Outcome
 from hapticproof.core.lazy import stage
+from hapticproof.core.naming import DEFAULT
 from hapticproof.core.symbols import c as C_SYM
 from hapticproof.core.symbols import z as Z_SYM
 from hapticproof.exact.conditions import Condition, combine
@@ -189,7 +190,7 @@ def worst_case(scene: TeleoperatorScene) -> TeleWorstCase:
         return TeleWorstCase(sup_m, sup_s, arg, cond)
     out = []
     for bound, damping in ((bd.master, b_m), (bd.slave, b_s)):
-        wc = symbolic_minimum(sp.expand(-bound))   # min of -bound = -sup
+        wc = symbolic_minimum(sp.expand(-bound), names=scene.naming())   # min of -bound = -sup
         sup = sp.expand(-wc.minimum) if wc.minimum is not None else sp.Function("sup_c")(bound)
         out.append((sup, wc.minimiser, sp.Ge(damping, sup)))
     return TeleWorstCase(out[0][0], out[1][0], out[0][1], sp.And(out[0][2], out[1][2]))
@@ -389,30 +390,33 @@ def _numeric_conditions(scene: TeleoperatorScene) -> list[Condition]:
 # ---------------------------------------------------------------------------------------------
 
 
-def _sign(value: Any, what: str, strict: bool = False) -> Outcome:
+def _sign(value: Any, what: str, strict: bool = False, names: Any = DEFAULT) -> Outcome:
+    """The sign of ``value`` (``what``: its name in the toolkit's words, printed in ``names``)."""
     value = sp.cancel(sp.sympify(value))
     ok = value.is_positive if strict else value.is_nonnegative
     rel = ">" if strict else ">="
+    what = names.words(what)
     if ok:
-        return Outcome(Decision.PROVED, Evidence(Method.CANONICAL_FORM, facts={"value": value}), f"{what} = {sp.sstr(value)} {rel} 0")
+        return Outcome(Decision.PROVED, Evidence(Method.CANONICAL_FORM, facts={"value": value}), f"{what} = {names.text(value)} {rel} 0")
     if (value.is_nonpositive if strict else value.is_negative):
         return Outcome(Decision.DISPROVED, Evidence(Method.CANONICAL_FORM, witness={"value": value}),
-                       f"{what} = {sp.sstr(value)} is not {rel} 0")
+                       f"{what} = {names.text(value)} is not {rel} 0")
     condition = sp.Gt(value, 0) if strict else sp.Ge(value, 0)
     return Outcome(Decision.SYMBOLIC, Evidence(Method.CANONICAL_FORM, facts={"condition": condition}),
-                   f"{sp.sstr(condition)}")
+                   f"{names.text(condition)}")
 
 
 def _symbolic_conditions(scene: TeleoperatorScene) -> list[Condition]:
-    dm, ds = _sign(scene.b_m, "b_m"), _sign(scene.b_s, "b_s")
+    names = scene.naming()
+    dm, ds = _sign(scene.b_m, "b_m", names=names), _sign(scene.b_s, "b_s", names=names)
     parts = [o for o in (dm, ds) if o.decision != Decision.PROVED]
     if not parts:
-        damping = Outcome(Decision.PROVED, Evidence(Method.CANONICAL_FORM), "b_m, b_s >= 0 by their assumptions")
+        damping = Outcome(Decision.PROVED, Evidence(Method.CANONICAL_FORM), names.words("b_m, b_s >= 0 by their assumptions"))
     elif any(o.decision == Decision.DISPROVED for o in parts):
         damping = next(o for o in parts if o.decision == Decision.DISPROVED)
     else:
         cond = sp.And(*[o.evidence.facts["condition"] for o in parts])
-        damping = Outcome(Decision.SYMBOLIC, Evidence(Method.CANONICAL_FORM, facts={"condition": cond}), sp.sstr(cond))
+        damping = Outcome(Decision.SYMBOLIC, Evidence(Method.CANONICAL_FORM, facts={"condition": cond}), names.text(cond))
     out = [Condition(_name("D"), damping)]
     C = sp.cancel(sp.together(scene.C))
     poles = poles_of(C)
@@ -429,7 +433,7 @@ def _symbolic_conditions(scene: TeleoperatorScene) -> list[Condition]:
     else:
         p2 = Outcome(Decision.PROVED if not unknown else Decision.UNDECIDED, Evidence(Method.CANONICAL_FORM),
                      "no pole of C at z = 1" if not unknown else "the poles of C depend on the parameters")
-        out += [Condition(_name("P2"), p2), Condition(_name("P3"), _sign(C.subs(Z_SYM, 1), "C(1)"))]
+        out += [Condition(_name("P2"), p2), Condition(_name("P3"), _sign(C.subs(Z_SYM, 1), "C(1)", names=names))]
     others = [p for p in poles if p.location == "on" and sp.simplify(p.value - 1) != 0]
     if any(p.multiplicity > 1 for p in others):
         p4 = Outcome(Decision.DISPROVED, Evidence(Method.CANONICAL_FORM), "a unit-circle pole of C is not simple")
@@ -448,31 +452,36 @@ def _symbolic_conditions(scene: TeleoperatorScene) -> list[Condition]:
 
 
 def _symbolic_leak(scene: TeleoperatorScene) -> Outcome:
-    """(P5) ``h >= sup_c L(c)``: the exact supremum of a numeric ``L``, or endpoint analysis."""
+    """(P5) ``h >= sup_c L(c)``: the exact supremum of a numeric ``L``, or endpoint analysis (in
+    the scene's names: ``h``, ``L`` and ``c`` as its naming prints them)."""
+    names = scene.naming()
+    w, t = names.words, names.text
     h = error_coordinate_damping(scene)
     leak = bounds(scene).leak
     if not (sp.sympify(leak).free_symbols - {C_SYM}):
         sup, where = _sup_numeric(leak)
         if sup == sp.oo:
-            return Outcome(Decision.DISPROVED, Evidence(Method.ROOT_ISOLATION), "L(c) is unbounded on [-1, 1]")
+            return Outcome(Decision.DISPROVED, Evidence(Method.ROOT_ISOLATION), w("L(c) is unbounded on [-1, 1]"))
         if not isinstance(sup, sp.Basic):
             return Outcome(Decision.SYMBOLIC, Evidence(Method.ROOT_ISOLATION, facts={"supremum": sup}),
-                           f"h >= sup L = {sup.str(12) if hasattr(sup, 'str') else sup} (an algebraic number)")
+                           w("h >= sup L") + f" = {sup.str(12) if hasattr(sup, 'str') else sup} (an algebraic number)")
         cond = sp.Ge(h, sup)
-        return _sign(h - sup, "h - sup L") if not cond.free_symbols else \
-            Outcome(Decision.SYMBOLIC, Evidence(Method.ROOT_ISOLATION, facts={"condition": cond}), f"{sp.sstr(cond)} (sup L at c = {where})")
-    wc = symbolic_minimum(sp.expand(-leak))              # min of -L = -sup L
+        return _sign(h - sup, "h - sup L", names=names) if not cond.free_symbols else \
+            Outcome(Decision.SYMBOLIC, Evidence(Method.ROOT_ISOLATION, facts={"condition": cond}),
+                    f"{t(cond)} ({w('sup L at c')} = {where})")
+    wc = symbolic_minimum(sp.expand(-leak), names=names)              # min of -L = -sup L
     if wc.minimum is None:
         return Outcome(Decision.SYMBOLIC, Evidence(Method.ENDPOINT_ANALYSIS, facts={"condition": sp.Ge(h, sp.Function("sup_c")(leak))}),
-                       f"h >= sup_c L(c) ({wc.outcome.reason})")
+                       w("h >= sup_c L(c)") + f" ({wc.outcome.reason})")
     sup = sp.expand(-wc.minimum)
     cond = sp.Ge(h, sup)
     if cond in (sp.true, sp.false):
         decision = Decision.PROVED if cond is sp.true else Decision.DISPROVED
-        return Outcome(decision, Evidence(Method.ENDPOINT_ANALYSIS, facts={"condition": cond}), f"h >= sup L = {sp.sstr(sup)} is {cond}")
+        return Outcome(decision, Evidence(Method.ENDPOINT_ANALYSIS, facts={"condition": cond}),
+                       w("h >= sup L") + f" = {t(sup)} is {cond}")
     return Outcome(Decision.SYMBOLIC, Evidence(Method.ENDPOINT_ANALYSIS, facts={"condition": cond, "supremum": sup}),
-                   f"{sp.sstr(cond)} (L(c) = {sp.sstr(leak)} is largest at c = {sp.sstr(wc.minimiser)})"
-                   if wc.minimiser is not None else f"{sp.sstr(cond)} (sup of L(c) = {sp.sstr(leak)}: {wc.outcome.reason})")
+                   f"{t(cond)} ({w('L(c)')} = {t(leak)} is largest at {w('c')} = {t(wc.minimiser)})"
+                   if wc.minimiser is not None else f"{t(cond)} ({w('sup of L(c)')} = {t(leak)}: {wc.outcome.reason})")
 
 
 @stage("teleoperator_conditions")
@@ -484,9 +493,11 @@ def passivity_conditions(scene: TeleoperatorScene) -> list[Condition]:
     >>> [(c.name[:4], c.decision.value) for c in passivity_conditions(sc)]       # a negative residue at z = -1
     [('(D) ', 'proved'), ('(P1)', 'proved'), ('(P2)', 'proved'), ('(P3)', 'proved'), ('(P4)', 'disproved'), ('(P5)', 'proved')]
     """
+    names = scene.naming()
     if bound_parameters(scene):
-        return _symbolic_conditions(scene)
-    return _numeric_conditions(scene)
+        conds = _symbolic_conditions(scene)
+        return [Condition(names.words(c.name), c.outcome) for c in conds]
+    return named_conditions(_numeric_conditions(scene), names, numeric=True)
 
 
 def passivity(scene: TeleoperatorScene) -> Outcome:
@@ -538,13 +549,14 @@ def criterion_conditions(scene: TeleoperatorScene) -> list[Condition]:
     from hapticproof.exact.kernel import decide_rational_sign, transfer_json
     from hapticproof.exact.unitcircle import circle_real_part
 
+    names = scene.naming()
     if bound_parameters(scene):
         wc = worst_case(scene)
         conds = []
         for robot, sup, damping in (("master", wc.sup_master, scene.b_m), ("slave", wc.sup_slave, scene.b_s)):
-            conds.append(Condition(f"(32) {robot}: b >= bound(c) for all w",
+            conds.append(Condition(names.words(f"(32) {robot}: b_{robot[0]} >= bound(c) for all w"),
                                    Outcome(Decision.SYMBOLIC, Evidence(Method.ENDPOINT_ANALYSIS, facts={"supremum": sup}),
-                                           f"{sp.sstr(damping)} >= {sp.sstr(sup)}")))
+                                           f"{names.text(damping)} >= {names.text(sup)}")))
         return conds
     conds = []
     for robot in ("master", "slave"):
@@ -552,7 +564,7 @@ def criterion_conditions(scene: TeleoperatorScene) -> list[Condition]:
         N, D = circle_real_part(P, Q)
         out = decide_rational_sign(N, D, -1, 1, "c", f"b_{robot[0]} - bound", transfer=transfer_json(P, Q), transfer_den=Q)
         conds.append(Condition(f"(32) {robot}: b_{robot[0]} >= bound(c) for all w", out))
-    return conds
+    return named_conditions(conds, names, numeric=True)
 
 
 def criterion(scene: TeleoperatorScene) -> Outcome:

@@ -16,6 +16,7 @@ from hapticproof.exact.canonical import Sampler, is_identically_zero
 from hapticproof.audit.compare import as_bound, compare_bounds
 from hapticproof.core.errors import HapticproofError
 from hapticproof.core.evidence import Decision, Evidence, Finding, Method, Outcome, Verdict
+from hapticproof.core.naming import marked
 from hapticproof.core.symbols import c as C_SYM
 from hapticproof.core.symbols import n as N_SYM
 from hapticproof.core.symbols import z as Z_SYM
@@ -56,7 +57,10 @@ class State:
     def model(self) -> Any:
         key = ("model", self.spec.scene)
         if key not in self.cache:          # shared by the repair trials of one check
-            self.cache[key] = self.scene.build()
+            from hapticproof.systems.naming import with_naming
+
+            # the paper's choice of names for the toolkit's quantities, the scene's roles
+            self.cache[key] = with_naming(self.scene, self.scene.build(), self.source.naming().taken)
         return self.cache[key]
 
     @functools.cached_property
@@ -590,15 +594,15 @@ def compare_conditions(printed: Any, exact: Any, state: State, *, claim: str, wh
             pass
     if ratio_equivalent(printed, exact):
         state.repairable = True
-        return Finding(Verdict.CONFIRMED, f"{what} is the exact condition {sp.sstr(exact)} multiplied by a positive factor",
+        return Finding(Verdict.CONFIRMED, f"{what} is the exact condition {marked(exact)} multiplied by a positive factor",
                        Evidence(Method.CANONICAL_FORM, facts={"exact": exact, "printed_form": ("equals", sp.srepr(exact))}),
                        derived=derived)
     corner = _corner_sufficiency(printed, exact) if claim != "necessary" else None
     weaker, stronger, count = separating_points(printed, exact, tries=60 if state.repairing else 300)
     state.repairable = True
     if corner is not None and weaker is None:
-        shown = ", ".join(f"{v} = {sp.sstr(b)}" for v, b in corner.items())
-        proof = (f"{what} implies the exact condition {sp.sstr(exact)}: the exact condition is nondecreasing in "
+        shown = ", ".join(f"{v} = {marked(b)}" for v, b in corner.items())
+        proof = (f"{what} implies the exact condition {marked(exact)}: the exact condition is nondecreasing in "
                  f"{', '.join(str(v) for v in corner)} and holds at the corner {shown} of the printed bounds")
         facts = {"exact": exact, "corner": {str(k): v for k, v in corner.items()}}
         if stronger is not None:
@@ -619,7 +623,7 @@ def compare_conditions(printed: Any, exact: Any, state: State, *, claim: str, wh
     if stronger is not None:
         note = "; it is not necessary (it fails at a point where the exact condition holds)"
     return Finding(Verdict.UNDECIDED,
-                   f"{what} is not a positive multiple or a bound comparable with the exact condition {sp.sstr(exact)}, "
+                   f"{what} is not a positive multiple or a bound comparable with the exact condition {marked(exact)}, "
                    f"and no counterexample was found in {count} exact samples{note}",
                    Evidence(Method.INSTANCES, instances=count,
                             witness=witness_json(stronger) if stronger is not None else None, facts={"exact": exact}),
@@ -680,7 +684,7 @@ def _compare_conjunctions(printed: Any, exact: Any, state: State, claim: str, wh
     state.repairable = True
     verdicts = {f.verdict for f, *_ in findings}
     if verdicts == {Verdict.CONFIRMED}:
-        return Finding(Verdict.CONFIRMED, f"{what} is equivalent to the exact condition {sp.sstr(exact)}, bound by bound "
+        return Finding(Verdict.CONFIRMED, f"{what} is equivalent to the exact condition {marked(exact)}, bound by bound "
                        f"({', '.join(str(v) for *_x, v in findings)})", Evidence(Method.CANONICAL_FORM, facts={"exact": exact}),
                        derived=derived)
     if verdicts <= {Verdict.CONFIRMED, Verdict.CONSERVATIVE}:
@@ -797,7 +801,7 @@ def _quick_conjunctions(pairs: list[tuple[Any, Any, sp.Symbol]], claim: str, wha
     if above:
         return Finding(Verdict.CONSERVATIVE, f"{what} implies the exact condition bound by bound",
                        Evidence(Method.ENDPOINT_ANALYSIS, facts={"exact": exact}), derived=derived)
-    return Finding(Verdict.CONFIRMED, f"{what} is equivalent to the exact condition {sp.sstr(exact)}, bound by bound",
+    return Finding(Verdict.CONFIRMED, f"{what} is equivalent to the exact condition {marked(exact)}, bound by bound",
                    Evidence(Method.CANONICAL_FORM, facts={"exact": exact}), derived=derived)
 
 

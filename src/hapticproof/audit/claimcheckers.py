@@ -25,6 +25,7 @@ from hapticproof.audit.compare import as_bound, compare_expressions
 from hapticproof.exact.canonical import is_identically_zero
 from hapticproof.audit.claimbase import State, claimed_members, frequency_symbol, display_members, period_of, preferred_variables, conjuncts, compare_conditions
 from hapticproof.core.evidence import Decision, Evidence, Finding, Method, Outcome, Verdict
+from hapticproof.core.naming import marked, marker, role_marker
 from hapticproof.core.errors import HapticproofError
 from hapticproof.core.symbols import c as C_SYM
 from hapticproof.core.symbols import cos_n as COS_N
@@ -146,7 +147,7 @@ def transfer_members(state: State, members: list[Any]) -> tuple[list[Any], str, 
         reading = _named_object(coeff)
         if reading is not None:
             if reading[0] == "unread":
-                return [], "", sp.sstr(member)
+                return [], "", marked(member)
             named.append((*reading, signal))
         else:
             values.append((coeff, signal))
@@ -281,7 +282,7 @@ def hermitian_part(state: State) -> Finding:
         return malformed_finding("no member of the display states Re G^-1")
     state.repairable = True
     derived = form.canonical() if symbolic_delay else form.expr()
-    shown = form.expr(sp.Symbol("theta")) if symbolic_delay else derived
+    shown = form.expr(_THETA) if symbolic_delay else derived
     findings = [_circle_compare(state, state.prepare(m), derived, shown, symbolic_delay) for m in members]
     bad = [f for f in findings if f.verdict != Verdict.CONFIRMED]
     out = bad[0] if bad else findings[0]
@@ -314,7 +315,8 @@ def _circle_compare(state: State, printed: Any, derived: Any, shown: Any, symbol
     differ, an exact point of the circle where they do, every linked quantity from one angle."""
     from hapticproof.exact.unitcircle import circle_form, theta_form_on_circle
 
-    what = ("the printed Re G^-1" + (" (every integer delay n)" if symbolic_delay else " (in c = cos(omega T))"))
+    c, theta, T = marker("cos"), marker("theta"), role_marker("period", "T")
+    what = ("the printed Re G^-1" + (" (every integer delay n)" if symbolic_delay else f" (in {c} = cos(omega {T}))"))
     in_theta = _in_theta(printed, state)
     if state.repairing and _circle_differs_numerically(in_theta, derived, symbolic_delay):
         return Finding(Verdict.WRONG, f"{what} differs", Evidence(Method.CANONICAL_FORM))
@@ -325,9 +327,9 @@ def _circle_compare(state: State, printed: Any, derived: Any, shown: Any, symbol
         form_p = None
     form_d = theta_form_on_circle(derived)
     if form_p is not None and form_p.equals(form_d):
-        how = ("for every integer delay n: equal as rational functions of e^{j theta/%d} and e^{j n theta}, "
-               "which are independent for theta/pi irrational (structural)" % form_p.L if symbolic_delay
-               else "identically on the unit circle (equal as rational functions of e^{j theta/%d})" % form_p.L)
+        how = (f"for every integer delay n: equal as rational functions of e^{{j {theta}/{form_p.L}}} and e^{{j n {theta}}}, "
+               f"which are independent for {theta}/pi irrational (structural)" if symbolic_delay
+               else f"identically on the unit circle (equal as rational functions of e^{{j {theta}/{form_p.L}}})")
         facts: dict[str, Any] = {"printed_form": ("equals the derived", sp.sstr(derived))}
         if not state.repairing:
             judge = _circle_judge_equal(state, printed, in_theta, derived, symbolic_delay, form_p.L)
@@ -346,15 +348,15 @@ def _circle_compare(state: State, printed: Any, derived: Any, shown: Any, symbol
 
     witness = witness_of(values, point, period_of(state))
     facts = {"printed_value": pv, "derived_value": dv, "printed_form": ("reads", sp.sstr(in_theta)),
-             "point": f"theta = omega T = {sp.sstr(point['theta'])}, z = e^(j theta) = {point['z'][0]} + "
-                      f"{point['z'][1]} j, c = {point['c']}"}
+             "point": f"{theta} = omega {T} = {marked(point['theta'])}, z = e^(j {theta}) = {point['z'][0]} + "
+                      f"{point['z'][1]} j, {c} = {point['c']}"}
     judge = circle_judge("differ", printed, getattr(frequency_symbol(state), "name", "omega"), period_of(state),
                          [_judge_point(state, values, point)])
     if judge is not None:
         facts["judge"] = judge
     shown_pv = sp.N(pv, 12) if not pv.is_Rational else pv
-    return Finding(Verdict.WRONG, f"{what} differs from the derived one: {sp.sstr(shown_pv)} vs {sp.sstr(dv)} at the "
-                   f"witness (one angle theta = {sp.sstr(point['theta'])} gives omega, c and z)",
+    return Finding(Verdict.WRONG, f"{what} differs from the derived one: {marked(shown_pv)} vs {marked(dv)} at the "
+                   f"witness (one angle {theta} = {marked(point['theta'])} gives omega, {c} and z)",
                    Evidence(Method.COUNTEREXAMPLE, witness=witness, facts=facts), derived=shown)
 
 
@@ -475,7 +477,7 @@ def _verify_pointwise(state: State):
         value = form(c_value) if sp.sympify(c_value).is_Rational else sp.N(form.expr().subs(C_SYM, c_value), 50)
         decision = Decision.DISPROVED if bool(sp.N(value, 50) < 0) else Decision.PROVED
         return Outcome(decision, Evidence(Method.CANONICAL_FORM, witness={"c": c_value}, facts={"Re G^-1": value}),
-                       f"Re G^-1 = {value} at c = {c_value}")
+                       f"Re G^-1 = {value} at {marker('cos')} = {c_value}")
 
     return verify
 
@@ -508,15 +510,15 @@ def _hermitian_condition(state: State, form: Any, symbolic_delay: bool) -> Findi
             if getattr(p, "lower", True) and is_identically_zero(sp.expand(p.bound - e.bound)):
                 state.repairable = True
                 return Finding(Verdict.CONFIRMED, f"{what} is equivalent to Re G^-1 >= 0 at every frequency, for every "
-                               f"integer delay n (bounds on {var} equal in the canonical theta-form)",
+                               f"integer delay n (bounds on {var} equal in the canonical {marker('theta')}-form)",
                                Evidence(Method.CANONICAL_FORM, facts={"printed_bound": p.bound, "exact_bound": e.bound}),
-                               derived=sp.Ge(form.expr(sp.Symbol("theta")), 0))
+                               derived=sp.Ge(form.expr(_THETA), 0))
         except (TypeError, ValueError, sp.PolynomialError):
             pass
     from hapticproof.analysis.positivereal import hermitian
 
     if state.repairing:     # a repair must be exact for every n: the canonical forms decide
-        return Finding(Verdict.WRONG, f"{what} differs from Re G^-1 >= 0 in the canonical theta-form",
+        return Finding(Verdict.WRONG, f"{what} differs from Re G^-1 >= 0 in the canonical {marker('theta')}-form",
                        Evidence(Method.CANONICAL_FORM))
     last = None
     for n in (1, 2, 3):
@@ -528,7 +530,7 @@ def _hermitian_condition(state: State, form: Any, symbolic_delay: bool) -> Findi
         last = f
         if f.verdict != Verdict.CONFIRMED:
             return _at_delay_n(f, n, " (the display is not Re G^-1 >= 0 for every n)")
-    return Finding(Verdict.UNDECIDED, "the canonical theta-forms differ, but the conditions agree at n = 1, 2, 3",
+    return Finding(Verdict.UNDECIDED, f"the canonical {marker('theta')}-forms differ, but the conditions agree at n = 1, 2, 3",
                    Evidence(Method.INSTANCES, instances=3), derived=last.derived if last else None)
 
 
@@ -619,8 +621,10 @@ def _teleoperator_bounds(state: State, is_condition: bool) -> Finding:
 
     relation = _single(state)
     if not is_condition or relation is None:
+        c = marker("cos")
         return malformed_finding("for a teleoperator the frequency-wise claim is a condition on the dampings "
-                          "(b_m >= bound(c), b_s >= bound(c)); the display is none")
+                                 f"({role_marker('master_damping', 'b_m')} >= bound({c}), "
+                                 f"{role_marker('slave_damping', 'b_s')} >= bound({c})); the display is none")
     model = state.model
     bd = bounds(model)
     exact = sp.And(sp.Ge(model.b_m, bd.master, evaluate=False), sp.Ge(model.b_s, bd.slave, evaluate=False))

@@ -23,6 +23,7 @@ from hapticproof.audit.claimbase import malformed_finding, scene_system
 from hapticproof.audit.claimbase import ClaimError, State, decide_model, decide_at_point, holds_at, display_members, preferred_variables, conjuncts, separating_points, witness_json, compare_conditions
 from hapticproof.core.errors import HapticproofError, LatexParseError
 from hapticproof.core.evidence import Decision, Evidence, Finding, Method, Outcome, Verdict
+from hapticproof.core.naming import marked, marker, role_marker
 from hapticproof.core.symbols import c as C_SYM
 from hapticproof.core.symbols import n as N_SYM
 from hapticproof.core.symbols import z as Z_SYM
@@ -103,7 +104,8 @@ def _derive_exact(state: State) -> dict[str, Any]:
         if not model.delay.is_Symbol:
             wc = worst_case(model)
             if not _placeholder(wc.condition) and isinstance(wc.condition, sp.Basic):
-                where = f"minimum over c at c = {wc.minimiser}" if wc.minimiser is not None else wc.outcome.reason
+                c = marker("cos")
+                where = f"minimum over {c} at {c} = {wc.minimiser}" if wc.minimiser is not None else wc.outcome.reason
                 return {"condition": sp.And(*others, wc.condition) if others else wc.condition,
                         "method": f"worst case over frequency by endpoint analysis ({where})"}
         bounds = _dirichlet(model)
@@ -133,7 +135,8 @@ def _derive_exact(state: State) -> dict[str, Any]:
     if condition is None or _placeholder(condition):
         return {}
     return {"condition": condition, "method": "the exact passivity conditions (D), (P1)-(P5) of the teleoperator "
-                                              "(error-coordinate damping h >= sup L, C(1) >= 0, the poles of C)"}
+                                              f"(error-coordinate damping {marker('coupling')} >= sup {marker('leak')}, "
+                                              "C(1) >= 0, the poles of C)"}
 
 
 def _tele_symbolic(model: Any) -> bool:
@@ -171,19 +174,22 @@ def _dirichlet(model: Any) -> dict[str, Any] | None:
     a = model.b - model.z_a
     n = model.delay
     kappa = R * (n + sp.Rational(1, 2))
-    facts = {"residue_R": R, "F_0": F0, "kernel_bound": "D_n <= n + 1/2 (Dirichlet kernel)"}
+    # the proof's names: a = b - z_a, R, F_0, D_n, theta, c, as the paper's naming writes them
+    A, Rn, F, D, th, c = (marker(k) for k in ("excess", "residue", "rest", "kernel", "theta", "cos"))
+    facts = {"residue_R": R, "F_0": F0, "kernel_bound": f"{D} <= n + 1/2 (Dirichlet kernel)",
+             "a": f"{A} = {role_marker('device_damping', 'b')} - z_a"}
     if F0 == 0:
         return {"condition": sp.Ge(a, sp.expand(kappa)), "facts": facts,
-                "method": "G^-1 = a + z^-n R/(z - 1): Re G^-1 = a - R D_n(theta) with the Dirichlet kernel D_n <= n + 1/2 "
-                          "(supremum as theta -> 0), exact for every integer n"}
+                "method": f"G^-1 = {A} + z^-n {Rn}/(z - 1): Re G^-1 = {A} - {Rn} {D}({th}) with the Dirichlet kernel "
+                          f"{D} <= n + 1/2 (supremum as {th} -> 0), exact for every integer n"}
     necessary = sp.Ge(a, sp.expand(kappa - F0.subs(Z_SYM, 1)))
     modulus = hermitian_part_rational(sp.cancel(F0 * F0.subs(Z_SYM, 1 / Z_SYM))).expr()
     sufficient = None
     if C_SYM not in sp.sympify(modulus).free_symbols:
         sufficient = sp.Ge(a, sp.expand(kappa + sp.sqrt(sp.factor(modulus))))
     return {"necessary": necessary, "sufficient": sufficient, "facts": facts,
-            "method": "Dirichlet-kernel bounds: a >= R(n + 1/2) - F_0(1) necessary (c -> 1), a >= R(n + 1/2) + max|F_0| "
-                      "sufficient"}
+            "method": f"Dirichlet-kernel bounds: {A} >= {Rn}(n + 1/2) - {F}(1) necessary ({c} -> 1), "
+                      f"{A} >= {Rn}(n + 1/2) + max|{F}| sufficient"}
 
 
 def _verify_pr(state: State):
@@ -267,19 +273,19 @@ def _sandwich(state: State, printed: Any, exact: Mapping[str, Any], claim: str, 
                 # instances' witness of non-necessity
                 inst = _instances(state, printed, claim, what) if claim == "passivity" else high
                 if inst.verdict == Verdict.UNDECIDED and inst.evidence.witness and claim == "passivity":
-                    return Finding(Verdict.CONSERVATIVE, f"{what} implies the sufficient Dirichlet bound {sp.sstr(sufficient)} "
+                    return Finding(Verdict.CONSERVATIVE, f"{what} implies the sufficient Dirichlet bound {marked(sufficient)} "
                                    "(proved) but is not necessary: the scene is positive real at the witness where it fails",
                                    Evidence(Method.COUNTEREXAMPLE, witness=inst.evidence.witness,
                                             facts={"sufficient": sufficient}), derived=sufficient)
                 if claim == "sufficient":
-                    return Finding(Verdict.CONSERVATIVE, f"{what} implies the sufficient bound {sp.sstr(sufficient)} (proved)",
+                    return Finding(Verdict.CONSERVATIVE, f"{what} implies the sufficient bound {marked(sufficient)} (proved)",
                                    high.evidence, derived=sufficient)
-                return Finding(Verdict.UNDECIDED, f"{what} is sufficient (it implies {sp.sstr(sufficient)}, proved); whether it "
+                return Finding(Verdict.UNDECIDED, f"{what} is sufficient (it implies {marked(sufficient)}, proved); whether it "
                                "is also necessary was not settled", high.evidence, derived=sufficient)
     else:
         nec = compare_conditions(printed, necessary, state, claim="necessary", what=what)
         if nec.verdict == Verdict.CONFIRMED:
-            return Finding(Verdict.CONFIRMED, f"{what} is implied by the necessary bound {sp.sstr(necessary)} (proved)",
+            return Finding(Verdict.CONFIRMED, f"{what} is implied by the necessary bound {marked(necessary)} (proved)",
                            nec.evidence, derived=necessary)
     return _instances(state, printed, claim, what)
 
@@ -457,8 +463,9 @@ def _derive_leading(state: State) -> Any:
     parts = _wall_parts(state)
     if parts is None:
         raise ClaimError("the leading-order stability boundary is derived for a virtual wall X + Y(z - 1)/(Tz) "
-                         "(a spring and a damper in any names, T the scene's period); this environment is "
-                         f"H(z) = {sp.sstr(state.model.H)}")
+                         f"(a spring and a damper in any names, {role_marker('period', 'T')} the scene's period); this "
+                         "environment is "
+                         f"H(z) = {marked(state.model.H)}")
     damping = _operator_damping(state)
     model = state.model
     n = model.delay
@@ -485,10 +492,10 @@ def stability(state: State) -> Finding:
         f = compare_conditions(printed, leading, state, claim="passivity",
                                what="the printed stability condition (leading order)")
         facts = {**dict(f.evidence.facts), "leading_order": leading,
-                 "critical": f"beta* = {sp.sstr(lo.critical)} at the crossing w^2 = {sp.sstr(lo.frequency)} "
+                 "critical": f"beta* = {marked(lo.critical)} at the crossing {marker('w')}^2 = {marked(lo.frequency)} "
                              "(alpha = eps a, delta = eps d, beta = eps g)"}
         return Finding(f.verdict, f.detail + "; the leading order of the exact ZOH boundary is "
-                       f"{sp.sstr(leading)} (classics.leading_order_boundary)",
+                       f"{marked(leading)} (classics.leading_order_boundary)",
                        Evidence(f.evidence.method, witness=f.evidence.witness, instances=f.evidence.instances, facts=facts),
                        derived=leading)
     return _stability_instances(state, printed)

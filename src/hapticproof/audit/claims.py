@@ -66,6 +66,7 @@ import sympy as sp
 
 from hapticproof.core.errors import HapticproofError, LatexParseError
 from hapticproof.core.evidence import Evidence, Finding, Method, Verdict
+from hapticproof.core.naming import marked
 from hapticproof.audit.claimbase import ClaimError, PROVED_VERDICTS, State
 
 __all__ = ["check", "describe", "checkers"]
@@ -233,7 +234,7 @@ def _in_paper_names(finding: Finding, chart: Any) -> Finding:
     derived = chart.back(finding.derived)
     detail = finding.detail
     if any(name in detail for name in chart.fresh):
-        told = f"in the paper's names {sp.sstr(derived)}; " if isinstance(derived, sp.Basic) else ""
+        told = f"in the paper's names {marked(derived)}; " if isinstance(derived, sp.Basic) else ""
         detail += f" ({told}{'; '.join(chart.notes)})"
     return Finding(finding.verdict, detail, dataclasses.replace(evidence, witness=witness, facts=facts),
                    derived=derived, corrected=finding.corrected)
@@ -358,13 +359,15 @@ def describe(spec: Any, paper: Any) -> str:
     "exact condition for G^-1 positive real of scene 'wall' (single-user, forward) (necessary and sufficient)"
     """
     scene = paper.scenes.get(spec.scene) if spec.scene else None
+    names = paper.naming()
+    w, T = names.helper("omega"), (scene.role("period") if scene is not None and scene.system != "network" else names.period)
     where = ""
     if scene is not None:
         where = f" of scene '{spec.scene}' ({scene.system}, {scene.approximation}"
         where += f", delay {scene.delay})" if scene.delay not in (0, None) else ")"
     texts = {
         "inverse-transfer": f"G^-1(z){where}, exact (canonical form)",
-        "hermitian-part": f"Re G^-1(e^(j omega T)){where}, exact in c = cos(omega T)",
+        "hermitian-part": f"Re G^-1(e^(j {w} {T})){where}, exact in {names.helper('cos')} = cos({w} {T})",
         "residue": f"residue of G^-1 at z = 1{where}",
         "passivity-condition": f"exact condition for G^-1 positive real{where} (necessary and sufficient)",
         "sufficient-condition": f"exact condition for G^-1 positive real{where}: the display must imply it",

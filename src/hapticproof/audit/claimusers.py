@@ -51,6 +51,7 @@ from hapticproof.audit.claimbase import ClaimError, State, conjuncts, decide_at_
 from hapticproof.audit.compare import NotABound, as_bound
 from hapticproof.core.errors import HapticproofError
 from hapticproof.core.evidence import Decision, Evidence, Finding, Method, Verdict
+from hapticproof.core.naming import marked, marker, role_marker
 from hapticproof.core.symbols import c as C_SYM
 from hapticproof.exact.canonical import Sampler
 
@@ -272,7 +273,7 @@ def _necessary(state: State, printed: list[Any], what: str) -> Finding:
     by_user, others = _bounds_on_dampings(printed, dampings)
     if others:
         return Finding(Verdict.UNDECIDED, f"{what}: {len(others)} of its conditions bound no single user's damping "
-                       f"({sp.sstr(others[0])}); only bounds on the dampings are compared with the diagonal of G + G^H",
+                       f"({marked(others[0])}); only bounds on the dampings are compared with the diagonal of G + G^H",
                        Evidence(Method.INSTANCES, instances=0))
     checked = []
     for b, bounds in by_user.items():
@@ -292,13 +293,13 @@ def _necessary(state: State, printed: list[Any], what: str) -> Finding:
                 return Finding(Verdict.WRONG, f"{what} is not implied by the diagonal of G + G^H", Evidence(Method.INSTANCES))
             found = _not_necessary_witness(state, b, f, g)
             if found is None:
-                return Finding(Verdict.UNDECIDED, f"{what}: the bound {b} > {sp.sstr(f)} is not implied by the necessary "
-                               f"bound {b} >= {sp.sstr(g)} (from M_ii(c) >= 0), and no positive-real scene where it fails "
+                return Finding(Verdict.UNDECIDED, f"{what}: the bound {b} > {marked(f)} is not implied by the necessary "
+                               f"bound {b} >= {marked(g)} (from {marker('matrix')}_ii({marker('cos')}) >= 0), and no positive-real scene where it fails "
                                f"was found in {DRAWS} draws", Evidence(Method.INSTANCES, instances=DRAWS))
             point, outcome = found["point"], found["outcome"]
             return Finding(Verdict.WRONG, f"{what} is not necessary: at the witness the scene is positive real (exact "
-                           f"decision: {outcome.reason}) while {b} > {sp.sstr(f)} fails (the diagonal of G + G^H needs only "
-                           f"{b} >= {sp.sstr(g)})",
+                           f"decision: {outcome.reason}) while {b} > {marked(f)} fails (the diagonal of G + G^H needs only "
+                           f"{b} >= {marked(g)})",
                            Evidence(Method.COUNTEREXAMPLE, witness=witness_json(point),
                                     facts={"recheck": outcome.to_json(), "necessary_bound": sp.Ge(b, g)}),
                            derived=sp.And(*[sp.Ge(x, needed[x]) for x in needed]) if needed else None)
@@ -307,7 +308,7 @@ def _necessary(state: State, printed: list[Any], what: str) -> Finding:
     state.repairable = True
     derived = sp.And(*[sp.Ge(x, needed[x], evaluate=False) for x in needed]) if len(needed) > 1 else \
         sp.Ge(*next(iter(needed.items())), evaluate=False)
-    users = ", ".join(f"{b} > {sp.sstr(f)} (<= {sp.sstr(g)})" for b, f, g in checked)
+    users = ", ".join(f"{b} > {marked(f)} (<= {marked(g)})" for b, f, g in checked)
     return Finding(Verdict.CONFIRMED, f"{what} is necessary: each bound is implied by a diagonal entry of G + G^H being "
                    f">= 0 at its worst frequency, which positive semidefiniteness requires: {users}",
                    Evidence(Method.ENDPOINT_ANALYSIS, facts={"necessary_bounds": {str(k): v for k, v in needed.items()}}),
@@ -337,9 +338,9 @@ def _sufficient(state: State, printed: list[Any], exact: Any, what: str) -> Find
         corner = _corner_proof(state, by_user, exact)
         if corner is not None:
             state.repairable = True
-            shown = ", ".join(f"{b} = {sp.sstr(v)}" for b, v in corner.items())
-            return Finding(Verdict.CONSERVATIVE, f"{what} implies the exact condition: M(c) = G^-1 + G^-H is non-decreasing "
-                           f"in each damping b_i (Loewner order), and at the corner {shown} every principal-minor "
+            shown = ", ".join(f"{b} = {marked(v)}" for b, v in corner.items())
+            return Finding(Verdict.CONSERVATIVE, f"{what} implies the exact condition: {marker('matrix')}({marker('cos')}) = G^-1 + G^-H is non-decreasing "
+                           f"in each damping {role_marker('device_damping', 'b')}_i (Loewner order), and at the corner {shown} every principal-minor "
                            "condition of the exact worst case holds for all values of the other parameters (proved from "
                            "their signs)", Evidence(Method.ENDPOINT_ANALYSIS, facts={"corner": {str(k): v for k, v in corner.items()},
                                                                                     "exact": exact}),

@@ -36,6 +36,7 @@ import sympy as sp
 
 from hapticproof.core.errors import HapticproofError
 from hapticproof.core.evidence import Decision, Evidence, Finding, Method, Outcome, Verdict
+from hapticproof.core.naming import marked
 from hapticproof.core.symbols import c as C_SYM
 from hapticproof.exact.canonical import Sampler, canonical_rational, certified_nonzero, evaluate_at, is_identically_zero
 
@@ -105,7 +106,7 @@ def compare_expressions(
     gap = _short(printed - derived)
     return Finding(
         on_mismatch,
-        f"{what} differs from the derived one: {sp.sstr(printed_value)} vs {sp.sstr(derived_value)} at the witness"
+        f"{what} differs from the derived one: {marked(printed_value)} vs {marked(derived_value)} at the witness"
         f"{f' (printed - derived = {gap})' if gap else ''}{suffix}",
         Evidence(
             Method.COUNTEREXAMPLE,
@@ -136,7 +137,7 @@ def _short(expr: Any, limit: int = 120) -> str | None:
         value = sp.factor(sp.cancel(sp.together(expr))) if isinstance(expr, sp.Expr) else expr
     except (sp.PolynomialError, TypeError, ValueError):
         value = expr
-    text = sp.sstr(value)
+    text = marked(value)
     return text if len(text) <= limit else None
 
 
@@ -155,7 +156,7 @@ class SignCondition:
         return {">": value > 0, ">=": value >= 0, "=": value == 0, "!=": value != 0}[self.op]
 
     def __str__(self) -> str:
-        return f"{sp.sstr(self.expr)} {self.op} 0"
+        return f"{marked(self.expr)} {self.op} 0"
 
 
 def as_sign_condition(relation: sp.Basic) -> SignCondition:
@@ -168,7 +169,7 @@ def as_sign_condition(relation: sp.Basic) -> SignCondition:
     if relation in (sp.true, sp.false):
         return SignCondition(sp.Integer(1 if relation is sp.true else -1), ">")
     if not isinstance(relation, sp.core.relational.Relational):
-        raise NotABound(f"not a relation: {sp.sstr(relation)}")
+        raise NotABound(f"not a relation: {marked(relation)}")
     lhs, rhs = relation.lhs, relation.rhs
     if isinstance(relation, sp.StrictGreaterThan):
         return SignCondition(lhs - rhs, ">")
@@ -218,7 +219,7 @@ def compare_sign_conditions(
         same_kind = (p.op in ("=",)) == (d.op in ("=",))
         ratio = sp.cancel(sp.together(p.expr / d.expr)) if d.expr != 0 else None
         if same_kind and ratio is not None and ratio != 0 and not ratio.free_symbols:
-            return Finding(Verdict.CONFIRMED, f"{what} is the derived condition {d} up to the factor {sp.sstr(ratio)}{suffix}",
+            return Finding(Verdict.CONFIRMED, f"{what} is the derived condition {d} up to the factor {marked(ratio)}{suffix}",
                            Evidence(Method.CANONICAL_FORM, facts={**facts, "printed_form": derived_form}), derived=derived)
     else:
         ratio = sp.cancel(sp.together(p.expr / d.expr)) if d.expr != 0 else None
@@ -228,7 +229,7 @@ def compare_sign_conditions(
                 strictness = "" if p.op == d.op else f"; compared up to the boundary ({p.op} vs {d.op})"
                 return Finding(
                     Verdict.CONFIRMED,
-                    f"{what} is the derived condition {d} multiplied by {sp.sstr(ratio)} > 0{strictness}{suffix}",
+                    f"{what} is the derived condition {d} multiplied by {marked(ratio)} > 0{strictness}{suffix}",
                     Evidence(Method.CANONICAL_FORM, facts={**facts, "ratio": ratio, "printed_form": derived_form}),
                     derived=derived)
             facts["ratio"] = ratio
@@ -257,8 +258,8 @@ def compare_sign_conditions(
     reversed_ = " (the relation is reversed)" if facts.get("ratio") is not None else ""
     return Finding(
         on_mismatch,
-        f"{what} ({p}) is not the derived condition ({d}){reversed_}: {how} (values {sp.sstr(values['printed_value'])} "
-        f"and {sp.sstr(values['derived_value'])}){suffix}",
+        f"{what} ({p}) is not the derived condition ({d}){reversed_}: {how} (values {marked(values['printed_value'])} "
+        f"and {marked(values['derived_value'])}){suffix}",
         Evidence(Method.COUNTEREXAMPLE, witness={str(k): v for k, v in witness.items()}, facts={**facts, **values}),
         derived=derived, corrected=corrected)
 
@@ -275,7 +276,7 @@ class Bound:
 
     def __str__(self) -> str:
         op = (">" if self.strict else ">=") if self.lower else ("<" if self.strict else "<=")
-        return f"{self.var} {op} {sp.sstr(self.bound)}"
+        return f"{self.var} {op} {marked(self.bound)}"
 
 
 class NotABound(ValueError):
@@ -308,13 +309,13 @@ def as_bound(condition: sp.Basic, var: sp.Symbol) -> Bound:
     if condition in (sp.true, sp.false) or isinstance(condition, (bool, sp.logic.boolalg.BooleanAtom)):
         raise NotABound(f"the condition is identically {bool(condition)}")
     if not isinstance(condition, sp.core.relational.Relational):
-        raise NotABound(f"not an inequality: {sp.sstr(condition)}")
+        raise NotABound(f"not an inequality: {marked(condition)}")
     if isinstance(condition, (sp.StrictGreaterThan, sp.GreaterThan)):
         expr = condition.lhs - condition.rhs
     elif isinstance(condition, (sp.StrictLessThan, sp.LessThan)):
         expr = condition.rhs - condition.lhs
     else:
-        raise NotABound(f"an equation, not an inequality: {sp.sstr(condition)}")
+        raise NotABound(f"an equation, not an inequality: {marked(condition)}")
     strict = isinstance(condition, (sp.StrictGreaterThan, sp.StrictLessThan))
     expr = sp.expand(expr)
     if var not in expr.free_symbols:
@@ -329,7 +330,7 @@ def as_bound(condition: sp.Basic, var: sp.Symbol) -> Bound:
         raise NotABound(f"{var} cancels out of it")
     sign = _provable_sign(coeff)
     if sign is None:
-        raise NotABound(f"the sign of the coefficient {sp.sstr(coeff)} of {var} is not fixed by the assumptions")
+        raise NotABound(f"the sign of the coefficient {marked(coeff)} of {var} is not fixed by the assumptions")
     bound = -rest / coeff
     bound = canonical_rational(bound) if bound.is_rational_function() else sp.cancel(bound)
     return Bound(var, bound, strict, sign > 0)
@@ -465,7 +466,7 @@ def compare_bounds(
         raise ValueError(f"the exact condition must be a lower bound on {var}: {exact}")
     floor = _domain_floor(var)
     suffix = f" ({note})" if note else ""
-    exact_text = f"{var} {'>=' if not e.strict else '>'} {sp.sstr(e.bound)}"
+    exact_text = f"{var} {'>=' if not e.strict else '>'} {marked(e.bound)}"
     try:
         p = as_bound(printed, var)
     except NotABound as err:
@@ -552,13 +553,13 @@ def compare_bounds(
             witness = {str(k): v for k, v in witness.items()}
         return Finding(
             Verdict.CONSERVATIVE,
-            f"{what} implies the exact condition (its bound exceeds the exact one by {sp.sstr(difference)} >= 0) but not conversely{strictness}{suffix}",
+            f"{what} implies the exact condition (its bound exceeds the exact one by {marked(difference)} >= 0) but not conversely{strictness}{suffix}",
             Evidence(Method.ENDPOINT_ANALYSIS, witness=witness, facts=facts),
             derived=exact,
         )
     return Finding(
         Verdict.UNDECIDED,
-        f"{what}: the sign of the bound difference {sp.sstr(difference)} was not settled and no witness was found in {tries} exact samples{suffix}",
+        f"{what}: the sign of the bound difference {marked(difference)} was not settled and no witness was found in {tries} exact samples{suffix}",
         Evidence(Method.INSTANCES, instances=tries, facts={"difference": difference, "printed_form": form}),
         derived=exact,
         corrected=corrected,
@@ -573,7 +574,7 @@ def _compare_general(
     """A printed condition that is not a lower bound on ``var``, against the exact lower bound:
     search exact points where it holds and the exact condition fails (and conversely)."""
     floor = _domain_floor(var)
-    exact_text = f"{var} {'>=' if not e.strict else '>'} {sp.sstr(e.bound)}"
+    exact_text = f"{var} {'>=' if not e.strict else '>'} {marked(e.bound)}"
     form = _printed_form(None, printed) if p is None else _printed_form(p, printed)
     free = printed.free_symbols if isinstance(printed, sp.Basic) else set()
     symbols = sorted((set(free) | e.bound.free_symbols) - {var}, key=str)

@@ -225,6 +225,12 @@ class PaperFile:
         """The symbol table bound to a scene object (remembered under ``key``), see :func:`bound_table`."""
         return bound_table(self, scene, key)
 
+    def naming(self) -> Any:
+        """The names the paper's reports print (:func:`file_naming`, computed once)."""
+        if "naming" not in self._tables:
+            self._tables["naming"] = file_naming(self)
+        return self._tables["naming"]
+
 
 class FilePaper(Paper):
     """A :class:`~hapticproof.audit.runner.Paper` read from a file: equations stay in file order."""
@@ -960,9 +966,30 @@ def register_claims(source: PaperFile, onto: Paper) -> Paper:
     return onto
 
 
+def file_naming(paper: PaperFile) -> Any:
+    """A paper file's naming (:class:`~hapticproof.core.naming.Naming`): the toolkit's helpers
+    under names that none of its symbols and scene parameters can be confused with, and the
+    roles its scenes agree on (the period ``h`` of every scene: ``\\cos(\\omega h)``)."""
+    from hapticproof.core.naming import Naming
+    from hapticproof.systems.naming import scene_names, scene_roles
+
+    table = getattr(paper.symbols, "symbols", None) or {}
+    extra: set[str] = set()
+    roles: dict[str, set] = {}
+    for scene in paper.scenes.values():
+        try:
+            extra |= scene_names(scene)
+        except HapticproofError:      # a scene the audit reports on as malformed: its declared names are enough
+            extra |= set(dict(scene.params))
+        for field_, default, name in scene_roles(scene):
+            roles.setdefault(field_, set()).add((default, name))
+    agreed = tuple((f, *next(iter(v))) for f, v in roles.items() if len(v) == 1)
+    return Naming.of_symbols((v for v in table.values() if isinstance(v, sp.Symbol)), agreed, extra)
+
+
 def _register(paper: PaperFile) -> FilePaper:
     return register_claims(paper, FilePaper(paper.id, title=paper.title, source=paper.source, authors=paper.authors,
-                                            symbols=paper.symbols))
+                                            symbols=paper.symbols, notation=paper.naming()))
 
 
 # ---------------------------------------------------------------------------------------------

@@ -30,7 +30,7 @@ import os
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import replace
 from typing import Any
-from hapticproof.audit.runner import AuditReport, EquationResult, Paper, audit_paper, run_equation
+from hapticproof.audit.runner import AuditReport, EquationResult, Paper, audit_paper, notation_of, run_equation
 from hapticproof.core.evidence import Evidence
 from hapticproof.core.processes import die_with_parent
 
@@ -234,4 +234,5 @@ def audit_reports(papers: Sequence[Paper], only: Mapping[str, Sequence[str] | No
                 process.kill()
                 process.join(timeout=5)
             pipe.close()
-    return [AuditReport(p.id, p.title, tuple(results[(p.id, eq.id)] for eq in selected[p.id])) for p in papers]
+    return [AuditReport(p.id, p.title, rows, notation_of(p, rows))
+            for p in papers for rows in [tuple(results[(p.id, eq.id)] for eq in selected[p.id])]]

@@ -52,6 +52,7 @@ __all__ = [
     "EquationResult",
     "AuditReport",
     "audit_paper",
+    "notation_of",
     "malformed",
     "quoted_math",
     "run_equation",
@@ -116,6 +117,20 @@ class Paper:
     conditions: list[tuple[str, str, str]] = field(default_factory=list)
     #: functions returning more such rows: costly derived rows are built only when exported
     deferred_conditions: list[Callable[[], Any]] = field(default_factory=list)
+    #: the names the reports of this paper print (:class:`~hapticproof.core.naming.Naming`; by
+    #: default chosen from its symbols: a paper file sets the one of its symbols and scenes)
+    notation: Any = None
+
+    @property
+    def naming(self) -> Any:
+        """The paper's naming: its symbols' names, the toolkit's helpers under names that no
+        symbol of the paper can be confused with (``c`` stays ``c`` unless the paper has ``c_*``)."""
+        if self.notation is not None:
+            return self.notation
+        from hapticproof.core.naming import Naming
+
+        table = getattr(self.symbols, "symbols", None) or {}
+        return Naming.of_symbols(v for v in table.values() if isinstance(v, sp.Symbol))
 
     def condition_rows(self) -> list[tuple[str, str, str]]:
         """All export rows: ``conditions`` then the deferred rows (each built once per process)."""
@@ -145,7 +160,7 @@ class Paper:
                 id=id,
                 kind=kind,
                 printed=printed,
-                check=check,
+                check=functools.update_wrapper(functools.partial(_in_paper_names, check), check),
                 section=section,
                 assumptions=assumptions,
                 derivation=derivation,
@@ -225,6 +240,12 @@ class AuditContext:
         return self.paper.names
 
 
+def _in_paper_names(check: Check, ctx: AuditContext) -> Finding:
+    """The finding of ``check`` in its paper's names: the toolkit's own names a check writes
+    (:func:`~hapticproof.core.naming.marker`) as the paper's naming chose them."""
+    return ctx.paper.naming.unmarked(check(ctx))
+
+
 def quoted_math(text: str) -> list[str]:
     r"""The ``$...$`` mathematics quoted in a claim's text, in order.
 
@@ -259,6 +280,9 @@ class EquationResult:
     seconds: float
     section: str = ""
     assumptions: str = ""
+    #: the names the views show for the toolkit's witness keys (``c`` -> ``gamma``, ``omega_T`` ->
+    #: ``omega*h``: the paper's naming); the JSON keeps the keys (the judge reads them)
+    witness_names: Mapping[str, str] = field(default_factory=dict, compare=False, repr=False)
 
     def to_json(self) -> dict[str, Any]:
         return {
@@ -284,9 +308,15 @@ class AuditReport:
     paper: str
     title: str
     results: tuple[EquationResult, ...]
+    #: the toolkit's names this report prints differently from the papers' (``{"gamma": "cos wh"}``:
+    #: :func:`notation_of`), defined in every format
+    notation: Mapping[str, str] = field(default_factory=dict)
 
     def to_json(self) -> dict[str, Any]:
-        return {"paper": self.paper, "title": self.title, "equations": [r.to_json() for r in self.results]}
+        out = {"paper": self.paper, "title": self.title, "equations": [r.to_json() for r in self.results]}
+        if self.notation:
+            out["notation"] = dict(self.notation)
+        return out
 
     def __repr__(self) -> str:  # short and free of timings (notebooks compare it)
         counts = ", ".join(f"{k} {v}" for k, v in sorted(self.counts().items()))
@@ -299,13 +329,13 @@ class AuditReport:
         return out
 
 
-def _derived_latex(value: Any, names: Mapping[sp.Symbol, str]) -> str | None:
+def _derived_latex(value: Any, names: Mapping[sp.Symbol, str], naming: Any = None) -> str | None:
     if value is None:
         return None
     if isinstance(value, str):
         return value
     try:
-        return to_latex(value, names)
+        return naming.latex(value, names) if naming is not None else to_latex(value, names)
     except Exception:  # noqa: BLE001 - a display problem must not hide the verdict
         return sp.sstr(value)
 
@@ -363,7 +393,7 @@ def run_equation(paper: Paper, equation: Equation) -> EquationResult:
         id=equation.id,
         kind=equation.kind,
         printed=equation.printed,
-        derived=_derived_latex(finding.derived, paper.names),
+        derived=_derived_latex(finding.derived, paper.names, paper.naming),
         verdict=finding.verdict,
         detail=finding.detail,
         corrected=finding.corrected,
@@ -371,6 +401,7 @@ def run_equation(paper: Paper, equation: Equation) -> EquationResult:
         seconds=seconds,
         section=equation.section,
         assumptions=equation.assumptions,
+        witness_names=paper.naming.word_map(),
     )
 
 
@@ -430,7 +461,24 @@ def audit_paper(paper: Paper, only: Iterable[str] | None = None,
         results.append(run_equation(paper, eq))
         if progress is not None:
             progress(len(results), len(equations))
-    return AuditReport(paper.id, paper.title, tuple(results))
+    return AuditReport(paper.id, paper.title, tuple(results), notation_of(paper, results))
+
+
+def notation_of(paper: Paper, results: Iterable[EquationResult]) -> dict[str, str]:
+    """The paper's renamed helpers (:meth:`~hapticproof.core.naming.Naming.legend`) that its
+    results use, name -> meaning (``{"gamma": "cos wh"}``): what a report defines.
+
+    >>> notation_of(Paper("p", "P", ""), ())
+    {}
+    """
+    legend = paper.naming.legend()
+    if not legend:
+        return {}
+    words: set[str] = set()
+    for r in results:
+        for text in (r.detail, r.derived, r.corrected, json.dumps(to_jsonable(r.evidence.to_json()))):
+            words |= set(re.findall(r"[A-Za-z_]+", text or ""))
+    return {name: meaning for name, meaning in legend.items() if name in words or name.replace("\\", "") in words}
 
 
 def reports_to_json(reports: Iterable[AuditReport]) -> str:

@@ -31,7 +31,6 @@ from hapticproof.core.evidence import to_jsonable
 
 __all__ = ["register", "build_scene", "derive"]
 
-COS = r"\cos(\omega T)"
 #: ``sin(omega T)`` in the imaginary parts of M(c) (unequal delays), defined where it is printed.
 SIN_THETA = sp.Symbol("s_theta", real=True)
 GROUPS = {"b": "b", "K_0": "K0", "B_0": "B0", "z_a": "z_a", "K": "K", "B": "B"}
@@ -43,7 +42,7 @@ def _decision_lines(data: dict) -> list[str]:
     lines = ["conditions:", *(f"  {c.name.ljust(width)}  {c.decision.value:<9}  {c.outcome.reason}" for c in data["conditions"]),
              f"verdict:           {data['verdict']}  ({data['reason']})"]
     if data["witness"] and data["verdict"] == "disproved":
-        lines.append("witness:           " + witness_text(data["witness"]))
+        lines.append("witness:           " + witness_text(data["witness"], data["names"]))
     return lines
 
 
@@ -96,12 +95,14 @@ def derive(scene: Any, minors: str = "auto", full: bool = False) -> dict[str, An
 
     if by_modes(scene) and not full:
         return derive_by_modes(scene, minors)
+    names = scene.naming()
     G = inverse_transfer_matrix(scene).applyfunc(tidy)
     (res,) = [r for r in residues(scene) if r.pole == 1] or [None]
     H = hermitian(scene)
     show_minors = minors == "all" or (minors == "auto" and scene.users <= 3)
     wc = worst_case(scene)
     out: dict[str, Any] = {
+        "names": names,
         "users": scene.users,
         "delays": list(scene.delays),
         "approximation": scene.approximation,
@@ -113,7 +114,8 @@ def derive(scene: Any, minors: str = "auto", full: bool = False) -> dict[str, An
         "hermitian_is_real": H.is_symmetric,
         "worst_case_method": wc.method,
         "worst_case_condition": wc.condition,
-        "worst_case_reason": wc.outcome.reason,
+        # a numeric scene's decision is in the toolkit's words; a symbolic one's in the scene's names
+        "worst_case_reason": names.worded(wc.outcome).reason if scene.is_numeric else wc.outcome.reason,
         "worst_c": wc.minimiser,
         "conditions": conditions(scene),
         "verdict": positive_real(scene).decision.value,
@@ -151,12 +153,15 @@ def derive_by_modes(scene: Any, minors: str = "auto") -> dict[str, Any]:
     from hapticproof.systems.models import inverse_transfer
 
     m = scene.users
+    names = scene.naming()
+    w = names.words
     wc = worst_case(scene)
     verdict = positive_real(scene)
     values = spectrum(scene) if m <= 64 else None
     modes = [{"eigenvalue": md.eigenvalue, "multiplicity": md.multiplicity if values else None,
               "g": inverse_transfer(md.scene)} for md in extreme_modes(scene)]
     out: dict[str, Any] = {
+        "names": names,
         "users": m,
         "delays": [scene.delays[0]] if len(set(scene.delays)) == 1 else list(scene.delays),
         "approximation": scene.approximation,
@@ -173,9 +178,10 @@ def derive_by_modes(scene: Any, minors: str = "auto") -> dict[str, Any]:
         "reason": verdict.reason,
         "witness": verdict.evidence.witness,
         "skipped": {
-            "G_inverse": (f"the {m} x {m} matrix G^-1(z) = U diag(g_lambda) U^T is shown by its modes", "--full"),
-            "hermitian_part": (f"the {m} x {m} matrix M(c) = U diag(2 Re g_lambda(c)) U^T is shown by its modes", "--full"),
-            "residue_at_1": ("the residue matrix T Kmat = T (K_0 I + K L) has the eigenvalues T(K_0 + lambda K)", "--full"),
+            "G_inverse": (f"the {m} x {m} matrix G^-1(z) = " + w("U diag(g_lambda) U^T is shown by its modes"), "--full"),
+            "hermitian_part": (f"the {m} x {m} matrix " + w("M(c) = U diag(2 Re g_lambda(c)) U^T is shown by its modes"),
+                               "--full"),
+            "residue_at_1": (w("the residue matrix T Kmat = T (K_0 I + K L) has the eigenvalues T(K_0 + lambda K)"), "--full"),
         },
     }
     if minors == "all":
@@ -186,17 +192,19 @@ def derive_by_modes(scene: Any, minors: str = "auto") -> dict[str, Any]:
 def _modes_text(data: dict[str, Any], verbose: bool = False) -> str:
     from hapticproof.report.readable import brief
 
+    names = data["names"]
+    w = names.words
     graph = {"complete": "complete graph", "path": "path", "ring": "ring (circulant)", "star": "star"}.get(data["graph"], "graph")
     lines = [f"system:            {data['users']}-user HVE ({data['approximation']} difference, delay {data['delays'][0]}, "
              f"{graph}, {data['edges_count']} edges), uniform: decided by modes",
-             "G^-1(z) = U diag(g_lambda(z)) U^T over the Laplacian eigenvalues lambda of the coupling graph, "
-             "g_lambda = single-user wall with K_0 + lambda K, B_0 + lambda B"]
+             w("G^-1(z) = U diag(g_lambda(z)) U^T over the Laplacian eigenvalues lambda of the coupling graph, "
+               "g_lambda = single-user wall with K_0 + lambda K, B_0 + lambda B")]
     if data["spectrum"] is not None:
         lines.append("eigenvalues:       " + ", ".join(f"{k} (x{v})" for k, v in data["spectrum"].items()))
     for md in data["modes"]:
-        lines.append(f"mode lambda = {sp.sstr(md['eigenvalue'])}: g(z) = {brief(md['g'], verbose=verbose)}")
-    lines.append("Re g_lambda and the residues T(K_0 + lambda K) are affine in lambda: the modes lambda = 0 and "
-                 "lambda_max decide")
+        lines.append(w("mode lambda") + f" = {sp.sstr(md['eigenvalue'])}: g(z) = {brief(md['g'], verbose=verbose, names=names)}")
+    lines.append(w("Re g_lambda and the residues T(K_0 + lambda K) are affine in lambda: the modes lambda = 0 and "
+                   "lambda_max decide"))
     lines.append(_worst_case_text(data, verbose))
     lines += _decision_lines(data)
     lines += [f"not computed:      {why} [{how} computes it]" for why, how in data["skipped"].values()]
@@ -204,10 +212,12 @@ def _modes_text(data: dict[str, Any], verbose: bool = False) -> str:
 
 
 def _modes_latex_items(data: dict[str, Any]) -> list[tuple[str, str]]:
-    items = [(f"mode lambda = {sp.sstr(md['eigenvalue'])}", r"g_{" + tex.to_latex(md["eigenvalue"]) + r"}(z) = "
-              + tex.to_latex(md["g"])) for md in data["modes"]]
+    names = data["names"]
+    lam = names.helper("eigenvalue")
+    items = [(f"mode {lam} = {sp.sstr(md['eigenvalue'])}", r"g_{" + names.latex(md["eigenvalue"]) + r"}(z) = "
+              + names.latex(md["g"])) for md in data["modes"]]
     if data["worst_case_condition"] not in (None, sp.true, sp.false):
-        items.append((f"worst case over frequency ({data['worst_case_method']})", tex.to_latex(data["worst_case_condition"])))
+        items.append((f"worst case over frequency ({data['worst_case_method']})", names.latex(data["worst_case_condition"])))
     return items
 
 
@@ -216,26 +226,28 @@ def _worst_case_text(data: dict[str, Any], verbose: bool) -> str:
     M(c) is PSD for every c -- never a bare True/False/None."""
     from hapticproof.report.readable import brief
 
+    names = data["names"]
+    c, Mc = names.helper("cos"), names.words("M(c)")
     condition = data["worst_case_condition"]
-    where = f" (worst at c = {data['worst_c']})" if data["worst_c"] is not None else ""
+    where = f" (worst at {c} = {data['worst_c']})" if data["worst_c"] is not None else ""
     if condition is sp.true or condition is True:
-        text = "M(c) is PSD for every c in [-1, 1]" + where
+        text = f"{Mc} is PSD for every {c} in [-1, 1]" + where
     elif condition is sp.false or condition is False:
-        text = "M(c) is not PSD for every c" + (f": fails at c = {data['worst_c']}" if data["worst_c"] is not None else "")
+        text = f"{Mc} is not PSD for every {c}" + (f": fails at {c} = {data['worst_c']}" if data["worst_c"] is not None else "")
     elif condition is None:
         text = f"no closed form ({data.get('worst_case_reason', 'see the conditions')}); the conditions below decide"
     else:
-        text = f"M(c) is PSD for every c iff {brief(condition, verbose=verbose)}" + where
+        text = f"{Mc} is PSD for every {c} iff {brief(condition, verbose=verbose, names=names)}" + where
     method = "" if data["worst_case_method"] in (None, "none") else f" ({data['worst_case_method']})"
     return f"worst case{method}: {text}"
 
 
-def _rows(label: str, matrix: Any, verbose: bool) -> list[str]:
+def _rows(label: str, matrix: Any, verbose: bool, names: Any) -> list[str]:
     from hapticproof.report.readable import brief
 
     if matrix is None:
         return [f"{label} none"]
-    return [label] + [f"  row {i + 1}: {brief(list(row), verbose=verbose)}" for i, row in enumerate(matrix.tolist())]
+    return [label] + [f"  row {i + 1}: {brief(list(row), verbose=verbose, names=names)}" for i, row in enumerate(matrix.tolist())]
 
 
 def _text(data: dict[str, Any], verbose: bool = False) -> str:
@@ -243,35 +255,36 @@ def _text(data: dict[str, Any], verbose: bool = False) -> str:
 
     if data.get("by_modes"):
         return _modes_text(data, verbose)
-
+    names = data["names"]
+    helpers = f"{names.helper('cos')} = {names.cos_text}" + ("" if data["hermitian_is_real"] else
+                                                           f"; {names.helper('sin')} = {names.sin_text}")
     lines = [
         f"system:            {data['users']}-user HVE ({data['approximation']} difference, delays {data['delays']}, "
         f"edges {data['edges']})",
-        *_rows("G^-1(z):", data["G_inverse"], verbose),
-        *_rows(f"residue matrix at z = 1 [{data['residue_condition']}]:", data["residue_at_1"], verbose),
-        f"M(c) = G^-1 + G^-H on |z| = 1 (c = cos wT{'' if data['hermitian_is_real'] else '; s_theta = sin wT'}):",
-        *(f"  row {i + 1}: {brief(list(row), verbose=verbose)}" for i, row in enumerate(data["hermitian_part"].tolist())),
+        *_rows("G^-1(z):", data["G_inverse"], verbose, names),
+        *_rows(f"residue matrix at z = 1 [{data['residue_condition']}]:", data["residue_at_1"], verbose, names),
+        names.words("M(c)") + f" = G^-1 + G^-H on |z| = 1 ({helpers}):",
+        *(f"  row {i + 1}: {brief(list(row), verbose=verbose, names=names)}" for i, row in enumerate(data["hermitian_part"].tolist())),
     ]
     if "principal_minors" in data:
         lines.append("principal minors (all of them):")
-        lines += [f"  {k}: {brief(v, verbose=verbose)}" for k, v in data["principal_minors"].items()]
+        lines += [f"  {k}: {brief(v, verbose=verbose, names=names)}" for k, v in data["principal_minors"].items()]
     lines.append(_worst_case_text(data, verbose))
     if "sufficient_condition" in data:
-        lines.append(f"sufficient (any graph, Loewner): {sp.sstr(data['sufficient_condition'])}")
+        lines.append(f"sufficient (any graph, Loewner): {names.text(data['sufficient_condition'])}")
     lines += _decision_lines(data)
     return "\n".join(lines)
 
 
-def _matrix_items(label: str, name: str, matrix: sp.Matrix, cos_name: str | None = None) -> list[tuple[str, str]]:
+def _matrix_items(label: str, name: str, matrix: sp.Matrix, names: Any, cos: bool = False) -> list[tuple[str, str]]:
     """A matrix as one display, or entry by entry (upper triangle when symmetric) when it
-    is too long to read as one."""
-    names = {SIN_THETA: r"\sin(\omega T)"}
-    whole = tex.to_latex(matrix, names=names, cos_name=cos_name)
+    is too long to read as one (in the scene's ``names``; ``cos``: ``c`` as ``\\cos(\\omega T)``)."""
+    shown = {SIN_THETA: names.sin_latex}
+    whole = names.latex(matrix, shown, cos=cos)
     if len(whole) <= 600:
         return [(label, f"{name} = " + whole)]
     symmetric = matrix.is_symmetric()
-    return [(f"{label}, entry ({i + 1}, {j + 1})", f"{name}_{{{i + 1}{j + 1}}} = " + tex.to_latex(matrix[i, j], names=names,
-                                                                                                cos_name=cos_name))
+    return [(f"{label}, entry ({i + 1}, {j + 1})", f"{name}_{{{i + 1}{j + 1}}} = " + names.latex(matrix[i, j], shown, cos=cos))
             for i in range(matrix.rows) for j in range(matrix.cols) if not symmetric or j >= i]
 
 
@@ -279,24 +292,27 @@ def _latex_items(data: dict[str, Any]) -> list[tuple[str, str]]:
     """``(label, display)`` of everything the command derives."""
     if data.get("by_modes"):
         return _modes_latex_items(data)
-    items = _matrix_items("inverse transfer matrix", r"G^{-1}(z)", data["G_inverse"])
+    names = data["names"]
+    c, M = names.helper_latex("cos"), names.helper_latex("matrix")
+    items = _matrix_items("inverse transfer matrix", r"G^{-1}(z)", data["G_inverse"], names)
     if data["residue_at_1"] is not None:
-        items += _matrix_items("residue matrix at z = 1", "R_0", data["residue_at_1"])
+        items += _matrix_items("residue matrix at z = 1", "R_0", data["residue_at_1"], names)
     items += _matrix_items("Hermitian part on the unit circle" + ("" if data["hermitian_is_real"] else
-                                                                  " (s_theta = sin(omega T))"),
-                           "M", data["hermitian_part"], COS)
+                                                                  f" ({names.helper('sin')} = {names.sin_text})"),
+                           M, data["hermitian_part"], names, cos=True)
     for k, v in data.get("principal_minors", {}).items():
-        items.append((f"principal minor {k}", r"\Delta_{" + "".join(map(str, k)) + "} = " + tex.to_latex(v, cos_name=COS)))
+        items.append((f"principal minor {k}", r"\Delta_{" + "".join(map(str, k)) + "} = " + names.latex(v, cos=True)))
     condition = data["worst_case_condition"]
     if condition not in (None, sp.true, sp.false, True, False):
-        items.append((f"worst case over frequency ({data['worst_case_method']})", tex.to_latex(condition)))
+        items.append((f"worst case over frequency ({data['worst_case_method']})", names.latex(condition)))
     elif condition in (sp.true, True, sp.false, False):
-        at = (r" \ \text{at } c = " + tex.to_latex(sp.sympify(data["worst_c"]))) if data["worst_c"] is not None else ""
-        shown = (r"M(c) \succeq 0 \text{ for every } c \in [-1, 1]" if condition in (sp.true, True)
-                 else r"M(c) \not\succeq 0") + at
+        at = (rf" \ \text{{at }} {c} = " + names.latex(sp.sympify(data["worst_c"]))) if data["worst_c"] is not None else ""
+        # (no \not: the reports typeset only the commands they know)
+        shown = (rf"{M}({c}) \succeq 0 \text{{ for every }} {c} \in [-1, 1]" + at if condition in (sp.true, True)
+                 else rf"{M}({c}) \succeq 0 \text{{ fails}}" + at)
         items.append((f"worst case over frequency ({data['worst_case_method']})", shown))
     if "sufficient_condition" in data:
-        items.append(("sufficient condition (any graph, Loewner order)", tex.to_latex(data["sufficient_condition"])))
+        items.append(("sufficient condition (any graph, Loewner order)", names.latex(data["sufficient_condition"])))
     return items
 
 
@@ -318,7 +334,7 @@ def _latex(data: dict[str, Any], fragment: bool = False, answers: list[tuple[str
     if data["witness"]:
         from hapticproof.report.readable import witness_text
 
-        notes.append(("witness", witness_text(data["witness"])))
+        notes.append(("witness", witness_text(data["witness"], data["names"])))
     return tex.derivation_document(f"hapticproof derive multi-user ({data['users']} users)", items, notes, intro=intro)
 
 
@@ -333,8 +349,16 @@ def run(args: argparse.Namespace) -> int:
     scene = build_model(spec, args)
     data = derive(scene, args.minors, full=args.full)
     extra, lines, answers = design_answers(spec, args, args.delay_margin)
+    names = data["names"]
     if fmt == "json":
-        shown = {k: ([c.to_json() for c in v] if k == "conditions" else v) for k, v in data.items()}
+        shown = {k: ([c.to_json() for c in v] if k == "conditions" else v) for k, v in data.items() if k != "names"}
+        for key in ("G_inverse", "residue_at_1", "hermitian_part", "worst_case_condition", "sufficient_condition"):
+            if shown.get(key) is not None:
+                shown[key] = names.renamed(shown[key])      # the toolkit's c, s_theta under the scene's names
+        if "principal_minors" in shown:
+            shown["principal_minors"] = {k: names.renamed(v) for k, v in shown["principal_minors"].items()}
+        if names.changed():
+            shown["notation"] = names.changed()
         if "skipped" in shown:
             shown["skipped"] = {k: {"reason": why, "option": how} for k, (why, how) in shown["skipped"].items()}
         out = to_jsonable(shown)

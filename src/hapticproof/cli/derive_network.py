@@ -179,6 +179,26 @@ def analyse(Z: sp.Matrix, ports: tuple[int, ...] | None, search: bool = True, de
     return out
 
 
+def _in_names(value: Any, names: Any) -> Any:
+    """The reasons and condition names of a numeric network's report in the scene's naming (the
+    certificates, read back by ``check``, keep the toolkit's own variable names)."""
+    if isinstance(value, dict):
+        out = {}
+        for key, item in value.items():
+            if key in ("certificate", "definition", "evidence") and isinstance(item, dict):
+                out[key] = item
+            elif key in ("reason", "name", "summary") and isinstance(item, str):
+                out[key] = names.words(item)
+            elif key == "conditions" and isinstance(item, dict):
+                out[key] = {names.words(k): v for k, v in item.items()}
+            else:
+                out[key] = _in_names(item, names)
+        return out
+    if isinstance(value, list):
+        return [_in_names(item, names) for item in value]
+    return value
+
+
 def _condition_lines(entry: dict[str, Any], indent: str = "  ") -> list[str]:
     lines = []
     for cond in entry.get("conditions", []):
@@ -277,6 +297,13 @@ def run(args: argparse.Namespace) -> int:
     report = analyse(Z, ports, search=not args.no_search, deadline=_deadline(args.deadline), progress=bar)
     if bar is not None:
         bar.clear()
+    from hapticproof.systems.naming import scene_naming
+
+    names = scene_naming(spec)
+    if not names.is_default and "note" not in report:
+        # a numeric network's reasons hold numbers and the toolkit's words only (x = w^2, w): they
+        # speak the scene's names when its parameters take those (a parameter x = 9, say)
+        report = {**_in_names(report, names), "notation": names.changed()}
     if args.format == "json":
         text = json.dumps(to_jsonable(report), indent=2)
     elif args.format == "latex":

@@ -88,7 +88,8 @@ def design_answers(scene, args: argparse.Namespace, margin_wanted: bool) -> tupl
         ranges.append(rng)
         data.setdefault("passive_ranges", {})[name] = rng.to_json()
         lines.append(rng.to_text())
-    return data, lines, answer_items(margin, ranges, scene.role("period"))
+    names = scene.build().naming()
+    return data, lines, answer_items(margin, ranges, scene.role("period"), names)
 
 
 def run(args: argparse.Namespace) -> int:

@@ -59,7 +59,7 @@ def register(systems: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from hapticproof.systems.discretize import is_rational
-    from hapticproof.core.notation import shorten_numbers
+    from hapticproof.core.notation import default_name, shorten_numbers
     from hapticproof.report.readable import brief, number
 
     if args.fragment and args.format != "latex":
@@ -79,41 +79,48 @@ def run(args: argparse.Namespace) -> int:
     paper = criterion(scene)
     paper_conds = criterion_conditions(scene)
     extra, lines, answers = design_answers(spec, args, False)
+    names = scene.naming()                 # every name below is the scene's (roles, c, h, L)
+    t, w = names.text, names.words
     if args.format == "json":
-        out = {"controller": sp.sstr(scene.C), "alpha": sp.sstr(scene.alpha), "bound_master": sp.sstr(bd.master),
-               "bound_slave": sp.sstr(bd.slave), "sup_master": to_jsonable(wc.sup_master),
+        out = {"controller": t(scene.C), "alpha": t(scene.alpha), "bound_master": t(bd.master),
+               "bound_slave": t(bd.slave), "sup_master": to_jsonable(wc.sup_master),
                "sup_slave": to_jsonable(wc.sup_slave), "maximiser": to_jsonable(wc.maximiser),
-               "condition": sp.sstr(wc.condition) if wc.condition is not None else None,
-               "error_coordinate_damping": sp.sstr(error_coordinate_damping(scene)),
+               "condition": t(wc.condition) if wc.condition is not None else None,
+               "error_coordinate_damping": t(error_coordinate_damping(scene)),
                "conditions": [c.to_json() for c in conds],
                "verdict": decision.decision.value, "reason": decision.reason,
                "decision": decision.to_json(),
                "criterion_32": {"note": "the paper's (32): a sufficient condition for alpha > 0 under (P1)-(P4), "
                                         "never a disproof", "decision": paper.decision.value, "reason": paper.reason,
                                 "conditions": [c.to_json() for c in paper_conds]}}
+        if names.changed():
+            out["notation"] = names.changed()
         if spec.discretize is not None:
             out["continuous_design"] = {"C_s": sp.sstr(spec.controller), "discretize": spec.discretize}
         out = to_jsonable(out)
         out.update(extra)
         write_output(args.output, json.dumps(out, indent=2))
         return 0
-    cos = r"\cos(\omega T)"
+    cos = names.helper("cos")
+    master, slave = names.role("master_damping", "b_m"), names.role("slave_damping", "b_s")
     if args.format == "latex":
-        items = [("controller", r"C(z) = " + tex.to_latex(scene.C)),
-                 ("master damping bound (c = cos wT)", r"b_m > " + tex.to_latex(bd.master, cos_name=cos)),
-                 ("slave damping bound", r"b_s > " + tex.to_latex(bd.slave, cos_name=cos))]
+        items = [("controller", r"C(z) = " + names.latex(scene.C)),
+                 (f"master damping bound ({cos} = {names.cos_text})", f"{default_name(master)} > "
+                  + names.latex(bd.master, cos=True)),
+                 ("slave damping bound", f"{default_name(slave)} > " + names.latex(bd.slave, cos=True))]
         if wc.condition is not None:
-            items.append(("worst case over frequency", tex.to_latex(wc.condition)))
-        items.append(("error-coordinate damping", r"h = " + tex.to_latex(error_coordinate_damping(scene))))
+            items.append(("worst case over frequency", names.latex(wc.condition)))
+        items.append(("error-coordinate damping", f"{names.helper_latex('coupling')} = "
+                      + names.latex(error_coordinate_damping(scene))))
         items += answers
         if args.fragment:
             write_output(args.output, tex.derivation_fragment(items))
             return 0
         notes = []
         if sp.sympify(wc.sup_master).is_number:
-            notes.append(("worst case", f"sup over c = {number(wc.sup_master)} (master), "
+            notes.append(("worst case", f"sup over {cos} = {number(wc.sup_master)} (master), "
                           f"{number(wc.sup_slave)} (slave)"
-                          + (f" at c = {number(wc.maximiser)}" if wc.maximiser is not None else "")))
+                          + (f" at {cos} = {number(wc.maximiser)}" if wc.maximiser is not None else "")))
         notes.append(("decision", f"{decision.decision.value} ({decision.reason})"))
         notes.append(("the paper's (32)", f"{paper.decision.value} (a sufficient condition only)"))
         write_output(args.output, tex.derivation_document("hapticproof derive teleoperator", items, notes,
@@ -123,22 +130,23 @@ def run(args: argparse.Namespace) -> int:
     out_lines = []
     if spec.discretize is not None:
         out_lines.append(f"C(s) = {sp.sstr(spec.controller)}  ->  {spec.discretize}")
-    out_lines += [f"controller C(z) = {brief(scene.C, verbose=v)}, alpha = {scene.alpha}",
-                  f"leak L(c) = {brief(sp.factor(bd.leak), verbose=v)}    (c = cos wT)",
-                  f"error-coordinate damping h = b_m b_s/(b_m + alpha^2 b_s) = {_damping_text(scene)}",
+    out_lines += [f"controller C(z) = {brief(scene.C, verbose=v, names=names)}, alpha = {scene.alpha}",
+                  w("leak L(c)") + f" = {brief(sp.factor(bd.leak), verbose=v, names=names)}    ({cos} = {names.cos_text})",
+                  w("error-coordinate damping h = b_m b_s/(b_m + alpha^2 b_s)") + f" = {_damping_text(scene, names)}",
                   "conditions (exact: passive iff all hold):"]
     width = max(len(c.name) for c in conds + paper_conds)
     for cond in conds:
         out_lines.append(f"  {cond.name.ljust(width)}  {cond.decision.value:<9}  {shorten_numbers(cond.outcome.reason, verbose=v)}")
     out_lines.append(f"verdict: {decision.decision.value} ({shorten_numbers(decision.reason, verbose=v)})")
     out_lines.append("the paper's (32), a sufficient condition only (alpha > 0, under (P1)-(P4)):")
-    out_lines += [f"  b_m > {brief(sp.factor(bd.master), verbose=v)}", f"  b_s > {brief(sp.factor(bd.slave), verbose=v)}"]
-    where = f" at c = {number(wc.maximiser) if not hasattr(wc.maximiser, 'approx') else wc.maximiser.approx(12)}" \
+    out_lines += [f"  {master} > {brief(sp.factor(bd.master), verbose=v, names=names)}",
+                  f"  {slave} > {brief(sp.factor(bd.slave), verbose=v, names=names)}"]
+    where = f" at {cos} = {number(wc.maximiser) if not hasattr(wc.maximiser, 'approx') else wc.maximiser.approx(12)}" \
         if wc.maximiser is not None else ""
     if wc.sup_master is sp.oo or wc.sup_master == sp.oo:
         out_lines.append("  worst case: the bounds are unbounded (C(z) has a pole on the unit circle)")
     else:
-        out_lines.append(f"  worst case: sup over c of the bounds = {number(wc.sup_master)} (master), "
+        out_lines.append(f"  worst case: sup over {cos} of the bounds = {number(wc.sup_master)} (master), "
                          f"{number(wc.sup_slave)} (slave){where}")
     for cond in paper_conds:
         out_lines.append(f"  {cond.name.ljust(width)}  {cond.decision.value:<9}  {shorten_numbers(cond.outcome.reason, verbose=v)}")
@@ -146,12 +154,13 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _damping_text(scene) -> str:
+def _damping_text(scene, names) -> str:
     """``h``, or why it is not defined (a negative damping: condition (D) decides)."""
-    negative = [name for name in ("b_m", "b_s") if getattr(scene, name).is_number and getattr(scene, name) < 0]
+    negative = [names.words(name) for name in ("b_m", "b_s")
+                if getattr(scene, name).is_number and getattr(scene, name) < 0]
     if negative:
         return f"not defined ({', '.join(negative)} < 0: condition (D) fails)"
-    return sp.sstr(error_coordinate_damping(scene))
+    return names.text(error_coordinate_damping(scene))
 
 
 def _number(value) -> str:

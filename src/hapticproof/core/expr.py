@@ -50,7 +50,12 @@ from fractions import Fraction
 import sympy as sp
 
 from hapticproof.core.errors import InputFormatError
+from hapticproof.core.symbols import c as C_SYM
+from hapticproof.core.symbols import cos_n as COS_N
 from hapticproof.core.symbols import s as S_SYM
+from hapticproof.core.symbols import sin_n as SIN_N
+from hapticproof.core.symbols import sin_theta as SIN_THETA
+from hapticproof.core.symbols import x as X_SYM
 from hapticproof.core.symbols import z as Z_SYM
 
 __all__ = [
@@ -128,10 +133,16 @@ class ExpressionError(InputFormatError):
 def parameter_symbol(name: str, assumption: str | None = None) -> sp.Symbol:
     """The symbol of a parameter: ``assumption`` (one of :data:`ASSUMPTIONS`), else the default
     of :data:`DEFAULT_ASSUMPTIONS`, else ``real``. Equal names and assumptions give equal
-    symbols, so the papers' ``b, K, B, T, z_a`` are the toolkit's own.
+    symbols, so the papers' ``b, K, B, T, z_a`` are the toolkit's own. A parameter is never one of
+    the toolkit's variables on the circle: a real ``c`` (a damping, say) is not ``c = cos(omega T)``
+    (it carries the assumption ``parameter``; views print it as ``c`` and name the toolkit's
+    ``c`` otherwise, :mod:`hapticproof.core.naming`).
 
     >>> parameter_symbol("K").is_positive, parameter_symbol("M").is_real, parameter_symbol("M").is_positive
     (True, True, None)
+    >>> from hapticproof.core.symbols import c
+    >>> parameter_symbol("c", "real") == c, parameter_symbol("c", "real").is_real
+    (False, True)
     """
     if not _NAME.fullmatch(name) or name.startswith("_"):
         raise ExpressionError(f"{name!r} is not a parameter name (letters, digits and _, not starting with _ or a digit)")
@@ -142,7 +153,14 @@ def parameter_symbol(name: str, assumption: str | None = None) -> sp.Symbol:
     word = assumption or DEFAULT_ASSUMPTIONS.get(name) or _indexed_default(name)
     if word not in ASSUMPTIONS:
         raise ExpressionError(f"{name}: unknown assumption {word!r}; use one of {', '.join(ASSUMPTIONS)}")
-    return sp.Symbol(name, **ASSUMPTIONS[word])
+    symbol = sp.Symbol(name, **ASSUMPTIONS[word])
+    if symbol in _CIRCLE_VARIABLES:          # one symbol, one meaning
+        symbol = sp.Symbol(name, parameter=True, **ASSUMPTIONS[word])
+    return symbol
+
+
+#: The toolkit's own variables of the circle and the axis (:mod:`hapticproof.core.symbols`).
+_CIRCLE_VARIABLES = frozenset({C_SYM, X_SYM, SIN_THETA, COS_N, SIN_N})
 
 
 _INDEXED = re.compile(r"(b|K_0|B_0|K|B|z_a|m)_?[0-9][0-9_]*")

@@ -221,7 +221,9 @@ def displayed_forms(report: Mapping[str, Any], definition: Mapping[str, Any]) ->
                 if value is not None and (value != own.re or own.im != 0):
                     problems.append(f"the G^-1 shown is not the report's G^-1(z): at z = {q} it gives {value}, G^-1 is {own.re}")
                     break
-        shown = _read_shown(report.get("hermitian_part"), "c")
+        notation = report.get("notation") if isinstance(report.get("notation"), Mapping) else {}
+        cos = notation.get("cos", "c") if isinstance(notation.get("cos", "c"), str) else "c"
+        shown = _read_shown(report.get("hermitian_part"), cos)     # c under the scene's name for it
         if shown:
             expr, symbol = shown
             for t in (Fraction(1, 2), Fraction(1, 3), Fraction(2), Fraction(3, 5), Fraction(5)):

@@ -34,25 +34,27 @@ def _name(name: str) -> str:
     return to_latex(sp.Symbol(name))
 
 
-def margin_latex(margin: Any, period: str = "T") -> str:
-    """The delay margin as a display: ``N_max`` with what it means, and ``t_d <= N_max T``."""
-    T = _name(period)
+def margin_latex(margin: Any, period: str = "T", names: Any = None) -> str:
+    """The delay margin as a display: ``N_max`` with what it means, and ``t_d <= N_max T`` (the
+    period and ``N`` as the scene's naming ``names`` prints them, when given)."""
+    T = names.role_latex("period", period) if names is not None else _name(period)
+    Nmax = (names.helper_latex("margin") if names is not None else "N") + r"_{\max}"
     lower = getattr(margin, "lower", None)
     if margin.decision.value != "proved":
         if lower is not None and lower >= 0:
-            return (r"N_{\max}\ \text{undecided: } G^{-1} \text{ is positive real for every delay } n \le "
+            return (Nmax + r"\ \text{undecided: } G^{-1} \text{ is positive real for every delay } n \le "
                     + str(lower) + r" \text{ (searched so far)}")
-        return r"N_{\max}\ \text{undecided}"
+        return Nmax + r"\ \text{undecided}"
     if margin.margin is None:
-        return r"N_{\max} = \infty:\ G^{-1} \text{ is positive real for every delay } n = t_d/" + T + r" \ge 0"
+        return Nmax + r" = \infty:\ G^{-1} \text{ is positive real for every delay } n = t_d/" + T + r" \ge 0"
     if margin.margin < 0:
         return r"\text{no delay margin: } G^{-1} \text{ is not positive real even without delay } (n = 0)"
     N = margin.margin
-    out = (rf"N_{{\max}} = {N}:\ G^{{-1}} \text{{ is positive real for every delay }} n \le {N} \text{{, not at }} "
+    out = (rf"{Nmax} = {N}:\ G^{{-1}} \text{{ is positive real for every delay }} n \le {N} \text{{, not at }} "
            rf"n = {N + 1}")
     t_max = margin.time_margin()
     if t_max is not None:
-        out += rf";\quad t_d \le N_{{\max}} {T} = {to_latex(sp.sympify(t_max))}"
+        out += rf";\quad t_d \le {Nmax} {T} = {to_latex(sp.sympify(t_max))}"
     return out
 
 
@@ -116,12 +118,13 @@ def range_latex(rng: Any) -> str:
     return body
 
 
-def answer_items(margin: Any = None, ranges: Sequence[Any] = (), period: str = "T") -> list[tuple[str, str]]:
+def answer_items(margin: Any = None, ranges: Sequence[Any] = (), period: str = "T",
+                 names: Any = None) -> list[tuple[str, str]]:
     """``(label, display)`` of the answers asked for, for :func:`hapticproof.report.latex.derivation_document`
-    and :func:`~hapticproof.report.latex.derivation_fragment`."""
+    and :func:`~hapticproof.report.latex.derivation_fragment` (in the scene's naming ``names``)."""
     items = []
     if margin is not None:
-        items.append(("delay margin (--delay-margin)", margin_latex(margin, period)))
+        items.append(("delay margin (--delay-margin)", margin_latex(margin, period, names)))
     for rng in ranges:
         items.append((f"passive range of {rng.parameter} (--range {rng.parameter})", range_latex(rng)))
     return items

@@ -684,7 +684,8 @@ def equation_block(result: Any, anchor_id: str = "", show_printed: bool = True, 
         if ev.instances is not None:
             line += f", {ev.instances} instances"
         if ev.witness:
-            line += "; witness " + witness_math(ev.witness)
+            shown = getattr(result, "witness_names", None) or {}     # the paper's names for c, omega_T
+            line += "; witness " + witness_math({shown.get(k, k): v for k, v in dict(ev.witness).items()})
         body.append(r"\par" + line + "}")
     return "\n".join(body)
 
@@ -716,6 +717,9 @@ def audit_document(reports: Sequence[Any], title: str | None = None) -> str:
     for rep in reports:
         blocks = [equation_block(r, anchor(rep.paper, r.id, single)) for r in rep.results]
         heading = "" if single else f"{rep.paper}: {rep.title}"
+        notation = getattr(rep, "notation", None)
+        if notation:        # the toolkit's names this report prints in the paper's stead (gamma = cos wh)
+            blocks.insert(0, r"\textbf{notation:} " + escape_text(", ".join(f"{k} = {v}" for k, v in notation.items())) + r"\par")
         sections.append((heading, "\n\n".join(blocks)))
     return document(title, sections)
 
@@ -733,7 +737,12 @@ def scene_latex(scene: Any) -> str:
     """
     kind = type(scene).__name__
     free = sorted((s for s in getattr(scene, "parameters", set()) if isinstance(s, sp.Symbol)), key=str)
+    names = scene.naming() if hasattr(scene, "naming") else None     # the scene's own names for its roles
     shown: list[str] = []
+
+    def role(field_: str, default: str) -> tuple[str, str]:
+        name = names.role(field_, default) if names is not None else default
+        return name, to_latex(sp.Symbol(name))
 
     def value(name: str, latex_name: str, v: Any) -> None:
         v = sp.sympify(v)
@@ -745,24 +754,27 @@ def scene_latex(scene: Any) -> str:
 
     if kind == "SingleUserScene":
         n = scene.delay
+        T = role("period", "T")[1]
         head = r"\text{single-user scene, " + scene.approximation + (" difference" if scene.approximation != "tustin" else "") + r": }\ "
         shown.append("H(z) = " + to_latex(scene.H))
-        shown.append("t_d = 0" if n == 0 else "t_d = T" if n == 1 else "t_d = " + to_latex(n) + " T")
-        value("b", "b", scene.b)
+        shown.append("t_d = 0" if n == 0 else f"t_d = {T}" if n == 1 else "t_d = " + to_latex(n) + f" {T}")
+        value(*role("device_damping", "b"), scene.b)
         value("z_a", "z_{a}", scene.z_a)
     elif kind == "MultiUserScene":
         head = r"\text{" + f"{len(scene.b)}-user scene, {scene.approximation} difference" + r": }\ "
-        shown += ["b = " + vector(scene.b), "K_0 = " + vector(scene.K0), "B_0 = " + vector(scene.B0)]
+        shown += [role("device_damping", "b")[1] + " = " + vector(scene.b), "K_0 = " + vector(scene.K0), "B_0 = " + vector(scene.B0)]
         edges = ", ".join(f"{i + 1}{j + 1}" for i, j in scene.edges)
         shown += [r"(K, B)_{" + edges + "} = " + vector(scene.K) + ", " + vector(scene.B),
                   "n = " + vector(scene.delays), "z_{a} = " + vector(scene.z_a)]
-        value("T", "T", scene.T)
+        value(*role("period", "T"), scene.T)
     elif kind == "TeleoperatorScene":
         head = r"\text{teleoperator scene: }\ "
         shown.append("C(z) = " + to_latex(scene.C))
-        for name, latex_name in (("alpha", r"\alpha"), ("m_m", "m_m"), ("m_s", "m_s"), ("b_m", "b_m"), ("b_s", "b_s"),
-                                 ("T", "T")):
-            value(name, latex_name, getattr(scene, name))
+        value("alpha", r"\alpha", scene.alpha)
+        for field_, default in (("master_mass", "m_m"), ("slave_mass", "m_s"), ("master_damping", "b_m"),
+                                ("slave_damping", "b_s"), ("period", "T")):
+            name, latex_name = role(field_, default)
+            value(name, latex_name if name != default else default, getattr(scene, default))
     else:
         return r"\text{" + escape_text(repr(scene)) + "}"
     tail = (r";\quad \text{free: } " + ", ".join(to_latex(f) for f in free)) if free else ""

@@ -53,21 +53,27 @@ def _flint_brief(num: Any, den: Any, var: str) -> str:
             f"{den.degree()} ({terms(den)} terms) [full text: --verbose or --format json]")
 
 
-def brief(expr: Any, limit: int = LIMIT, verbose: bool = False) -> str:
+def brief(expr: Any, limit: int = LIMIT, verbose: bool = False, names: Any = None) -> str:
     """``sstr(expr)`` when at most ``limit`` characters (or ``verbose``), else a summary.
 
     A numeric c-form (``num``/``den`` flint polynomials) is summarised from its coefficients,
-    and an expression with far more terms than fit is summarised without printing it first."""
+    and an expression with far more terms than fit is summarised without printing it first.
+    ``names`` (a :class:`~hapticproof.core.naming.Naming`) prints the toolkit's symbols under
+    the scene's names (``gamma`` for ``c``)."""
     if hasattr(expr, "num") and isinstance(getattr(expr, "num", None), flint.fmpq_poly):
         if verbose or max(expr.num.degree(), expr.den.degree()) <= 12:
-            text = full_text(expr)
+            text = full_text(expr, names)
             if verbose or len(text) <= limit:
                 return text
-        return _flint_brief(expr.num, expr.den, str(getattr(expr, "var", "c")))
+        return _flint_brief(expr.num, expr.den, _var_name(expr, names))
+    variables = _VARIABLES
+    if names is not None and not isinstance(expr, str):
+        expr = names.renamed(expr)
+        variables = ("z", names.helper("cos"), "s", names.helper("x"), names.helper("theta"))
     if not verbose and isinstance(expr, sp.Expr):
         num, den = sp.fraction(expr)
         if len(sp.Add.make_args(num)) + len(sp.Add.make_args(den)) > limit // 4:
-            return _summary(expr, None)
+            return _summary(expr, None, variables)
     text = sp.sstr(expr)
     if verbose or len(text) <= limit:
         return text
@@ -79,10 +85,10 @@ def brief(expr: Any, limit: int = LIMIT, verbose: bool = False) -> str:
         return f"{expr.func}({brief(expr.args[0], limit)})"
     if not isinstance(expr, sp.Expr):
         return f"{len(text)} characters [full text: --verbose or --format json]"
-    return _summary(expr, text)
+    return _summary(expr, text, variables)
 
 
-def _summary(expr: Any, text: str | None) -> str:
+def _summary(expr: Any, text: str | None, variables: tuple[str, ...] = _VARIABLES) -> str:
     expr = sp.sympify(expr)
     if isinstance(expr, sp.Rel):        # a long condition: each side summarised (``--delay 16``)
         sides = [brief(side, LIMIT // 2).replace(" [full text: --verbose or --format json]", "")
@@ -95,7 +101,7 @@ def _summary(expr: Any, text: str | None) -> str:
         return (f"{type(expr).__name__} of {len(expr.args)} conditions ({len(sp.sstr(expr))} characters) "
                 "[full text: --verbose or --format json]")
     names = {s.name: s for s in getattr(expr, "free_symbols", set())}
-    var = next((names[v] for v in _VARIABLES if v in names), None)
+    var = next((names[v] for v in variables if v in names), None)
     if isinstance(expr, sp.MatrixBase):
         size = f" ({len(text)} characters)" if text is not None else ""
         return f"{expr.rows}x{expr.cols} matrix{size} [full text: --verbose or --format json]"
@@ -150,14 +156,16 @@ def tidy(expr: Any) -> Any:
     return real + sp.I * imag
 
 
-def witness_text(witness: Any) -> str:
-    """A witness as ``name = value`` pairs: a point ``z`` as ``x + j*y``, numbers by :func:`number`.
+def witness_text(witness: Any, names: Any = None) -> str:
+    """A witness as ``name = value`` pairs: a point ``z`` as ``x + j*y``, numbers by :func:`number`;
+    the keys in the scene's naming ``names`` (``gamma`` for ``c``, ``omega*h`` for ``omega_T``).
 
     >>> witness_text({"c": "-3/5", "z": ["-3/5", "4/5"], "omega_T": "2*atan(2)"})
     'c = -3/5, z = -3/5 + j*4/5, omega_T = 2*atan(2)'
     """
     out = []
     for key, value in dict(witness).items():
+        key = names.words(key) if names is not None else key
         if isinstance(value, (list, tuple)) and len(value) == 2:
             re, im = (str(v) for v in value)
             shown = f"{re} - j*{im[1:]}" if im.startswith("-") else f"{re} + j*{im}"
@@ -203,7 +211,15 @@ def number(value: Any, digits: int = 15) -> str:
 
 
 
-def full_text(value: Any) -> str:
+def _var_name(form: Any, names: Any) -> str:
+    """The printed name of a c-form's variable (the toolkit's ``c`` under the scene's name)."""
+    var = getattr(form, "var", None)
+    if names is not None and var is not None:
+        return names.text(var)
+    return str(var if var is not None else "c")
+
+
+def full_text(value: Any, names: Any = None) -> str:
     """Full text of an expression; a numeric c-form is written from its flint coefficients, as
     one polynomial when its denominator is a constant (``c/1000 + 19/1000``) and otherwise as a
     ratio of integer polynomials with no common content (``(3*c + 1)/(2*c - 2)``).
@@ -213,7 +229,7 @@ def full_text(value: Any) -> str:
     'c/1000 + 19/1000'
     """
     if isinstance(value, CRational) and value.is_numeric:
-        var = str(value.var)
+        var = _var_name(value, names)
         num, den = flint.fmpq_poly(value.num), flint.fmpq_poly(value.den)
         if den.degree() <= 0:
             return poly_text(num / den.coeffs()[0], var)
@@ -227,7 +243,7 @@ def full_text(value: Any) -> str:
         sign = -1 if den.coeffs()[-1] < 0 else 1
         num, den = num * flint.fmpq(sign, content or 1), den * flint.fmpq(sign, content or 1)
         return f"({poly_text(num, var)})/({poly_text(den, var)})"
-    return sp.sstr(value)
+    return sp.sstr(value) if names is None or isinstance(value, str) else names.text(value)
 
 
 def poly_text(p: Any, var: str) -> str:

@@ -22,6 +22,7 @@ import sympy as sp
 from hapticproof.report import latex as tex
 from hapticproof.core.evidence import Decision, to_jsonable
 from hapticproof.core.lazy import profile
+from hapticproof.core.naming import DEFAULT, Naming
 from hapticproof.core.notation import shorten_numbers
 from hapticproof.report.readable import brief, full_text, witness_text
 from hapticproof.systems.models import inverse_transfer
@@ -33,8 +34,6 @@ from hapticproof.systems.singleuser import SingleUserScene
 from hapticproof.exact.unitcircle import CRational
 
 __all__ = ["SceneSummary", "summarize_single_user"]
-
-COS = r"\cos(\omega T)"
 
 
 @dataclass(frozen=True)
@@ -60,17 +59,20 @@ class SceneSummary:
     skipped: dict = field(default_factory=dict)
     #: the original ``G^{-1}(z)`` and the decision, for the definition-level judge of ``check``
     definition: dict | None = None
+    #: the scene's names (:class:`~hapticproof.core.naming.Naming`): every view prints through them
+    names: Naming = DEFAULT
 
     def to_json(self) -> dict[str, Any]:
+        names = self.names
         out = {
             "system": self.system,
             "approximation": self.approximation,
             "delay": self.delay,
-            "G_inverse": sp.sstr(self.G_inverse),
-            "hermitian_part": None if self.hermitian_part is None else full_text(self.hermitian_part),
+            "G_inverse": names.text(self.G_inverse),
+            "hermitian_part": None if self.hermitian_part is None else full_text(self.hermitian_part, names),
             "poles": [{"z": p.value, "multiplicity": p.multiplicity, "location": p.location} for p in self.poles],
             "residues": [{"z": r.pole, "residue": r.residue, "condition": r.outcome.decision.value} for r in self.residues],
-            "worst_case": sp.sstr(self.worst_case) if self.worst_case is not None else None,
+            "worst_case": names.text(self.worst_case) if self.worst_case is not None else None,
             "conditions": [c.to_json() for c in self.conditions],
             "verdict": self.verdict,
             "witness": self.witness,
@@ -78,6 +80,8 @@ class SceneSummary:
             "minimiser": self.minimiser,
             "minimum": self.minimum,
         }
+        if names.changed():
+            out["notation"] = names.changed()
         if self.skipped:
             out["skipped"] = {k: {"reason": why, "option": how} for k, (why, how) in self.skipped.items()}
         if self.definition is not None:
@@ -87,17 +91,20 @@ class SceneSummary:
         return to_jsonable(out)
 
     def to_text(self, verbose: bool = False) -> str:
-        theta = isinstance(self.hermitian_part, sp.Basic) and any(s.name == "theta" for s in self.hermitian_part.free_symbols)
+        names = self.names
+        theta = isinstance(self.delay, sp.Symbol)
+        n_is = f"symbolic delay n = t_d/{names.period}"
         lines = [
             f"system:          {self.system} ({self.approximation} difference, "
-            + ("symbolic delay n = t_d/T" if isinstance(self.delay, sp.Symbol) else f"delay n = {self.delay}") + ")",
-            f"G^-1(z)          = {brief(self.G_inverse, verbose=verbose)}",
-            ("Re G^-1 (theta = wT, for every integer n) = " if theta else "Re G^-1 (c = cos wT) = ")
-            + (brief(self.hermitian_part, verbose=verbose) if self.hermitian_part is not None
+            + (n_is if theta else f"delay n = {self.delay}") + ")",
+            f"G^-1(z)          = {brief(self.G_inverse, verbose=verbose, names=names)}",
+            (f"Re G^-1 ({names.helper('theta')} = {names.theta_text}, for every integer n) = " if theta
+             else f"Re G^-1 ({names.helper('cos')} = {names.cos_text}) = ")
+            + (brief(self.hermitian_part, verbose=verbose, names=names) if self.hermitian_part is not None
                else _skipped_text(self, "hermitian_part")),
             "poles:           " + ", ".join(f"z = {p.value} ({p.location}{'' if p.multiplicity == 1 else f', x{p.multiplicity}' if p.multiplicity > 0 else ', multiplicity n+...'})" for p in self.poles),
-            "residues:        " + (", ".join(f"Res(z = {r.pole}) = {sp.sstr(r.residue)} [{r.outcome.reason}]" for r in self.residues) or "none on |z| = 1"),
-            f"worst case:      {brief(self.worst_case, verbose=verbose) if self.worst_case not in (None, sp.true, sp.false) else _minimum_text(self)}",
+            "residues:        " + (", ".join(f"Res(z = {r.pole}) = {names.text(r.residue)} [{r.outcome.reason}]" for r in self.residues) or "none on |z| = 1"),
+            f"worst case:      {brief(self.worst_case, verbose=verbose, names=names) if self.worst_case not in (None, sp.true, sp.false) else _minimum_text(self)}",
             "conditions:",
         ]
         width = max((len(c.name) for c in self.conditions), default=0)
@@ -105,23 +112,23 @@ class SceneSummary:
             lines.append(f"  {cond.name.ljust(width)}  {cond.decision.value:<9}  {shorten_numbers(cond.outcome.reason, verbose=verbose)}")
         lines.append(f"verdict:         {self.verdict}  ({shorten_numbers(self.reason, verbose=verbose)})")
         if self.witness:
-            lines.append("witness:         " + witness_text(self.witness))
+            lines.append("witness:         " + witness_text(self.witness, names))
         if self.stages:
             lines.append("stages (s):      " + ", ".join(f"{k} {v:.4f}" for k, v in self.stages.items()))
         return "\n".join(lines)
 
     def latex_rows(self) -> list[tuple[str, str, str]]:
         """``(label, left-hand side, right-hand side)`` of each derived display."""
-        herm = self.hermitian_part
-        rows = [("inverse transfer function", r"G^{-1}(z)", "= " + tex.to_latex(self.G_inverse))]
+        herm, names = self.hermitian_part, self.names
+        rows = [("inverse transfer function", r"G^{-1}(z)", "= " + names.latex(self.G_inverse))]
         if herm is not None:
-            rows.append(("Hermitian part on the unit circle", r"\Re\, G^{-1}(e^{j\omega T})",
-                         "= " + (tex.to_latex(_as_expr(herm), cos_name=COS) if not isinstance(herm, str) else herm)))
+            rows.append(("Hermitian part on the unit circle", rf"\Re\, G^{{-1}}(e^{{j{names.theta_latex}}})",
+                         "= " + (names.latex(_as_expr(herm), cos=True) if not isinstance(herm, str) else herm)))
         for r in self.residues:
-            rows.append(("residue on the unit circle", r"\operatorname{Res}_{z=" + tex.to_latex(r.pole) + r"} G^{-1}",
-                         "= " + tex.to_latex(r.residue)))
+            rows.append(("residue on the unit circle", r"\operatorname{Res}_{z=" + names.latex(r.pole) + r"} G^{-1}",
+                         "= " + names.latex(r.residue)))
         if self.worst_case is not None and self.worst_case not in (sp.true, sp.false):
-            rows.append(("worst case over frequency", r"\text{worst case: }", tex.to_latex(self.worst_case, cos_name=COS)))
+            rows.append(("worst case over frequency", r"\text{worst case: }", names.latex(self.worst_case, cos=True)))
         return rows
 
     def to_latex(self) -> str:
@@ -136,10 +143,12 @@ class SceneSummary:
         items += list(answers)
         notes = [("verdict", f"{self.verdict} ({self.reason})")]
         notes += [(f"not computed: {name.replace('_', ' ')}", f"{why} ({how} computes it)") for name, (why, how) in self.skipped.items()]
+        names = self.names
+        cos = names.helper("cos")
         if self.witness is not None:
-            notes.append(("witness", f"c = cos(wT) = {self.witness}"))
+            notes.append(("witness", witness_text(self.witness, names) + f" ({cos} = {names.cos_text})"))
         if self.minimiser is not None:
-            notes.append(("minimiser", f"c = {self.minimiser}, minimum = {self.minimum}"))
+            notes.append(("minimiser", f"{cos} = {self.minimiser}, minimum = {names.text(self.minimum)}"))
         intro = tex.escape_text(f"{self.system} scene, {self.approximation} difference, delay n = {self.delay}.")
         return tex.derivation_document(f"hapticproof derive {self.system}", items, notes, intro=intro)
 
@@ -188,7 +197,7 @@ def _minimum_text(summary: SceneSummary) -> str:
     value = summary.minimum
     if hasattr(value, "mid"):
         value = f"{float(value.mid()):.12g}"
-    return f"min Re G^-1 = {value} at c = {where}"
+    return f"min Re G^-1 = {value} at {summary.names.helper('cos')} = {where}"
 
 
 #: A numeric scene's ``Re G^{-1}`` as a polynomial in ``c`` is computed for the summary when its
@@ -210,8 +219,9 @@ def summarize_single_user(scene: SingleUserScene, with_profile: bool = False, fu
     ('disproved', None, '--full')
     """
     skipped: dict[str, tuple[str, str]] = {}
+    names = scene.naming()
     if scene.delay.is_Symbol:
-        herm = hermitian(scene).expr(sp.Symbol("theta"))
+        herm = hermitian(scene).expr(sp.Symbol(names.helper("theta")))
     elif scene.is_numeric and not full and _c_degree(scene) > CFORM_LIMIT:
         herm = None
         skipped["hermitian_part"] = (f"Re G^-1 as a polynomial in c has degree up to {_c_degree(scene)}; the decision "
@@ -254,6 +264,7 @@ def summarize_single_user(scene: SingleUserScene, with_profile: bool = False, fu
         conditions=tuple(conditions(scene)),
         skipped=skipped,
         definition=definition,
+        names=names,
     )
 
 

@@ -19,6 +19,8 @@ def audit_table(report: AuditReport, width: int = 120, wide: bool = False,
     """Plain-text table: equation, verdict, detail (shortened to one line unless ``wide``);
     ``style(verdict_text)`` may decorate the verdict column (the CLI colours it)."""
     lines = [f"{report.paper}: {report.title}", ""]
+    if getattr(report, "notation", None):
+        lines[-1:] = ["notation: " + ", ".join(f"{k} = {v}" for k, v in report.notation.items()), ""]
     id_w = max([len("eq")] + [len(r.id) for r in report.results])
     v_w = max(len(v.value) for v in Verdict)
     header = f"{'eq'.ljust(id_w)}  {'verdict'.ljust(v_w)}  detail"
@@ -38,7 +40,10 @@ def audit_markdown(report: AuditReport) -> str:
     def cell(text: str | None) -> str:
         return (text or "").replace("|", r"\|").replace("\n", " ")
 
-    lines = [f"## {report.paper}: {report.title}", "", "| eq | kind | verdict | detail | corrected |", "|---|---|---|---|---|"]
+    lines = [f"## {report.paper}: {report.title}", ""]
+    if getattr(report, "notation", None):
+        lines += ["Notation: " + ", ".join(f"`{cell(k)} = {cell(v)}`" for k, v in report.notation.items()), ""]
+    lines += ["| eq | kind | verdict | detail | corrected |", "|---|---|---|---|---|"]
     for r in report.results:
         corrected = f"`{cell(r.corrected)}`" if r.corrected else ""
         lines.append(f"| {r.id} | {r.kind} | **{r.verdict.value}** | {cell(r.detail)} | {corrected} |")

@@ -170,6 +170,8 @@ class MultiUserScene:
     delays: tuple
     z_a: tuple
     approximation: str = "forward"
+    #: the scene's naming (:mod:`hapticproof.systems.naming`) when its symbols do not give it
+    names: Any = field(default=None, repr=False)
     #: derived facts computed once per scene (its hash, uniformity): m(m-1)/2 edge values make
     #: them costly to recompute at every cache lookup
     _memo: dict = field(default=None, init=False, repr=False, compare=False, hash=False)
@@ -349,6 +351,20 @@ class MultiUserScene:
     @property
     def is_numeric(self) -> bool:
         return not self.parameters
+
+    def naming(self) -> Any:
+        """The names every view of this scene prints (:class:`~hapticproof.core.naming.Naming`)."""
+        if self.names is not None:
+            return self.names
+        from hapticproof.systems.naming import model_naming
+
+        b = set(self.b)
+        group = next(iter(b)) if len(b) == 1 else None
+        if group is None and all(isinstance(v, sp.Symbol) for v in self.b):
+            heads = {v.name.rpartition("_")[0] for v in self.b}
+            if len(heads) == 1 and [v.name for v in self.b] == [f"{next(iter(heads))}_{i + 1}" for i in range(self.users)]:
+                group = sp.Symbol(next(iter(heads)))
+        return model_naming("multi-user", {"period": self.T, "device_damping": group}, self.parameters)
 
     @property
     def has_delay(self) -> bool:

@@ -73,14 +73,11 @@ __all__ = ["SYSTEMS", "Scene", "FIELDS", "SceneFileError", "loads", "dumps", "re
 #: Systems a :class:`Scene` describes.
 SYSTEMS = ("single-user", "multi-user", "teleoperator", "network")
 
-
 #: Terminations that are words rather than impedances (boundary only).
 TERMINATIONS = ("free", "clamped")
 
-
 #: Controller presets of the teleoperator paper.
 PRESETS = ("pd", "filtered-pd")
-
 
 _GRAPHS = ("complete", "path", "star", "ring")
 
@@ -545,8 +542,10 @@ class Scene:
         >>> Scene("teleoperator", controller="K_p + K_i*T*z/(z - 1)").build().C
         K_i*T*z/(z - 1) + K_p
         """
+        from hapticproof.systems.naming import with_naming
+
         self.check_names()
-        return self._model(substitute=True)
+        return with_naming(self, self._model(substitute=True))
 
     def _model(self, substitute: bool) -> Any:
         mapping = self._substitution() if substitute else {}

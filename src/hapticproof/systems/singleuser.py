@@ -102,6 +102,8 @@ class SingleUserScene:
     approximation: str = "forward"
     delay: sp.Expr = field(default=sp.Integer(0))
     z_a: sp.Expr = field(default=sp.Integer(0))
+    #: the scene's naming (:mod:`hapticproof.systems.naming`) when its symbols do not give it
+    names: Any = field(default=None, repr=False)
     #: every parameter a number (set once on construction: the numeric route asks often)
     _numeric: bool = field(default=False, init=False, repr=False, compare=False)
 
@@ -167,6 +169,14 @@ class SingleUserScene:
         for value in (self.b, self.T, self.H, self.delay, self.z_a):
             symbols |= sp.sympify(value).free_symbols
         return {s for s in symbols if s != Z_SYM}
+
+    def naming(self) -> Any:
+        """The names every view of this scene prints (:class:`~hapticproof.core.naming.Naming`)."""
+        if self.names is not None:
+            return self.names
+        from hapticproof.systems.naming import model_naming
+
+        return model_naming("single-user", {"period": self.T, "device_damping": self.b}, self.parameters)
 
     @property
     def is_numeric(self) -> bool:

@@ -4,7 +4,7 @@ controllers and scene (the passivity decision is in :mod:`hapticproof.analysis.t
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from functools import lru_cache
 from typing import Any
 
@@ -127,6 +127,8 @@ class TeleoperatorScene:
     T: Any
     C: Any
     alpha: Any = 1
+    #: the scene's naming (:mod:`hapticproof.systems.naming`) when its symbols do not give it
+    names: Any = field(default=None, repr=False)
 
     def __post_init__(self) -> None:
         from hapticproof.core.expr import normalise_variables
@@ -184,6 +186,17 @@ class TeleoperatorScene:
             if value is not None:
                 out |= sp.sympify(value).free_symbols
         return out - {Z_SYM}
+
+    def naming(self) -> Any:
+        """The names every view of this scene prints (:class:`~hapticproof.core.naming.Naming`)."""
+        if self.names is not None:
+            return self.names
+        from hapticproof.systems.naming import model_naming
+
+        both = self.b_m if self.b_m == self.b_s else None
+        values = {"period": self.T, "master_damping": self.b_m, "slave_damping": self.b_s, "device_damping": both,
+                  "master_mass": self.m_m, "slave_mass": self.m_s, "mass": self.m_m if self.m_m == self.m_s else None}
+        return model_naming("teleoperator", values, self.parameters)
 
     @property
     def controller_is_numeric(self) -> bool:
