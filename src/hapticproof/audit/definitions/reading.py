@@ -682,7 +682,7 @@ def _applied(following: str) -> bool:
     r"""Whether a name is applied: followed by ``(z)``, ``(s)``, ``(e^{...})``, ``(j\omega)``,
     ``(\omega)`` or ``(z^{-1})``."""
     following = re.sub(r"^\\(?:left|bigl|Bigl|big|Big)\s*", "", following)
-    return bool(re.match(r"\(\s*(?:z|s|e\^|j\s*\\omega|\\omega|\\vartheta|\\theta|z\^\{?-1\}?|1/z)", following))
+    return bool(re.match(r"\(\s*(?:(?:z|s|j\s*\\omega|\\omega|\\vartheta|\\theta|z\^\{?-1\}?|1/z|t|k)\s*\)|e\^)", following))
 
 
 def _index_set(text: str) -> tuple[str, tuple[str, list[str]] | None]:
