@@ -57,11 +57,11 @@ import sympy as sp
 
 from hapticproof.core.errors import InputFormatError, SceneError
 from hapticproof.core.limits import check
+from hapticproof.systems.choices import QUANTITIES
 
 __all__ = ["QUANTITIES", "FIELD_AXES", "Axis", "MapSpec", "MapResult", "map_chunk", "compute", "stream",
            "line_values", "write_map", "plot_map"]
 
-QUANTITIES = ("passivity", "stability")
 #: Scene fields a map may vary besides the parameters.
 FIELD_AXES = ("delay", "users")
 

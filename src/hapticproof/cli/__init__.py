@@ -22,9 +22,18 @@ __all__ = ["main", "build_parser", "take_limits"]
 COMMANDS = ("audit", "new-paper", "derive", "check", "export", "boundary", "map", "bench")
 
 
-def build_parser(command: str | None = None) -> argparse.ArgumentParser:
+def build_parser(command: str | None = None, system: str | None = None) -> argparse.ArgumentParser:
     """The parser with every subcommand, or only ``command`` (its module alone is imported:
-    ``hapticproof audit`` need not load the simulation and plotting stack of ``boundary``)."""
+    ``hapticproof audit`` need not load the simulation and plotting stack of ``boundary``);
+    ``system`` is the one ``derive`` parses in full.
+
+    Building it loads no SymPy, NumPy or any module that computes: the command modules import
+    those in their handlers, so ``--version`` and every ``--help`` answer at once.
+
+    >>> parser = build_parser("derive", "single-user")
+    >>> parser.parse_args(["derive", "single-user", "--delay", "3"]).delay
+    '3'
+    """
     parser = argparse.ArgumentParser(
         prog="hapticproof",
         description="Regenerate, certify and audit stability and passivity conditions of "
@@ -39,7 +48,11 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
                         "see the README")
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
     for name in (command,) if command in COMMANDS else COMMANDS:
-        importlib.import_module(f"hapticproof.cli.{name.replace('-', '_')}").register(sub)
+        module = importlib.import_module(f"hapticproof.cli.{name.replace('-', '_')}")
+        if name == "derive":
+            module.register(sub, system)
+        else:
+            module.register(sub)
     return parser
 
 
@@ -134,7 +147,7 @@ def _main(argv: list[str]) -> int:
         from hapticproof.cli.derive import complete_argv
 
         argv = complete_argv(argv)
-    parser = build_parser(argv[0] if argv else None)
+    parser = build_parser(argv[0] if argv else None, argv[1] if len(argv) > 1 else None)
     args = parser.parse_args(argv)
     status = int(args.handler(args) or 0)
     sys.stdout.flush()              # a failed write is reported here, not at exit

@@ -13,18 +13,16 @@ from __future__ import annotations
 import argparse
 import json
 
-import sympy as sp
-
 from hapticproof.cli.common import add_output_option, build_model, add_scene_options, check_output, refuse, scene_from_args, write_output
 from hapticproof.core.errors import InputFormatError
 
 __all__ = ["register", "run", "add_design_options", "design_answers"]
 
 
-def register(systems: argparse._SubParsersAction) -> None:
+def register(systems: argparse._SubParsersAction, line: str = "") -> None:
     parser = systems.add_parser(
         "single-user",
-        help="1-DOF device on a discrete environment (HVE paper, Fig. 4)",
+        help=line,
         description="G^-1(z), poles, residues, the exact Hermitian part as a function of c = cos(wT), the "
         "worst case over w and the whole positive-realness decision (exact when every parameter is a number). "
         "Any parameter names; decimals are exact. --delay-margin and --range NAME answer the designer's "
@@ -92,6 +90,8 @@ def design_answers(scene, args: argparse.Namespace, margin_wanted: bool) -> tupl
 
 
 def run(args: argparse.Namespace) -> int:
+    import sympy as sp
+
     from hapticproof.systems.discretize import is_rational
     from hapticproof.report.summary import summarize_single_user
 

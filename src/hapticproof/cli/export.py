@@ -9,8 +9,6 @@ import time
 from hapticproof.cli.common import check_output, input_files, write_text
 from hapticproof.cli.terminal import progress_bar, summary_line, use_colour
 from hapticproof.core.errors import InputFormatError
-from hapticproof.report.export import export_document, reports_from_json
-from hapticproof.audit.registry import get_paper, papers
 
 __all__ = ["register"]
 
@@ -32,6 +30,9 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    from hapticproof.audit.registry import get_paper, papers
+    from hapticproof.report.export import export_document
+
     check_output(args.output, "--output", inputs=input_files(args))     # before any work
     selected = [get_paper(p) for p in args.papers] if args.papers else list(papers().values())
     if args.jobs is not None and args.jobs < 1:
@@ -59,6 +60,7 @@ def run(args: argparse.Namespace) -> int:
 def _saved(path: str, selected: list) -> list:
     from hapticproof.core.files import read_json, read_text
     from hapticproof.core.shapes import check_audit
+    from hapticproof.report.export import reports_from_json
 
     data = read_json(read_text(path), path)
     check_audit(data, path)          # the shape first: a number or null is one line, not a KeyError
