@@ -35,7 +35,7 @@ def probe(*argv: str) -> dict:
 @pytest.mark.parametrize("argv", [
     ["--version"], ["--help"], ["audit", "--help"], ["export", "--help"], ["derive", "--help"],
     ["derive", "single-user", "--help"], ["boundary", "--help"], ["map", "--help"], ["check", "--help"],
-    ["new-paper", "--help"], ["bench", "--help"],
+    ["new-paper", "--help"], ["bench", "--help"], ["zwidth", "--help"],
 ])
 def test_help_and_version_load_nothing_that_computes(argv):
     result = probe(*argv)

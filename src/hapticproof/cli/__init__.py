@@ -1,4 +1,4 @@
-"""Command-line interface: ``hapticproof audit | derive | export | boundary | map | bench``.
+"""Command-line interface: ``hapticproof audit | new-paper | derive | check | export | boundary | map | zwidth | bench``.
 
 Each subcommand lives in its own module of this package and exposes ``register(subparsers)``,
 which adds its parser and sets ``handler`` to a function ``handler(args) -> int``.
@@ -19,7 +19,7 @@ from hapticproof.core.errors import HapticproofError
 __all__ = ["main", "build_parser", "take_limits"]
 
 #: Subcommand modules, in the order they appear in ``--help``.
-COMMANDS = ("audit", "new-paper", "derive", "check", "export", "boundary", "map", "bench")
+COMMANDS = ("audit", "new-paper", "derive", "check", "export", "boundary", "map", "zwidth", "bench")
 
 
 def build_parser(command: str | None = None, system: str | None = None) -> argparse.ArgumentParser:
