@@ -80,9 +80,13 @@ class ZWidthLine:
         """The model is passive at stiffnesses where the exact loop is unstable."""
         if self.stable_max is None or not self.passive.intervals:
             return False
+        tolerance = self.stable_tolerance or 0.0
+        low = self.passive.minimum()
+        if self.stable_min and (low is None or float(low.approx(17)) < self.stable_min - tolerance):
+            return True              # passive soft walls a large virtual damping destabilises
         if self.passive_unbounded:
             return True
-        return float(self.passive_max.approx(17)) > self.stable_max + (self.stable_tolerance or 0.0)
+        return float(self.passive_max.approx(17)) > self.stable_max + tolerance
 
 
 @dataclass(frozen=True)
