@@ -216,9 +216,16 @@ def _axis(text: str | None, default_name: str) -> Any:
     return Axis.parse(text if "=" in text else f"{default_name}={text}")
 
 
-def _stable_interval(scene: Any, stiffness: str, damping: str, value: Fraction) -> tuple:
+def _is_wall(scene: Any, stiffness: str, damping: str) -> bool:
+    """The device on the virtual wall ``K + B(z-1)/(Tz)`` itself (the boundary code's closed form)."""
+    return (scene.environment is None and scene.discretize is None and scene.operator is None and not scene.active
+            and (stiffness, damping) == ("K", "B"))
+
+
+def _stable_interval(scene: Any, stiffness: str, damping: str, value: Fraction, row: Any = None) -> tuple:
     """``(K_min, K_max, tolerance, note)`` of the exact loop at one damping: the certified
-    critical stiffness of the wall, or the first certified crossing of another environment."""
+    critical stiffness of the wall, or the first certified crossing of another environment (searched
+    between the grid stiffnesses where the stability map's ``row`` of ``(K, verdict)`` turns)."""
     from hapticproof.analysis.boundary import arb_interval, critical_stiffness
 
     at = scene.with_params({damping: sp.Rational(value.numerator, value.denominator)})
@@ -226,9 +233,7 @@ def _stable_interval(scene: Any, stiffness: str, damping: str, value: Fraction) 
     values = at.resolved_values()
     if values.get(mass) is None or not values[mass].is_Rational:
         return None, None, None, f"no stability boundary: the mass {mass} is not given"
-    wall = (at.environment is None and at.discretize is None and at.operator is None and not at.active
-            and (stiffness, damping) == ("K", "B") and value >= 0)
-    if wall:
+    if _is_wall(at, stiffness, damping) and value >= 0:
         try:
             cs = critical_stiffness(m=values[mass], b=values[at.role("device_damping")],
                                     T=values[at.role("period")], B=values[damping], n=int(at.delay))
@@ -243,7 +248,18 @@ def _stable_interval(scene: Any, stiffness: str, damping: str, value: Fraction) 
     from hapticproof.analysis.maps import find_boundary
     from hapticproof.analysis.stability import SceneLoops
 
-    bnd = find_boundary(SceneLoops(at.with_params({stiffness: None})), stiffness)
+    search = None
+    if row is not None:
+        verdicts = [v for _, v in row]
+        if all(v == 1 for v in verdicts):
+            return None, None, None, "stable at every stiffness of the grid"
+        if all(v == 0 for v in verdicts):
+            return None, None, None, "unstable at every stiffness of the grid"
+        for (k0, v0), (k1, v1) in zip(row, row[1:]):
+            if v0 == 1 and v1 == 0:
+                search = (float(k0) if k0 > 0 else float(k1) * 1e-6, float(k1))
+                break
+    bnd = find_boundary(SceneLoops(at.with_params({stiffness: None})), stiffness, search=search)
     if bnd.value is None or bnd.direction != "destabilising" or not bnd.certified:
         return None, None, None, f"stability boundary not certified: {bnd.note or bnd.direction}"
     return 0.0, float(bnd.value), float(bnd.tolerance), ""
@@ -256,7 +272,8 @@ def zwidth(scene: Any, *, stiffness: str | None = None, damping: str | None = No
 
     ``stiffness`` and ``damping`` are the axes, ``NAME=start:stop:count`` (``start:stop:count``
     names the wall's ``K`` and ``B``); without them the stiffness runs from 0 to past both
-    boundaries at zero damping (81 values) and the damping from 0 to the device damping (41).
+    boundaries at zero damping (81 values; 41 for another environment, whose stability is decided
+    point by point) and the damping from 0 to the device damping (41; 21).
     """
     from hapticproof.analysis.designmap import MapSpec, compute
     from hapticproof.analysis.passiverange import passive_range
@@ -279,11 +296,12 @@ def zwidth(scene: Any, *, stiffness: str | None = None, damping: str | None = No
         name = scene.role(role)
         if values.get(name) is None or not values[name].is_Rational:
             raise InputFormatError(f"the Z-width needs the {role.replace('_', ' ')} {name} (--param {name}=VALUE)")
+    wall = _is_wall(scene, k_name, b_name)            # elsewhere each point costs a certified radius
     if b_axis is None:
         top = values[scene.role("device_damping")]
-        b_axis = _axis(f"{b_name}=0:{top}:41", b_name)
+        b_axis = _axis(f"{b_name}=0:{top}:{41 if wall else 21}", b_name)
     if k_axis is None:
-        k_axis = _axis(f"{k_name}=0:{_stiffness_top(scene, k_name, b_name)}:81", k_name)
+        k_axis = _axis(f"{k_name}=0:{_stiffness_top(scene, k_name, b_name)}:{81 if wall else 41}", k_name)
     spec = MapSpec.build("passivity", k_axis, b_axis, scene)
     passivity = compute(spec, workers=workers, scheduler=scheduler, progress=progress)
     mass = scene.role("mass")
@@ -291,10 +309,11 @@ def zwidth(scene: Any, *, stiffness: str | None = None, damping: str | None = No
     if values.get(mass) is not None and values[mass].is_Rational:
         stability = compute(MapSpec.build("stability", k_axis, b_axis, scene), workers=workers, scheduler=scheduler)
     lines = []
-    for value in b_axis.values:
+    for i, value in enumerate(b_axis.values):
         at = scene.with_params({b_name: sp.Rational(value.numerator, value.denominator)})
         rng = passive_range(at, k_name)
-        lo, hi, tol, note = _stable_interval(scene, k_name, b_name, value)
+        row = None if stability is None else list(zip(k_axis.values, stability.values[i].tolist()))
+        lo, hi, tol, note = _stable_interval(scene, k_name, b_name, value, row)
         lines.append(ZWidthLine(value, rng, lo, hi, tol, note))
     return ZWidth(spec.scene, k_name, b_name, passivity, stability, tuple(lines))
 
