@@ -16,7 +16,7 @@ from collections.abc import Sequence
 
 from hapticproof.core.errors import HapticproofError
 
-__all__ = ["main", "build_parser", "take_limits"]
+__all__ = ["main", "build_parser", "take_limits", "help_text"]
 
 #: Subcommand modules, in the order they appear in ``--help``.
 COMMANDS = ("audit", "new-paper", "derive", "check", "export", "boundary", "map", "zwidth", "bench")
@@ -45,7 +45,7 @@ def build_parser(command: str | None = None, system: str | None = None) -> argpa
     parser.add_argument("--limit", action="append", default=[], metavar="NAME=N",
                         help="raise one of the bounds checked before any work (anywhere on the command line, "
                         "repeatable): file_size, depth, digits, exponent, degree, delay, users, minors, grid; "
-                        "see the README")
+                        "see docs/reference/limits.rst")
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
     for name in (command,) if command in COMMANDS else COMMANDS:
         module = importlib.import_module(f"hapticproof.cli.{name.replace('-', '_')}")
@@ -54,6 +54,32 @@ def build_parser(command: str | None = None, system: str | None = None) -> argpa
         else:
             module.register(sub)
     return parser
+
+
+def help_text(*words: str, width: int = 100) -> str:
+    """The ``--help`` of ``hapticproof WORDS...`` (``()``: the program's, ``("derive", "single-user")``: a
+    system's), ``width`` columns wide: the reference of the documentation is generated from it.
+
+    >>> help_text("check").splitlines()[0]
+    'usage: hapticproof check [-h] [--quiet] report'
+    """
+    import contextlib
+    import io
+    import os
+
+    parser = build_parser(words[0] if words else None, words[1] if len(words) > 1 else None)
+    out = io.StringIO()
+    saved = os.environ.get("COLUMNS")
+    os.environ["COLUMNS"] = str(width)            # argparse wraps to the terminal's width
+    try:
+        with contextlib.redirect_stdout(out), contextlib.suppress(SystemExit):
+            parser.parse_args([*words, "--help"])
+    finally:
+        if saved is None:
+            os.environ.pop("COLUMNS", None)
+        else:
+            os.environ["COLUMNS"] = saved
+    return out.getvalue()
 
 
 def take_limits(argv: list[str]) -> tuple[list[str], list[str]]:
