@@ -36,7 +36,8 @@ exclude_patterns = ["_build", "architecture.md"]
 templates_path: list[str] = []
 html_static_path = ["_static"]
 html_theme = "alabaster"
-html_theme_options = {"description": "exact stability and passivity of sampled-data haptics", "fixed_sidebar": True}
+html_theme_options = {"description": "exact stability and passivity of sampled-data haptics", "fixed_sidebar": True,
+                      "page_width": "1200px", "body_max_width": "none"}    # the commands' lines are long
 html_title = f"hapticproof {release}"
 # nothing is fetched: no intersphinx, no remote images; MathJax is loaded by the reader's browser
 suppress_warnings: list[str] = []

@@ -27,7 +27,7 @@ FAIL_STATUS = 1
 def register(sub: argparse._SubParsersAction) -> None:
     parser = sub.add_parser(
         "audit",
-        help="audit the printed equations of the bundled papers",
+        help="audit the printed equations of the bundled papers or of your paper files (--paper)",
         description="Parse every printed equation of a paper verbatim, re-derive it and give a "
         "verdict with evidence. With no paper (or --all), audit every registered paper and the "
         "cross-paper checks.",

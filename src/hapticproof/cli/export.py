@@ -21,7 +21,7 @@ __all__ = ["register"]
 def register(sub: argparse._SubParsersAction) -> None:
     parser = sub.add_parser(
         "export",
-        help="write the derived conditions of the papers as a LaTeX file (amsmath)",
+        help="write the derived and corrected conditions of the bundled papers or of your paper files as LaTeX",
         description="Write the toolkit's derived conditions (and the corrected form of every "
         "defective printed equation) as a LaTeX document that compiles with pdflatex.",
     )
