@@ -3,7 +3,7 @@ fast as its decision).
 
 Each command is started ``--repeat`` times as a fresh process (imports included) and its median wall
 time recorded with the verdict line it printed; writes ``benchmarks/results/cli.json``. The targets:
-``derive single-user --delay 10000`` under 3 s, ``derive multi-user --users 1000 --uniform`` under
+``--version`` and ``--help`` under 0.3 s of CPU, ``derive single-user --delay 10000`` under 3 s, ``derive multi-user --users 1000 --uniform`` under
 5 s (symbolic and numeric), the delay-margin search ending by its deadline.
 
     python benchmarks/bench_cli.py [--repeat 3]
@@ -27,6 +27,10 @@ WALL = ["--param", "K=2", "--param", "T=0.001", "--param", "b=0.0201", "--param"
 USERS = ["--param", "b=0.02", "--param", "K_0=1", "--param", "B_0=0.001", "--param", "K=0.01", "--param", "B=0.00001",
          "--param", "T=0.001"]
 COMMANDS = {
+    # issue 29: the parsers load no SymPy or NumPy, so these cost the interpreter's start-up (< 0.3 s of CPU)
+    "--version": ["--version"],
+    "--help": ["--help"],
+    "audit --help": ["audit", "--help"],
     "single-user, delay 10 000": ["derive", "single-user", "--delay", "10000", *WALL],
     "single-user, delay 1 000": ["derive", "single-user", "--delay", "1000", *WALL],
     "multi-user, 20 users, uniform, symbolic": ["derive", "multi-user", "--users", "20", "--uniform"],

@@ -139,7 +139,7 @@ def test_passivity_conditions_each_way():
                              "suff-strong": "conservative", "suff-weak": "wrong", "nec-weak": "confirmed",
                              "nec-strong": "typo", "stiffness": "confirmed"}
     assert res["reversed"].corrected == r"b > \frac{KT}{2} + B"
-    assert res["strong"].corrected == res["nec-strong"].corrected == r"b > \frac{1}{2}KT + B"
+    assert res["strong"].corrected == res["nec-strong"].corrected == r"b > \frac{KT}{2} + B"
     assert "as printed: the printed condition implies the exact condition" in res["strong"].detail
     assert res["strong"].evidence.facts["repair"]["operator"] == "half"
     # the witness of a weaker bound is re-checked by the exact decision of the numeric scene

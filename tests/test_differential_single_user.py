@@ -12,7 +12,7 @@ below it, where exactness matters.
 
 Size knob: ``HAPTICPROOF_DIFF_EXAMPLES`` (default 10) Hypothesis examples per family;
 ``HAPTICPROOF_DIFF_COLLECT=cases.jsonl`` records every case instead of failing on the first
-disagreement (large runs, see the README). ``HYPOTHESIS_PROFILE=explore`` draws fresh examples.
+disagreement (large runs, see docs/howto/tests.rst). ``HYPOTHESIS_PROFILE=explore`` draws fresh examples.
 
 Every disagreement found so far is also an explicit regression test below (exact rationals).
 """

@@ -123,6 +123,103 @@ def test_swapping_the_indices_of_a_symmetric_family_is_proved_equivalent():
     assert report.score == 1.0 and not report.crashes()
 
 
+#: A point where Colgate's condition b >= KT/2 + B fails (1/3 < 1/2).
+FAILING = {b: sp.Rational(1, 3), K: 1, T: 1, B: 0}
+
+
+def at_the_point(ctx):
+    """A check with a fixed exact witness: the printed condition holding where the exact one fails is
+    ``wrong`` (the same detail whatever the display), else it is compared exactly."""
+    relation = ctx.relation()
+    if bool(relation.subs(FAILING)):
+        return Finding(Verdict.WRONG, "the printed condition holds at the witness where the exact one fails",
+                       Evidence(Method.COUNTEREXAMPLE, witness={str(k): v for k, v in FAILING.items()}))
+    return computing(ctx)
+
+
+def test_mutants_that_keep_a_wrong_displays_defect_are_equivalent_not_survivors():
+    # b > KT/4 + B is wrong (weaker than Colgate's condition); most of its mutants are wrong too
+    report = mutate_paper(own_paper(at_the_point, r"b > \frac{KT}{4} + B"))
+    kept = [r for r in report.results if r.basis == "defect"]
+    assert kept and all(r.outcome == "equivalent" and r.verdict == "wrong" for r in kept)
+    assert not report.survivors() and not report.crashes() and report.score == 1.0
+    # the ones that moved (a reversed relation no longer holds at the witness) are killed
+    assert any(r.outcome == "killed" and r.mutant.operator == "relation" for r in report.results)
+    assert report.equivalence()["defect"] == len(kept)
+    assert "defect" in report.summary()
+
+
+def test_a_defect_without_evidence_keeps_nothing():
+    def bare(ctx):                                    # 'wrong' with no witness: no proof of anything
+        return Finding(Verdict.WRONG, "wrong", Evidence(Method.COUNTEREXAMPLE))
+
+    report = mutate_paper(own_paper(bare, r"b > \frac{KT}{4} + B"))
+    assert report.counts()["survived"] == report.total and report.score == 0.0
+
+
+def test_a_stub_that_always_says_wrong_is_found_out_on_a_right_display():
+    def stub(ctx):
+        return Finding(Verdict.WRONG, "always", Evidence(Method.COUNTEREXAMPLE, witness={"b": 0}))
+
+    right = mutate_paper(own_paper(stub))             # Colgate's condition itself, judged wrong
+    assert right.counts()["equivalent"] == right.total   # the mutation test cannot tell: its mutants stay 'wrong'...
+    confirmed = mutate_paper(own_paper(computing))       # ...which is why the check is also run on right displays
+    assert confirmed.score == 1.0
+
+
+def test_cli_mutate_of_a_paper_file_with_a_wrong_display_passes(capsys):
+    # reviewer-walls (11) is wrong (a Tustin damper's bound with the sign of d_v lost): 15 of its 17
+    # mutants are wrong too, at their own witnesses; they kept the defect, they did not survive
+    paper = Path(__file__).resolve().parents[1] / "examples" / "reviewer-walls.toml"
+    code, out, _ = run(capsys, "audit", "--paper", str(paper), "-e", "11", "--mutate", "--format", "json")
+    data = json.loads(out)["papers"][0]
+    assert code == 0
+    assert data["counts"]["survived"] == 0 and data["counts"]["crashed"] == 0
+    assert data["equivalence"]["defect"] == data["counts"]["equivalent"] > 10
+    kept = [r for r in data["results"] if r["basis"] == "defect"]
+    assert all(r["verdict"] == "wrong" and r["reason"].endswith("its own exact witness") for r in kept)
+    assert {r["edit"] for r in kept} >= {"b_v -> -b_v", "> -> <"}
+
+
+PAPER_FILE = """
+[paper]
+id = "walls"
+title = "walls"
+[symbols]
+b = "positive"
+K = "positive"
+B = "nonnegative"
+T = "positive"
+[scenes.wall]
+system = "single-user"
+environment = "K + B*(z - 1)/(T*z)"
+"""
+
+
+def test_repairs_read_as_a_reviewer_writes_them(capsys, tmp_path):
+    paper = tmp_path / "walls.toml"
+    paper.write_text(PAPER_FILE + r"""
+[[equations]]
+id = "1"
+printed = 'b > KT + B'
+claim = "passivity-condition"
+scene = "wall"
+
+[[equations]]
+id = "2"
+printed = 'b > \frac{KT}{2} - B'
+claim = "passivity-condition"
+scene = "wall"
+""")
+    code, out, _ = run(capsys, "audit", "--paper", str(paper), "--format", "json")
+    found = {e["id"]: e for e in json.loads(out)["equations"]}
+    assert code == 0 and {e["verdict"] for e in found.values()} == {"typo"}
+    assert found["1"]["detail"].startswith("one edit repairs it: KT -> KT/2 (a lost half) gives a display that is confirmed")
+    assert found["1"]["corrected"] == r"b > \frac{KT}{2} + B"
+    assert found["2"]["detail"].startswith("one edit repairs it: - B -> + B (a sign)")
+    assert "position" not in found["1"]["detail"] + found["2"]["detail"] and "nothing" not in found["1"]["detail"]
+
+
 def test_a_declared_quote_must_be_read():
     paper = own_paper(computing)
     paper.equation("claim", kind="claim", printed="the condition $b > KT/2 + B$ of (1)", quotes=("1",))(

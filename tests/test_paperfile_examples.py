@@ -50,8 +50,8 @@ CORRECTED = {
     ("abbott-okamura-2005", "ALTERED-damping"): r"K < \frac{2(b - B)}{T}",
     ("gil-2009", "ALTERED-damping"): r"K < \frac{b + B}{\frac{T}{2} + t_d}",
     # the lost half: T/2 printed as T (a sufficient condition, but not the one claimed)
-    ("colgate-schenkel-1997", "ALTERED-half"): r"b > \frac{1}{2}KT + |B|",
-    ("gil-2009", "ALTERED-period"): r"K < \frac{b + B}{\frac{1}{2}T + t_d}",
+    ("colgate-schenkel-1997", "ALTERED-half"): r"b > \frac{KT}{2} + |B|",
+    ("gil-2009", "ALTERED-period"): r"K < \frac{b + B}{\frac{T}{2} + t_d}",
 }
 
 

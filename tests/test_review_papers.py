@@ -50,10 +50,10 @@ def _names(witness: dict, name: str) -> dict:
 
 
 CORRECTED = {
-    "default": {"4": r"b > \frac{1}{2}KT + B", "10": r"b > \frac{KT}{2} + B\frac{1-a}{1+a}",
+    "default": {"4": r"b > \frac{KT}{2} + B", "10": r"b > \frac{KT}{2} + B\frac{1-a}{1+a}",
                 "13": r"b_1 > \frac{(K_{01} + K_{12})T}{2} + B_{01} + B_{12}",
                 "19": r"K < \frac{b + B}{\frac{T}{2} + t_d}"},
-    "renamed": {"4": r"b_v > \frac{1}{2}k_vT_s + d_v", "10": r"b_v > \frac{k_vT_s}{2} + d_v\frac{1-p}{1+p}",
+    "renamed": {"4": r"b_v > \frac{k_vT_s}{2} + d_v", "10": r"b_v > \frac{k_vT_s}{2} + d_v\frac{1-p}{1+p}",
                 "13": r"c_1 > \frac{(K_{01} + K_{12})T_s}{2} + B_{01} + B_{12}",
                 "19": r"k_v < \frac{b_v + d_v}{\frac{T_s}{2} + t_d}"},
 }

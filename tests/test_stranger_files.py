@@ -210,7 +210,7 @@ def test_ctrl_c_is_one_line(capsys, monkeypatch):
     def interrupt(args):
         raise KeyboardInterrupt
 
-    monkeypatch.setattr("hapticproof.cli.build_parser", lambda command=None: _Parser(interrupt))
+    monkeypatch.setattr("hapticproof.cli.build_parser", lambda command=None, system=None: _Parser(interrupt))
     refused(capsys, ["derive", "single-user"], "interrupted", code=130)
 
 

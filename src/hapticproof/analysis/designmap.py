@@ -57,11 +57,11 @@ import sympy as sp
 
 from hapticproof.core.errors import InputFormatError, SceneError
 from hapticproof.core.limits import check
+from hapticproof.systems.choices import QUANTITIES
 
 __all__ = ["QUANTITIES", "FIELD_AXES", "Axis", "MapSpec", "MapResult", "map_chunk", "compute", "stream",
            "line_values", "write_map", "plot_map"]
 
-QUANTITIES = ("passivity", "stability")
 #: Scene fields a map may vary besides the parameters.
 FIELD_AXES = ("delay", "users")
 
@@ -596,7 +596,7 @@ def _stability_gaps(params: Mapping[str, Fraction], bits: int) -> tuple[list, li
 
 
 def _stability_line(name: str, values: tuple[Fraction, ...], params: dict) -> np.ndarray:
-    if name != "K":
+    if name != "K" or params["B"] < 0:        # the crossing analysis takes a virtual damping B >= 0
         return np.array([_stability_point(dict(params, **{name: v})) for v in values], dtype=np.int8)
     import flint
 
@@ -863,11 +863,19 @@ def write_map(result: MapResult, path: str | Path | None = None) -> str:
     return text
 
 
-def plot_map(result: MapResult, path: str | Path, title: str = "") -> Path:
-    """Two-colour image of the map (dark: not passive / unstable; red: undecided)."""
+def plot_map(result: MapResult, path: str | Path, title: str = "", *, overlay: MapResult | None = None,
+             curves: Any = ()) -> Path:
+    """Two-colour image of the map (dark: not passive / unstable; red: undecided).
+
+    ``overlay`` (a map of the other quantity on the same grid) makes it four classes: both good
+    (light green), only the overlay's good (grey), only this map's good (orange: a passive model
+    whose exact loop is unstable), neither (dark). ``curves`` are ``(label, xs, ys)`` or ``(label,
+    xs, ys, style)`` drawn on top (boundaries).
+    """
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.colors import ListedColormap
     from matplotlib.figure import Figure
+    from matplotlib.patches import Patch
 
     spec = result.spec
     fig = Figure(figsize=(6.4, 4.4))
@@ -875,13 +883,36 @@ def plot_map(result: MapResult, path: str | Path, title: str = "") -> Path:
     ax = fig.add_subplot(111)
     xs = np.array([float(v) for v in spec.x.values])
     ys = np.array([float(v) for v in spec.y.values])
-    image = np.where(result.values == 1, 0, np.where(result.values == 0, 1, 2)).astype(float)
-    ax.pcolormesh(xs, ys, image, cmap=ListedColormap(["#f4f4f4", "#444444", "#d62728"]), vmin=0, vmax=2,
-                  shading="nearest")
+    legend = []
+    if overlay is None:
+        image = np.where(result.values == 1, 0, np.where(result.values == 0, 1, 2)).astype(float)
+        colours = ["#f4f4f4", "#444444", "#d62728"]
+    else:
+        if overlay.values.shape != result.values.shape:
+            raise ValueError("the overlay is a map of another grid")
+        mine, other = _label(spec), _label(overlay.spec)
+        undecided = (result.values == -1) | (overlay.values == -1)
+        image = np.where(undecided, 4, np.where(result.values == 1, np.where(overlay.values == 1, 0, 2),
+                                                np.where(overlay.values == 1, 1, 3))).astype(float)
+        colours = ["#d8efd0", "#d4d4d4", "#f5a35c", "#555555", "#d62728"]
+        words = [f"{mine} and {other}", f"{other}, not {mine}", f"{mine}, not {other}", "neither", "undecided"]
+        legend = [Patch(facecolor=c, edgecolor="#888888", label=w) for c, w, k in zip(colours, words, range(5))
+                  if (image == k).any()]
+    ax.pcolormesh(xs, ys, image, cmap=ListedColormap(colours), vmin=0, vmax=len(colours) - 1, shading="nearest")
+    styles = ["k-", "b--", "g-.", "m:"]
+    for k, (label, cx, cy, *style) in enumerate(curves):
+        ax.plot(np.asarray(cx, float), np.asarray(cy, float), style[0] if style else styles[k % len(styles)], lw=1.8,
+                label=label)
+    ax.set_xlim(xs[0], xs[-1])
+    ax.set_ylim(ys[0], ys[-1])
     ax.set_xlabel(spec.x.name)
     ax.set_ylabel(spec.y.name)
     fixed = ", ".join(f"{k} = {_number(v)}" for k, v in spec.fixed)
     ax.set_title(title or f"exact {spec.quantity} map ({fixed}); light: {_label(spec)}", fontsize=9)
+    if legend or curves:
+        handles, _ = ax.get_legend_handles_labels()
+        ax.legend(handles=handles + legend, fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0),
+                  borderaxespad=0.0)        # beside the map, never over it
     from hapticproof.core.files import atomic_path
 
     path = Path(path)

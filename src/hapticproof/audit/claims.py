@@ -44,7 +44,7 @@ when only sampling agrees.
     otherwise ``inconsistent`` (both ids) with a point where they differ.
 
 A display that is not confirmed gets a search for a nearby correct reading: the edits of
-:mod:`hapticproof.audit.mutate` (a sign, a factor 2, a dropped term, swapped indices, a reversed
+:mod:`hapticproof.audit.edits` (a sign, a factor 2, a dropped term, swapped indices, a reversed
 relation, another symbol); when one edit makes it exactly right the verdict is ``typo`` and the
 corrected LaTeX is that edited display.
 
@@ -299,9 +299,9 @@ def _most_likely(mutants: list[Any]) -> list[Any]:
 
 
 def _repair(state: State, finding: Finding) -> Finding:
-    """Search the edits of :mod:`hapticproof.audit.mutate` for one that makes the display right."""
+    """Search the edits of :mod:`hapticproof.audit.edits` for one that makes the display right."""
     try:
-        from hapticproof.audit.mutate import generate
+        from hapticproof.audit.edits import generate
     except ImportError:  # pragma: no cover - the mutation operators are not available
         return finding
     mutants = _most_likely(generate(state.equation, state.source.paper, text=state.printed, table=state.table,
@@ -339,15 +339,14 @@ def _repair(state: State, finding: Finding) -> Finding:
     )
 
 
-_EDITS = {"sign": "flipping the sign", "scale": "a factor 2", "drop": "dropping a term", "swap": "swapping the indices",
-          "relation": "reversing the relation", "symbol": "another symbol", "index": "another index",
-          "half": "halving a term", "modulus": "dropping a modulus"}
+_EDITS = {"sign": "a sign", "scale": "a factor 2", "drop": "a term", "swap": "swapped indices",
+          "relation": "the relation", "symbol": "another symbol", "index": "another index",
+          "half": "a lost half", "modulus": "a modulus"}
 
 
 def _describe_edit(mutant: Any) -> str:
-    old = mutant.original.strip() or "nothing"
-    new = mutant.replacement.strip() or "nothing"
-    return f"{_EDITS.get(mutant.operator, mutant.operator)} ({old!r} -> {new!r} at position {mutant.position})"
+    """``KT -> KT/2 (a lost half)``: the edit as a reviewer writes it, and what kind of slip it is."""
+    return f"{mutant.edit()} ({_EDITS.get(mutant.operator, mutant.operator)})"
 
 
 def describe(spec: Any, paper: Any) -> str:

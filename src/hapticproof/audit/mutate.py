@@ -12,7 +12,9 @@ mutated ``printed``) and classifies the outcome:
     the mutant is proved to say the same thing: its parse with the paper's table is identical
     to the original's (e.g. ``K_{12} -> K_{21}`` of a symmetric family), or the check reports
     the same canonical form of what it read (``evidence.facts["printed_form"]``, e.g. gains
-    identified by the paper's symmetry condition B);
+    identified by the paper's symmetry condition B); or the display is judged a defect and the
+    mutant keeps that defect with its own evidence (a changed ``wrong`` display still ``wrong``
+    at an exact witness, :func:`kept_defect`);
 ``survived``
     the result did not change and no such proof exists (the check cannot tell the displays
     apart: a defect of the check);
@@ -20,16 +22,8 @@ mutated ``printed``) and classifies the outcome:
     the check raised (a traceback is always a defect; a mutant that no longer parses must give
     ``malformed``).
 
-The operators work on the tokens of :func:`hapticproof.audit.reader.lexer.tokenize` (equation numbers,
-``\text{...}`` prose, scripts of ``\sum``/``\lim`` and environment names are left alone):
-
-``sign``      flip the sign of one term (``+`` <-> ``-``, or ``-`` before a leading term);
-``scale``     multiply one term by 2;
-``drop``      delete one term of a sum of several;
-``swap``      swap two indices of a subscript (``K_{01} -> K_{10}``, ``z_{i,j} -> z_{j,i}``,
-              ``k_{pmxy} -> k_{pmyx}``), kept only if the new name is in the paper's table;
-``relation``  reverse an inequality (``>`` <-> ``<``, ``\geq`` <-> ``\leq``);
-``symbol``    replace a name by another name of the display (or of the paper's table).
+The edits are those of :mod:`hapticproof.audit.edits` (a sign, a factor 2, a dropped term, swapped
+indices, a reversed relation, another symbol).
 
 Claims (quoted prose) are mutated inside their ``$...$`` math only, and only when their check
 reads its own printed text (found by running the check once with recording copies of every
@@ -79,7 +73,6 @@ The mutation score of a paper is ``killed / (total - equivalent)``.
 from __future__ import annotations
 
 import dataclasses
-import hashlib
 import itertools
 import os
 import random
@@ -88,11 +81,12 @@ import time
 import traceback
 from collections.abc import Callable, Iterable, Iterator
 from contextlib import contextmanager
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any
 
 import sympy as sp
 
+from hapticproof.audit.edits import OPERATORS, Mutant, generate, resolves
 from hapticproof.audit.runner import AuditContext, Equation, Paper
 from hapticproof.core.errors import LatexParseError
 from hapticproof.core.evidence import Finding, Verdict, to_jsonable
@@ -111,435 +105,16 @@ __all__ = [
     "choose",
     "knob",
     "EQUIVALENCE_BASES",
+    "DEFECTS",
+    "kept_defect",
     "QuoteError",
     "MutantTimeout",
     "ENV_KNOB",
 ]
 
-OPERATORS = ("sign", "scale", "drop", "swap", "relation", "symbol")
-#: The edits a repair search tries: the operators, index slips (``K_{02}`` for ``K_{01}``: one
-#: index of a name replaced so that it names another parameter of the scene) and a lost half
-#: (``KT`` for ``KT/2``, the commonest slip of these papers).
-REPAIR_OPERATORS = OPERATORS + ("index", "half", "modulus")
 OUTCOMES = ("killed", "equivalent", "survived", "crashed")
 #: Environment variable: ``all`` runs every mutant in the test suite, a number N samples N per paper.
 ENV_KNOB = "HAPTICPROOF_MUTANTS"
-
-_REVERSED = {">": "<", "<": ">", r"\geq": r"\leq", r"\leq": r"\geq", r"\ge": r"\le", r"\le": r"\ge",
-             r"\geqslant": r"\leqslant", r"\leqslant": r"\geqslant"}
-OPENERS = {"{": "}", "(": ")", "[": "]"}
-CLOSERS = {v: k for k, v in OPENERS.items()}
-#: commands whose braced argument is not mathematics of the display (labels of arrows)
-_LABEL_COMMANDS = {r"\xrightarrow", r"\xleftarrow", r"\overset", r"\underset", r"\stackrel"}
-_SEGMENT_BREAKS = {",", "&", ";"}
-#: letter runs that are words of the dialect, not products of names
-PROSE_WORDS = {"det", "diag", "Re", "Im", "lim", "sup", "inf"}
-
-
-# ---------------------------------------------------------------------------------------------
-# mutants
-# ---------------------------------------------------------------------------------------------
-
-
-@dataclass(frozen=True, slots=True)
-class Mutant:
-    """One changed display.
-
-    ``equation`` is the id of the audited equation, ``target`` the id of the equation whose
-    printed text was changed (``paper:id`` when it belongs to another paper); they differ for
-    dependent mutants. ``position`` is the character offset of the change in the target's text.
-    """
-
-    paper: str
-    equation: str
-    target: str
-    operator: str
-    position: int
-    original: str
-    replacement: str
-    printed: str
-
-    def __post_init__(self) -> None:
-        if self.operator not in REPAIR_OPERATORS:
-            raise ValueError(f"unknown mutation operator {self.operator!r}")
-
-    @property
-    def key(self) -> str:
-        """A stable identifier (used for sampling and in reports)."""
-        return f"{self.paper}:{self.equation}<-{self.target}@{self.position}:{self.operator}:{self.replacement}"
-
-    def describe(self) -> str:
-        old = self.original or "''"
-        new = self.replacement or "''"
-        on = "" if self.target == self.equation else f" (in {self.target})"
-        return f"{self.operator} at {self.position}{on}: {old!r} -> {new!r}"
-
-
-@dataclass(frozen=True, slots=True)
-class Token:
-    kind: str
-    value: str
-    pos: int
-    end: int
-
-
-def _tokens(text: str, lo: int, hi: int) -> list[Token]:
-    from hapticproof.audit.reader.lexer import tokenize
-
-    return [Token(t.kind, t.value, t.pos, t.end) for t in tokenize(text, lo, hi)]
-
-
-def _tag_start(toks: list[Token]) -> int:
-    """Index of the first token of a trailing equation number (``\\tag``, ``\\quad (15a)``, ``(48)``)."""
-    end = len(toks)
-    while end and toks[end - 1].kind in ("sep", "newline"):
-        end -= 1
-    for k, t in enumerate(toks):
-        if t.kind == "tag":
-            return k
-    for width in (4, 3):
-        if end >= width:
-            o, *mid, c = toks[end - width:end]
-            if o.value == "(" and c.value == ")" and mid[0].kind == "number" and (width == 3 or mid[1].kind == "letter"):
-                before = toks[end - width - 1] if end > width else None
-                if before is None or before.kind == "sep" or any(is_relation(t) for t in toks[:end - width]):
-                    return end - width
-    return end
-
-
-def is_relation(t: Token) -> bool:
-    from hapticproof.audit.reader.lexer import RELATIONS
-
-    return (t.kind == "op" and t.value in "=<>") or (t.kind == "cmd" and t.value in RELATIONS)
-
-
-@dataclass
-class _Frame:
-    kind: str            # 'top', 'group', 'script', 'label', 'bars'
-    closer: str | None
-    segments: list[list[int]] = field(default_factory=lambda: [[]])
-
-
-def _structure(toks: list[Token]) -> list[list[int]]:
-    """Segments of token indices (maximal runs of one sum, at every nesting depth, outside
-    scripts and labels): split at relations, commas, ``&``, ``\\\\`` and separators."""
-    out: list[list[int]] = []
-    stack = [_Frame("top", None)]
-    pending_script = False
-    pending_label = False
-    for k, t in enumerate(toks):
-        frame = stack[-1]
-        opener = t.value if (t.kind == "op" and t.value in OPENERS) else ("\\{" if (t.kind == "sym" and t.value == "\\{") else None)
-        if t.kind == "left":
-            opener = "left"
-        if t.kind == "begin":
-            opener = "begin"
-        closer = (t.kind == "op" and t.value in CLOSERS) or (t.kind == "sym" and t.value == "\\}") or t.kind in ("right", "end")
-        if t.kind == "op" and t.value == "|":
-            if frame.kind == "bars":
-                out.extend(s for s in frame.segments if s)
-                stack.pop()
-                stack[-1].segments[-1].append(k)
-                continue
-            stack[-1].segments[-1].append(k)
-            stack.append(_Frame("bars", "|"))
-            continue
-        if opener is not None:
-            kind = "script" if pending_script else "label" if pending_label else "group"
-            if frame.kind not in ("script", "label"):
-                frame.segments[-1].append(k)
-            stack.append(_Frame(kind if frame.kind not in ("script", "label") else frame.kind, opener))
-            pending_script = pending_label = False
-            continue
-        if closer and len(stack) > 1:
-            done = stack.pop()
-            if done.kind not in ("script", "label"):
-                out.extend(s for s in done.segments if s)
-            if stack[-1].kind not in ("script", "label"):
-                stack[-1].segments[-1].append(k)
-            continue
-        pending_script = t.kind == "op" and t.value in "_^"
-        pending_label = t.kind == "cmd" and t.value in _LABEL_COMMANDS
-        if frame.kind in ("script", "label"):
-            continue
-        if pending_script:
-            frame.segments[-1].append(k)
-            continue
-        if is_relation(t) or t.kind in ("sep", "newline", "text", "tag") or (t.kind == "op" and t.value in _SEGMENT_BREAKS) \
-                or (t.kind == "cmd" and t.value in (r"\implies", r"\Longrightarrow", r"\Rightarrow", r"\iff", r"\to")):
-            frame.segments.append([])
-            continue
-        frame.segments[-1].append(k)
-    for frame in stack:
-        if frame.kind not in ("script", "label"):
-            out.extend(s for s in frame.segments if s)
-    return out
-
-
-def _script_after(toks: list[Token], k: int) -> int:
-    """Index after the script group starting at ``toks[k]`` (``{...}`` or one token)."""
-    if k >= len(toks):
-        return k
-    if toks[k].kind == "op" and toks[k].value == "{":
-        depth = 0
-        for j in range(k, len(toks)):
-            if toks[j].kind == "op" and toks[j].value == "{":
-                depth += 1
-            elif toks[j].kind == "op" and toks[j].value == "}":
-                depth -= 1
-                if depth == 0:
-                    return j + 1
-        return len(toks)
-    return k + 1
-
-
-def _terms(toks: list[Token], segment: list[int]) -> list[tuple[int | None, int, int]]:
-    """Terms of a segment: ``(sign token index or None, first index, last index)`` (positions in
-    ``segment``), split at top-level ``+``/``-`` of the segment (the segment holds only its own
-    level: inner groups are separate segments, but their delimiters belong to this one)."""
-    terms: list[tuple[int | None, int, int]] = []
-    depth = 0
-    sign: int | None = None
-    start: int | None = None
-    # inner group tokens are not in the segment; delimiter tokens are, so count depth by them
-    for pos, k in enumerate(segment):
-        t = toks[k]
-        is_open = (t.kind == "op" and t.value in OPENERS) or (t.kind == "sym" and t.value == "\\{") or t.kind in ("left", "begin")
-        is_close = (t.kind == "op" and t.value in CLOSERS) or (t.kind == "sym" and t.value == "\\}") or t.kind in ("right", "end")
-        if depth == 0 and t.kind == "op" and t.value in "+-":
-            if start is not None:
-                terms.append((sign, start, pos - 1))
-            elif sign is not None:
-                pass  # two signs in a row ('+ -'): keep the latter
-            sign, start = pos, None
-            continue
-        if start is None:
-            start = pos
-        if is_open:
-            depth += 1
-        elif is_close:
-            depth = max(0, depth - 1)
-    if start is not None:
-        terms.append((sign, start, len(segment) - 1))
-    return terms
-
-
-def _is_zero_term(toks: list[Token], segment: list[int], first: int, last: int) -> bool:
-    return first == last and toks[segment[first]].kind == "number" and set(toks[segment[first]].value) <= {"0", "."}
-
-
-def _math_ranges(text: str, claim: bool) -> list[tuple[int, int]]:
-    """Where the mathematics is: the whole display, or the ``$...$`` parts of a claim."""
-    if not claim:
-        from hapticproof.audit.reader.printed import strip_math_delimiters
-
-        lo, hi = strip_math_delimiters(text)
-        return [(lo, hi)] if hi > lo else []
-    return [(m.start(1), m.end(1)) for m in re.finditer(r"\$([^$]+)\$", text)]
-
-
-def _choose(options: list[str], key: str) -> str:
-    digest = int(hashlib.sha256(key.encode()).hexdigest()[:12], 16)
-    return options[digest % len(options)]
-
-
-def _resolves(name: str, table: Any) -> Any:
-    """What a printed name means in ``table`` (None if it is not a known scalar name)."""
-    from hapticproof.audit.reader.printed import parse_expression
-
-    if table is None:
-        return None
-    try:
-        value = parse_expression(name, table)
-    except (LatexParseError, ValueError, TypeError):
-        return None
-    if isinstance(value, (sp.Symbol, sp.Indexed)) and not isinstance(value, sp.MatrixSymbol):
-        return value
-    return None
-
-
-def _names(text: str, toks: list[Token], stop: int) -> list[tuple[int, int, str, str | None]]:
-    """Candidate names ``(first token, index after, base text, subscript text or None)``: a letter,
-    a Greek command or a decorated letter, with its subscript (superscripts are left alone)."""
-    from hapticproof.audit.reader.lexer import DECORATIONS, GREEK
-
-    out = []
-    k = 0
-    while k < stop:
-        t = toks[k]
-        start = k
-        if t.kind == "op" and t.value in "_^":
-            k = _script_after(toks, k + 1)     # scripts (indices, exponents, transposes) are left alone
-            continue
-        if t.kind == "letter":
-            run = k
-            while run + 1 < stop and toks[run + 1].kind == "letter" and toks[run + 1].pos == toks[run].end:
-                run += 1
-            word = "".join(x.value for x in toks[k:run + 1])
-            if word in PROSE_WORDS:
-                k = run + 1
-                continue
-            k += 1
-        elif t.kind == "cmd" and t.value in GREEK:
-            k += 1
-        elif t.kind == "cmd" and t.value in DECORATIONS and k + 1 < stop:
-            k = _script_after(toks, k + 1)
-        else:
-            k += 1
-            continue
-        while k < stop and toks[k].kind == "op" and toks[k].value == "'":
-            k += 1
-        sub = None
-        if k + 1 < stop and toks[k].kind == "op" and toks[k].value == "_":
-            after = _script_after(toks, k + 1)
-            inner_lo = toks[k + 1].end if toks[k + 1].value == "{" else toks[k + 1].pos
-            inner_hi = toks[after - 1].pos if toks[k + 1].value == "{" else toks[k + 1].end
-            sub = text[inner_lo:inner_hi]
-            k = after
-        base_hi = toks[start].end if toks[start].kind != "cmd" or toks[start].value in GREEK else toks[_script_after(toks, start + 1) - 1].end
-        out.append((start, k, text[toks[start].pos:base_hi], sub))
-    return out
-
-
-def _swapped(sub: str) -> str | None:
-    """The subscript with two indices swapped, or None (``01 -> 10``, ``i,j -> j,i``, ``pmxy -> pmyx``)."""
-    inner = sub.strip()
-    if inner.count(",") == 1:
-        a, b = (part.strip() for part in inner.split(","))
-        return f"{b},{a}" if a != b and a and b else None
-    compact = inner.replace(" ", "")
-    if not compact.isalnum() or len(compact) < 2:
-        return None
-    a, b = compact[-2], compact[-1]
-    if a == b:
-        return None
-    return compact[:-2] + b + a
-
-
-def generate(equation: Equation, paper: Paper, *, text: str | None = None, table: Any = None,
-             slips: bool = False) -> list[Mutant]:
-    """All mutants of ``equation``'s printed text (or of ``text``), in printed order.
-
-    Displays are mutated as a whole; claims only inside their ``$...$`` mathematics. ``table``
-    reads the names (default: the paper's symbols); ``slips`` adds the index slips of
-    :data:`REPAIR_OPERATORS` (for repair searches; mutation testing uses :data:`OPERATORS`).
-
-    >>> import sympy as sp
-    >>> from hapticproof.audit.reader.printed import SymbolTable
-    >>> x, y = sp.symbols('x y')
-    >>> p = Paper("p", title="", source="", symbols=SymbolTable({"x": x, "y": y}))
-    >>> p.equation("1", kind="condition", printed="x + y > 0")(lambda ctx: None)  # doctest: +ELLIPSIS
-    <function <lambda> at ...>
-    >>> sorted({(m.operator, m.printed) for m in generate(p.get("1"), p)})  # doctest: +NORMALIZE_WHITESPACE
-    [('drop', 'x > 0'), ('drop', 'y > 0'), ('relation', 'x + y < 0'), ('scale', '2 x + y > 0'),
-     ('scale', 'x + 2 y > 0'), ('sign', '-x + y > 0'), ('sign', 'x - y > 0'), ('symbol', 'x + x > 0'),
-     ('symbol', 'y + y > 0')]
-    """
-    text = equation.printed if text is None else text
-    table = paper.symbols if table is None else table
-    found: dict[str, Mutant] = {}
-
-    def add(operator: str, lo: int, hi: int, replacement: str) -> None:
-        if re.search(r"\\[A-Za-z]+$", replacement) and text[hi:hi + 1].isalnum():
-            replacement += " "      # '\omega' before 'T' must not become '\omegaT'
-        if not replacement and text[hi:hi + 1] == " " and (lo == 0 or text[lo - 1] in " {($&"):
-            hi += 1                 # a dropped term leaves one space, not two
-        printed = text[:lo] + replacement + text[hi:]
-        if printed == text or printed in found:
-            return
-        found[printed] = Mutant(paper.id, equation.id, equation.id, operator, lo, text[lo:hi], replacement, printed)
-
-    for lo, hi in _math_ranges(text, equation.kind == "claim"):
-        try:
-            toks = _tokens(text, lo, hi)
-        except LatexParseError:
-            continue
-        stop = _tag_start(toks)
-        body = toks[:stop]
-        # relations
-        for t in body:
-            if t.kind in ("op", "cmd") and t.value in _REVERSED:
-                add("relation", t.pos, t.end, _REVERSED[t.value])
-        # terms
-        for segment in _structure(body):
-            terms = _terms(body, segment)
-            for sign, first, last in terms:
-                if _is_zero_term(body, segment, first, last):
-                    continue
-                a, z = body[segment[first]], body[segment[last]]
-                if sign is not None:
-                    st = body[segment[sign]]
-                    add("sign", st.pos, st.end, "+" if st.value == "-" else "-")
-                else:
-                    add("sign", a.pos, a.pos, "-")
-                factor = r"2\cdot " if a.kind == "number" else "2 "
-                add("scale", a.pos, a.pos, factor)
-                if slips:
-                    add("half", a.pos, a.pos, r"\frac{1}{2}")
-                if len(terms) >= 2:
-                    if sign is not None:
-                        add("drop", body[segment[sign]].pos, z.end, "")
-                    else:
-                        nxt = terms[1] if terms[0][1] == first else None
-                        if nxt is not None and nxt[0] is not None and body[segment[nxt[0]]].value == "+":
-                            add("drop", a.pos, body[segment[nxt[0]]].end, "")
-                        else:
-                            add("drop", a.pos, z.end, "")
-        # names: index swaps and replacements
-        names = _names(text, body, len(body))
-        meanings: dict[str, Any] = {}
-        spans = []
-        for first, after, base, sub in names:
-            name_lo, name_hi = body[first].pos, body[after - 1].end
-            name = text[name_lo:name_hi]
-            meaning = _resolves(name, table)
-            if meaning is None:
-                continue
-            meanings.setdefault(name, meaning)
-            spans.append((name_lo, name_hi, name, base, sub))
-            if sub is not None:
-                swapped = _swapped(sub)
-                if swapped is not None:
-                    new = f"{base}_{{{swapped}}}"
-                    if _resolves(new, table) is not None:
-                        add("swap", name_lo, name_hi, new)
-        distinct = {}
-        for name, meaning in meanings.items():
-            distinct.setdefault(str(meaning), name)
-        for name_lo, name_hi, name, base, sub in spans:
-            others = [n for m, n in sorted(distinct.items()) if m != str(meanings[name])]
-            if not others:
-                others = [n for n in _table_names(table) if str(_resolves(n, table)) != str(meanings[name])]
-            if others:
-                add("symbol", name_lo, name_hi, _choose(others, f"{paper.id}:{equation.id}:{name_lo}"))
-            if slips and sub is not None:
-                for new in _index_slips(base, sub, table):
-                    add("index", name_lo, name_hi, new)
-    if slips:
-        # a modulus the derivation does not have: |g_1| -> g_1
-        for m in re.finditer(r"\\left\s*\|([^|]{1,80})\\right\s*\||\\lvert([^|]{1,80})\\rvert|(?<!\\)\|([^|]{1,80})\|", text):
-            inner = next(g for g in m.groups() if g is not None)
-            add("modulus", m.start(), m.end(), inner.strip())
-    return sorted(found.values(), key=lambda m: (m.position, REPAIR_OPERATORS.index(m.operator), m.replacement))
-
-
-def _index_slips(base: str, sub: str, table: Any) -> list[str]:
-    """Names of the table with the same base, a subscript differing in one index (``K_{02}``: ``K_{01}``)."""
-    inner, out = sub.replace(" ", ""), []
-    for key in _table_names(table):
-        match = re.fullmatch(re.escape(base) + r"_\{?([A-Za-z0-9]+)\}?", key)
-        if match and len(match.group(1)) == len(inner) and sum(x != y for x, y in zip(match.group(1), inner)) == 1:
-            out.append(f"{base}_{{{match.group(1)}}}")
-    return out
-
-
-def _table_names(table: Any) -> list[str]:
-    names = []
-    for key, value in getattr(table, "symbols", {}).items():
-        if isinstance(value, sp.Symbol) and not isinstance(value, sp.MatrixSymbol):
-            names.append(key)
-    return sorted(names)
-
 
 # ---------------------------------------------------------------------------------------------
 # which displays a check reads
@@ -609,7 +184,7 @@ class MutantResult:
     def to_json(self) -> dict[str, Any]:
         m = self.mutant
         return {"paper": m.paper, "equation": m.equation, "target": m.target, "operator": m.operator,
-                "position": m.position, "original": m.original, "replacement": m.replacement,
+                "position": m.position, "original": m.original, "replacement": m.replacement, "edit": m.edit(),
                 "outcome": self.outcome, "basis": self.basis, "verdict": self.verdict, "detail": self.detail,
                 "reason": self.reason, "seconds": round(self.seconds, 4)}
 
@@ -622,8 +197,11 @@ class MutantResult:
 #: ``data``   a data display (a table of values) keeps every property the paper states and uses;
 #: ``claim``  a claim (a proposition about quoted values or displays) is proved by the same
 #:            exact decisions: it states the property of other values, and the property holds
-#:            for them exactly as it does for the printed ones.
-EQUIVALENCE_BASES = ("parse", "form", "data", "claim")
+#:            for them exactly as it does for the printed ones;
+#: ``defect`` the display is judged a defect (``wrong``, ``typo``, ...) and the mutant keeps it,
+#:            with its own evidence (:func:`kept_defect`): a changed wrong display that is still
+#:            wrong is no survivor.
+EQUIVALENCE_BASES = ("parse", "form", "data", "claim", "defect")
 
 
 def _basis(form: str) -> str:
@@ -769,13 +347,46 @@ def run_mutant(mutant: Mutant, original: Any, registry: dict[str, Paper] | None 
     if form is not None and form == base:
         return MutantResult(mutant, "equivalent", verdict, result.detail,
                             f"the check reads the same canonical form: {form[:200]}", seconds, _basis(form))
+    kept = kept_defect(original, result)
+    if kept:
+        return MutantResult(mutant, "equivalent", verdict, result.detail, kept, seconds, "defect")
     return MutantResult(mutant, "survived", verdict, result.detail, "same verdict, detail and correction", seconds)
+
+
+#: Verdicts that judge a display a defect (a mutant of one may keep the defect).
+DEFECTS = (Verdict.WRONG, Verdict.TYPO, Verdict.INCONSISTENT, Verdict.NEEDS_ASSUMPTION, Verdict.MALFORMED)
+
+
+def kept_defect(original: Finding, result: Finding) -> str:
+    """Why a mutant of a display judged a defect keeps that defect ('' when it does not): the same
+    defect verdict, backed by the mutant's own evidence -- an exact witness (``wrong``,
+    ``inconsistent``, ``needs-assumption``), the corrected display (``typo``) or what does not
+    parse (``malformed``). Such a mutant is another wrong display, not one the check failed to
+    tell apart from a right one: it counts as equivalent (basis ``defect``), not as a survivor.
+
+    >>> from hapticproof.core.evidence import Evidence, Method
+    >>> wrong = Finding(Verdict.WRONG, "fails at the witness", Evidence(Method.COUNTEREXAMPLE, witness={"K": 1}))
+    >>> kept_defect(wrong, wrong)
+    "keeps the display's defect: wrong with its own exact witness"
+    >>> bare = Finding(Verdict.WRONG, "fails", Evidence(Method.COUNTEREXAMPLE))
+    >>> kept_defect(wrong, bare)        # a verdict without evidence keeps nothing
+    ''
+    """
+    if original.verdict not in DEFECTS or result.verdict != original.verdict:
+        return ""
+    if result.verdict in (Verdict.WRONG, Verdict.INCONSISTENT, Verdict.NEEDS_ASSUMPTION) and result.evidence.witness:
+        return f"keeps the display's defect: {result.verdict.value} with its own exact witness"
+    if result.verdict == Verdict.TYPO and result.corrected:
+        return "keeps the display's defect: a typo with its corrected display"
+    if result.verdict == Verdict.MALFORMED and result.evidence.method == "parse":
+        return "keeps the display's defect: malformed, as the reader says"
+    return ""
 
 
 def _same_name(mutant: Mutant, paper: Paper) -> bool:
     """The replaced name resolves to the very symbol it replaced (``K_{30}`` is ``K_{03}`` when the
     table declares the family symmetric): equivalent even where the whole display does not parse."""
-    before, after = _resolves(mutant.original, paper.symbols), _resolves(mutant.replacement, paper.symbols)
+    before, after = resolves(mutant.original, paper.symbols), resolves(mutant.replacement, paper.symbols)
     if before is not None and before == after:
         return True
     # letter indices (K_{0i} -> K_{i0}): the same symbol for every concrete index, 1..3 each
@@ -787,8 +398,8 @@ def _same_name(mutant: Mutant, paper: Paper) -> bool:
         return False
     for values in itertools.product("123", repeat=len(letters)):
         table = str.maketrans(dict(zip(letters, values)))
-        a = _resolves(split[0].group(1) + split[0].group(2).translate(table) + split[0].group(3), paper.symbols)
-        b = _resolves(split[1].group(1) + split[1].group(2).translate(table) + split[1].group(3), paper.symbols)
+        a = resolves(split[0].group(1) + split[0].group(2).translate(table) + split[0].group(3), paper.symbols)
+        b = resolves(split[1].group(1) + split[1].group(2).translate(table) + split[1].group(3), paper.symbols)
         if a is None or a != b:
             return False
     return True

@@ -1,4 +1,4 @@
-"""Command-line interface: ``hapticproof audit | derive | export | boundary | map | bench``.
+"""Command-line interface: ``hapticproof audit | new-paper | derive | check | export | boundary | map | zwidth | bench``.
 
 Each subcommand lives in its own module of this package and exposes ``register(subparsers)``,
 which adds its parser and sets ``handler`` to a function ``handler(args) -> int``.
@@ -16,15 +16,24 @@ from collections.abc import Sequence
 
 from hapticproof.core.errors import HapticproofError
 
-__all__ = ["main", "build_parser", "take_limits"]
+__all__ = ["main", "build_parser", "take_limits", "help_text"]
 
 #: Subcommand modules, in the order they appear in ``--help``.
-COMMANDS = ("audit", "new-paper", "derive", "check", "export", "boundary", "map", "bench")
+COMMANDS = ("audit", "new-paper", "derive", "check", "export", "boundary", "map", "zwidth", "bench")
 
 
-def build_parser(command: str | None = None) -> argparse.ArgumentParser:
+def build_parser(command: str | None = None, system: str | None = None) -> argparse.ArgumentParser:
     """The parser with every subcommand, or only ``command`` (its module alone is imported:
-    ``hapticproof audit`` need not load the simulation and plotting stack of ``boundary``)."""
+    ``hapticproof audit`` need not load the simulation and plotting stack of ``boundary``);
+    ``system`` is the one ``derive`` parses in full.
+
+    Building it loads no SymPy, NumPy or any module that computes: the command modules import
+    those in their handlers, so ``--version`` and every ``--help`` answer at once.
+
+    >>> parser = build_parser("derive", "single-user")
+    >>> parser.parse_args(["derive", "single-user", "--delay", "3"]).delay
+    '3'
+    """
     parser = argparse.ArgumentParser(
         prog="hapticproof",
         description="Regenerate, certify and audit stability and passivity conditions of "
@@ -36,11 +45,41 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
     parser.add_argument("--limit", action="append", default=[], metavar="NAME=N",
                         help="raise one of the bounds checked before any work (anywhere on the command line, "
                         "repeatable): file_size, depth, digits, exponent, degree, delay, users, minors, grid; "
-                        "see the README")
+                        "see docs/reference/limits.rst")
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
     for name in (command,) if command in COMMANDS else COMMANDS:
-        importlib.import_module(f"hapticproof.cli.{name.replace('-', '_')}").register(sub)
+        module = importlib.import_module(f"hapticproof.cli.{name.replace('-', '_')}")
+        if name == "derive":
+            module.register(sub, system)
+        else:
+            module.register(sub)
     return parser
+
+
+def help_text(*words: str, width: int = 100) -> str:
+    """The ``--help`` of ``hapticproof WORDS...`` (``()``: the program's, ``("derive", "single-user")``: a
+    system's), ``width`` columns wide: the reference of the documentation is generated from it.
+
+    >>> help_text("check").splitlines()[0]
+    'usage: hapticproof check [-h] [--quiet] report'
+    """
+    import contextlib
+    import io
+    import os
+
+    parser = build_parser(words[0] if words else None, words[1] if len(words) > 1 else None)
+    out = io.StringIO()
+    saved = os.environ.get("COLUMNS")
+    os.environ["COLUMNS"] = str(width)            # argparse wraps to the terminal's width
+    try:
+        with contextlib.redirect_stdout(out), contextlib.suppress(SystemExit):
+            parser.parse_args([*words, "--help"])
+    finally:
+        if saved is None:
+            os.environ.pop("COLUMNS", None)
+        else:
+            os.environ["COLUMNS"] = saved
+    return out.getvalue()
 
 
 def take_limits(argv: list[str]) -> tuple[list[str], list[str]]:
@@ -134,7 +173,7 @@ def _main(argv: list[str]) -> int:
         from hapticproof.cli.derive import complete_argv
 
         argv = complete_argv(argv)
-    parser = build_parser(argv[0] if argv else None)
+    parser = build_parser(argv[0] if argv else None, argv[1] if len(argv) > 1 else None)
     args = parser.parse_args(argv)
     status = int(args.handler(args) or 0)
     sys.stdout.flush()              # a failed write is reported here, not at exit

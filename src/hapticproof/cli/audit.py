@@ -1,4 +1,10 @@
-"""``hapticproof audit [PAPER ...]``: audit the printed equations of the registered papers."""
+"""``hapticproof audit [PAPER ...]``: audit the printed equations of the registered papers.
+
+Exit status: 0 when the audit ran; :data:`FAIL_STATUS` (1) when ``--fail-on VERDICTS`` names a
+verdict that some equation got (and, with ``--mutate``, when a mutant survived or crashed);
+2 for a mistake on the command line or in an input file; 130 when interrupted. A paper's
+repository runs ``hapticproof audit --paper paper.toml --fail-on wrong,typo,inconsistent`` in CI.
+"""
 
 from __future__ import annotations
 
@@ -8,20 +14,20 @@ import shutil
 import sys
 import time
 
-from hapticproof.audit.pool import audit_reports
 from hapticproof.cli.common import check_output, input_files, write_text
 from hapticproof.cli.terminal import colour_verdict, progress_bar, summary_line, use_colour
-from hapticproof.audit.registry import get_paper, papers
 
-__all__ = ["register"]
+__all__ = ["register", "FAIL_STATUS", "fail_on_verdicts", "failing"]
 
 FORMATS = ("table", "markdown", "json", "tex", "html")
+#: The exit status of an audit that found a verdict ``--fail-on`` names (2 is a user's mistake).
+FAIL_STATUS = 1
 
 
 def register(sub: argparse._SubParsersAction) -> None:
     parser = sub.add_parser(
         "audit",
-        help="audit the printed equations of the bundled papers",
+        help="audit the printed equations of the bundled papers or of your paper files (--paper)",
         description="Parse every printed equation of a paper verbatim, re-derive it and give a "
         "verdict with evidence. With no paper (or --all), audit every registered paper and the "
         "cross-paper checks.",
@@ -42,6 +48,10 @@ def register(sub: argparse._SubParsersAction) -> None:
     parser.add_argument("--wide", action="store_true", help="table: full details instead of one shortened line each")
     parser.add_argument("--jobs", "-j", type=int, metavar="N",
                         help="worker processes (default: the machine's cores, 1 with --mutate; 1: serial); the output is the same")
+    parser.add_argument("--fail-on", action="append", default=[], metavar="VERDICTS",
+                        help="exit with status 1 when any equation gets one of these verdicts, comma-separated "
+                        "(e.g. wrong,typo,inconsistent; repeatable); the report is written as usual. Exit status "
+                        "2 is kept for mistakes on the command line or in an input file")
     mutation = parser.add_argument_group("mutation testing (--mutate)")
     mutation.add_argument("--mutate", action="store_true",
                           help="mutation-test the audit: change each printed display (flip a sign, scale or drop a "
@@ -54,7 +64,13 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    from hapticproof.audit.pool import audit_reports
+    from hapticproof.audit.registry import get_paper, papers
+
     check_output(args.output, "--output", inputs=input_files(args))     # before any work
+    fail_on = fail_on_verdicts(args.fail_on)
+    if fail_on and args.mutate:
+        raise_usage("--fail-on reads the audit's verdicts; --mutate reports mutants (it exits 1 on survivors)")
     files = _paper_files(args.paper)
     if args.all or not (args.papers or files):
         selected = list(papers().values())
@@ -117,7 +133,52 @@ def run(args: argparse.Namespace) -> int:
         for verdict, n in report.counts().items():
             counts[verdict] = counts.get(verdict, 0) + n
     print(summary_line(counts, use_colour(sys.stderr), len(reports), seconds), file=sys.stderr)
+    found = failing(counts, fail_on)
+    if found:
+        print(f"hapticproof: --fail-on {','.join(fail_on)}: " + ", ".join(f"{v} {n}" for v, n in found.items()),
+              file=sys.stderr)
+        return FAIL_STATUS
     return 0
+
+
+def fail_on_verdicts(items: list[str]) -> tuple[str, ...]:
+    """The verdicts of ``--fail-on`` options (comma-separated, repeatable), checked by name.
+
+    >>> fail_on_verdicts(["wrong,typo", " inconsistent"])
+    ('wrong', 'typo', 'inconsistent')
+    >>> fail_on_verdicts(["wrong,wrongg"])
+    Traceback (most recent call last):
+    ...
+    hapticproof.core.errors.InputFormatError: --fail-on: unknown verdict 'wrongg' (did you mean 'wrong'?); verdicts: confirmed, conservative, typo, wrong, needs-assumption, inconsistent, malformed, undecided
+    """
+    import difflib
+
+    from hapticproof.core.errors import InputFormatError
+    from hapticproof.core.evidence import Verdict
+
+    known = [v.value for v in Verdict]
+    out: list[str] = []
+    for item in items:
+        for word in item.split(","):
+            word = word.strip()
+            if not word:
+                raise InputFormatError(f"--fail-on expects verdicts separated by commas, got {item!r}")
+            if word not in known:
+                close = difflib.get_close_matches(word, known, n=1)
+                hint = f" (did you mean {close[0]!r}?)" if close else ""
+                raise InputFormatError(f"--fail-on: unknown verdict {word!r}{hint}; verdicts: {', '.join(known)}")
+            if word not in out:
+                out.append(word)
+    return tuple(out)
+
+
+def failing(counts: dict[str, int], verdicts: tuple[str, ...]) -> dict[str, int]:
+    """The counts of the ``verdicts`` an audit gave at least once (empty: the audit passes).
+
+    >>> failing({"confirmed": 12, "typo": 2, "wrong": 0}, ("wrong", "typo"))
+    {'typo': 2}
+    """
+    return {v: counts[v] for v in verdicts if counts.get(v)}
 
 
 def _paper_files(paths: list[str]) -> list:

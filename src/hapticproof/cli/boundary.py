@@ -21,13 +21,11 @@ import argparse
 import math
 import sys
 
-from hapticproof.analysis.borderlines import printed_borderline
 import json
 
 from hapticproof.cli.common import add_any_scene_options
 from hapticproof.cli.terminal import ProgressBar, progress_bar  # noqa: F401 - ProgressBar re-exported
 from hapticproof.core.errors import InputFormatError
-from hapticproof.analysis.maps import boundary_curve, grid, plot_curves
 
 __all__ = ["register", "handler", "ProgressBar"]
 
@@ -82,7 +80,8 @@ def _scene(args: argparse.Namespace):
 
 def handler(args: argparse.Namespace) -> int:
     from hapticproof.cli.common import check_output, write_text
-    from hapticproof.analysis.maps import find_boundary
+    from hapticproof.analysis.borderlines import printed_borderline
+    from hapticproof.analysis.maps import boundary_curve, find_boundary, grid, plot_curves
     from hapticproof.analysis.stability import SceneLoops
 
     # every output is checked before the work starts

@@ -7,13 +7,13 @@ from __future__ import annotations
 import argparse
 import sys
 from pathlib import Path
-from typing import Any
-
-import sympy as sp
+from typing import TYPE_CHECKING, Any
 
 from hapticproof.core.errors import InputFormatError
-from hapticproof.core.evidence import exact
 from hapticproof.core.limits import LimitError
+
+if TYPE_CHECKING:       # SymPy is loaded by the commands that compute, not by --help or --version
+    import sympy as sp
 
 __all__ = ["parse_params", "param_items", "add_param_option", "add_role_option", "role_items", "write_text", "add_output_option", "check_output",
            "write_output", "add_scene_options", "scene_from_args", "add_any_scene_options", "scene_from_any_args",
@@ -91,6 +91,8 @@ def parse_params(items: list[str]) -> dict[str, sp.Rational]:
     >>> parse_params(["K=2", "T=1e-3", "b=0.01822"])
     {'K': 2, 'T': 1/1000, 'b': 911/50000}
     """
+    from hapticproof.core.evidence import exact
+
     out: dict[str, sp.Rational] = {}
     for name, value in param_items(items).items():
         try:
@@ -177,8 +179,7 @@ def refuse(args: argparse.Namespace, message: str, data: dict | None = None) -> 
 
 def add_scene_options(parser: argparse.ArgumentParser, system: str, *, stability: bool = False) -> None:
     """The options of ``system`` that are fields of a scene file (same names, same meaning)."""
-    from hapticproof.systems.discretize import METHODS
-    from hapticproof.systems.singleuser import APPROXIMATIONS
+    from hapticproof.systems.choices import APPROXIMATIONS, METHODS
 
     parser.add_argument("--scene", metavar="FILE",
                         help="read the scene from a scene file (TOML; - for standard input); options given "
@@ -313,8 +314,7 @@ LOOP_SYSTEMS = ("single-user", "multi-user", "teleoperator")
 def add_any_scene_options(parser: argparse.ArgumentParser) -> None:
     """The scene options of ``derive`` for every system but networks (``boundary``, ``map``):
     the same names and meanings; a field that does not apply to the system is an error."""
-    from hapticproof.systems.discretize import METHODS
-    from hapticproof.systems.singleuser import APPROXIMATIONS
+    from hapticproof.systems.choices import APPROXIMATIONS, METHODS
 
     parser.add_argument("--scene", metavar="FILE", help="read the scene from a scene file (TOML; - for standard "
                         "input); options given here override its fields and --param adds to its [params]")

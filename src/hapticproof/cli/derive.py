@@ -11,11 +11,19 @@ import importlib
 
 __all__ = ["register", "SYSTEMS", "complete_argv"]
 
-#: System modules, in ``--help`` order.
-SYSTEMS = ("single_user", "multi_user", "network", "teleoperator")
+#: The systems, in ``--help`` order, with the one line ``derive --help`` shows for each. A system's
+#: module ``hapticproof.cli.derive_<system>`` is imported only when its system is asked for.
+SYSTEMS = {
+    "single-user": "1-DOF device on a discrete environment (HVE paper, Fig. 4)",
+    "multi-user": "m users coupled through a shared virtual environment (HVE paper, Section 3.2)",
+    "network": "n-port networks: positive realness, Llewellyn, Youla symmetrization, absolute stability",
+    "teleoperator": "sampled-data position-error-based teleoperator (teleoperator paper, Fig. 2)",
+}
 
 
-def register(sub: argparse._SubParsersAction) -> None:
+def register(sub: argparse._SubParsersAction, system: str | None = None) -> None:
+    """Add ``derive`` and its systems; only ``system`` (the one on the command line) gets its full
+    parser, the others a line in ``derive --help`` (so ``--help`` loads no system's module)."""
     parser = sub.add_parser(
         "derive",
         help="derive the exact conditions of a scene (G^-1, residues, Hermitian part, worst case)",
@@ -24,14 +32,11 @@ def register(sub: argparse._SubParsersAction) -> None:
         "Parameters are symbolic unless fixed with --param NAME=VALUE.",
     )
     systems = parser.add_subparsers(dest="system", required=True, metavar="SYSTEM")
-    for name in SYSTEMS:
-        try:
-            module = importlib.import_module(f"hapticproof.cli.derive_{name}")
-        except ModuleNotFoundError as err:
-            if err.name != f"hapticproof.cli.derive_{name}":
-                raise
-            continue
-        module.register(systems)
+    for name, line in SYSTEMS.items():
+        if name == system:
+            importlib.import_module(f"hapticproof.cli.derive_{name.replace('-', '_')}").register(systems, line)
+        else:
+            systems.add_parser(name, help=line, add_help=False)
 
 
 def complete_argv(argv: list[str]) -> list[str]:

@@ -46,10 +46,10 @@ def _decision_lines(data: dict) -> list[str]:
     return lines
 
 
-def register(systems: argparse._SubParsersAction) -> None:
+def register(systems: argparse._SubParsersAction, line: str = "") -> None:
     parser = systems.add_parser(
         "multi-user",
-        help="m users coupled through a shared virtual environment (HVE paper, Section 3.2)",
+        help=line,
         description="G^-1(z) as an m x m matrix, the residue matrix at z = 1, the Hermitian part M(c), its "
         "principal minors and the exact worst case over w (all principal minors / characteristic "
         "coefficients, never leading minors alone). Parameters: per-user b_i, K_0i, B_0i, z_ai, K_ij, B_ij; "

@@ -76,10 +76,10 @@ def read_matrix(path: str | Path) -> tuple[sp.Matrix, tuple[int, ...] | None]:
     return sp.Matrix(table), ports
 
 
-def register(systems: argparse._SubParsersAction) -> None:
+def register(systems: argparse._SubParsersAction, line: str = "") -> None:
     parser = systems.add_parser(
         "network",
-        help="n-port networks: positive realness, Llewellyn, Youla symmetrization, absolute stability",
+        help=line,
         description=__doc__.split("\n\n", 1)[1],
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )

@@ -12,8 +12,7 @@ from __future__ import annotations
 
 import argparse
 import json
-
-import sympy as sp
+import sys
 
 from hapticproof.cli.common import add_output_option, build_model, add_scene_options, check_output, refuse, scene_from_args, write_output
 from hapticproof.core.errors import InputFormatError
@@ -21,10 +20,10 @@ from hapticproof.core.errors import InputFormatError
 __all__ = ["register", "run", "add_design_options", "design_answers"]
 
 
-def register(systems: argparse._SubParsersAction) -> None:
+def register(systems: argparse._SubParsersAction, line: str = "") -> None:
     parser = systems.add_parser(
         "single-user",
-        help="1-DOF device on a discrete environment (HVE paper, Fig. 4)",
+        help=line,
         description="G^-1(z), poles, residues, the exact Hermitian part as a function of c = cos(wT), the "
         "worst case over w and the whole positive-realness decision (exact when every parameter is a number). "
         "Any parameter names; decimals are exact. --delay-margin and --range NAME answer the designer's "
@@ -60,9 +59,11 @@ def add_design_options(parser: argparse.ArgumentParser, margin: bool = True) -> 
                         "b: b_min); repeatable")
 
 
-def design_answers(scene, args: argparse.Namespace, margin_wanted: bool) -> tuple[dict, list[str], list[tuple[str, str]]]:
+def design_answers(scene, args: argparse.Namespace, margin_wanted: bool,
+                   keep: list | None = None) -> tuple[dict, list[str], list[tuple[str, str]]]:
     """The designer's answers asked for on the command line: JSON data, text lines and LaTeX
-    displays (``(label, display)``, :func:`hapticproof.report.answers.answer_items`)."""
+    displays (``(label, display)``, :func:`hapticproof.report.answers.answer_items`); the passive
+    ranges are also appended to ``keep`` when given."""
     from hapticproof.analysis.design import delay_margin
     from hapticproof.analysis.passiverange import passive_range
     from hapticproof.report.answers import answer_items
@@ -86,6 +87,8 @@ def design_answers(scene, args: argparse.Namespace, margin_wanted: bool) -> tupl
     for name in args.range:
         rng = passive_range(scene, name)
         ranges.append(rng)
+        if keep is not None:
+            keep.append(rng)
         data.setdefault("passive_ranges", {})[name] = rng.to_json()
         lines.append(rng.to_text())
     names = scene.build().naming()
@@ -93,6 +96,8 @@ def design_answers(scene, args: argparse.Namespace, margin_wanted: bool) -> tupl
 
 
 def run(args: argparse.Namespace) -> int:
+    import sympy as sp
+
     from hapticproof.systems.discretize import is_rational
     from hapticproof.report.summary import summarize_single_user
 
@@ -116,17 +121,37 @@ def run(args: argparse.Namespace) -> int:
                                       "H_z": sp.sstr(model.H)}, "verdict": None})
     numeric_but_delay = model.delay.is_Symbol and not (model.parameters - {model.delay})
     summary = summarize_single_user(model, with_profile=args.profile, full=args.full)
-    extra, lines, answers = design_answers(scene, args, args.delay_margin or numeric_but_delay)
+    ranges: list = []
+    extra, lines, answers = design_answers(scene, args, args.delay_margin or numeric_but_delay, keep=ranges)
+    notes = _loop_notes(scene, model, summary.verdict, ranges)
     if args.format == "json":
         out = summary.to_json()
         if scene.discretize is not None:
             out["continuous_design"] = {"H_s": sp.sstr(scene.environment), "discretize": scene.discretize,
                                         "H_z": sp.sstr(model.H)}
         out.update(extra)
+        if notes:
+            out["exact_loop_notes"] = notes
         text = json.dumps(out, indent=2)
     elif args.format == "latex":
         text = summary.dumps("latex", fragment=args.fragment, answers=answers)
     else:
-        text = "\n".join(head + [summary.to_text(verbose=args.verbose)] + lines)
+        text = "\n".join(head + [summary.to_text(verbose=args.verbose)] + lines + notes)
     write_output(args.output, text)
+    if notes and args.format == "latex":
+        print("\n".join(notes), file=sys.stderr)     # the document is the derivation; the note is for the reader
     return 0
+
+
+def _loop_notes(scene, model, verdict: str, ranges: list) -> list[str]:
+    """Where the model's passivity exceeds the exact loop's stability for the scene's mass
+    (:func:`hapticproof.analysis.zwidth.loop_notes`): a numeric scene with its mass only."""
+    free = {s for s in getattr(model, "parameters", set()) if s != getattr(model, "delay", None)}
+    if free or not getattr(model.delay, "is_Integer", False):
+        return []
+    mass = scene.role("mass")
+    if mass is None or scene.resolved_values().get(mass) is None:
+        return []
+    from hapticproof.analysis.zwidth import loop_notes
+
+    return loop_notes(scene, verdict, ranges)

@@ -33,10 +33,10 @@ from hapticproof.analysis.teleoperator import (bounds, criterion, criterion_cond
 
 __all__ = ["register", "run"]
 
-def register(systems: argparse._SubParsersAction) -> None:
+def register(systems: argparse._SubParsersAction, line: str = "") -> None:
     parser = systems.add_parser(
         "teleoperator",
-        help="sampled-data position-error-based teleoperator (teleoperator paper, Fig. 2)",
+        help=line,
         description="The exact passivity decision, condition by condition: (D) b_m, b_s >= 0; (P1) no pole of C "
         "in |z| > 1; (P2) none at z = 1; (P3) C(1) >= 0; (P4) other unit-circle poles simple with positive "
         "Res(C,z0)/(z0(z0-1)); (P5) h >= L(c) for all c = cos(wT), h = b_m b_s/(b_m + alpha^2 b_s) (exact when "

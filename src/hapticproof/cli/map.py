@@ -36,7 +36,7 @@ __all__ = ["register"]
 
 
 def register(sub: argparse._SubParsersAction) -> None:
-    from hapticproof.analysis.designmap import QUANTITIES
+    from hapticproof.systems.choices import QUANTITIES
 
     parser = sub.add_parser(
         "map",

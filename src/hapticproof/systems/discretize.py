@@ -41,11 +41,10 @@ import sympy as sp
 from hapticproof.core.errors import SceneError
 from hapticproof.core.symbols import s as S_SYM
 from hapticproof.core.symbols import z as Z_SYM
+from hapticproof.systems.choices import METHODS  # the methods, in the order of the table above
 
 __all__ = ["METHODS", "discretize", "is_rational", "split_improper"]
 
-#: Discretisation methods, in the order of the table above.
-METHODS = ("forward", "backward", "tustin", "zoh", "matched")
 
 _T = sp.Symbol("T", positive=True)
 

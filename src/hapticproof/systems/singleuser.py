@@ -26,12 +26,11 @@ from hapticproof.core.errors import SceneError
 from hapticproof.core.evidence import exact
 from hapticproof.core.symbols import n as N_SYM
 from hapticproof.core.symbols import z as Z_SYM
+from hapticproof.systems.choices import APPROXIMATIONS  # of X_h(z) from V_h(z) (HVE, Section 3.1.1)
 
 __all__ = ["APPROXIMATIONS", "SYMBOLS", "SingleUserScene", "virtual_wall", "as_parameter", "as_delay"]
 
 
-#: Approximations of ``X_h(z)`` from ``V_h(z)`` (HVE paper, Section 3.1.1).
-APPROXIMATIONS = ("forward", "backward", "tustin")
 
 
 #: Default symbols with the papers' physical assumptions: dampings, stiffnesses and the
