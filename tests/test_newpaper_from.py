@@ -91,8 +91,8 @@ def test_new_paper_from_a_transcription(tmp_path, capsys):
     assert main(["new-paper", str(out), "--from", str(source), "--id", "wall-1997"]) == 0
     capsys.readouterr()
     paper = read_paper(out)
-    # (3) is about no object the note defines: the scene's model is its object; (4) defines e
-    assert paper.id == "wall-1997" and [(c.id, c.claim) for c in paper.claims] == [("3", "passivity-condition"), ("4", "definition")]
+    # (3) is about no object the note defines: the scene's model is its object; (4) relates the error e to x_m, x_s
+    assert paper.id == "wall-1997" and [(c.id, c.claim) for c in paper.claims] == [("3", "passivity-condition"), ("4", "identity")]
 
 
 def test_new_paper_from_mistakes_are_one_line(tmp_path, capsys):

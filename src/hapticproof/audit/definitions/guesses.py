@@ -32,7 +32,7 @@ from typing import Any
 
 import sympy as sp
 
-from hapticproof.audit.definitions.reading import (CONDITION, DEFINITION, DERIVED, IDENTITY, MALFORMED, REDEFINED,
+from hapticproof.audit.definitions.reading import (CONDITION, DEFINITION, DERIVED, IDENTITY, MALFORMED, MODEL, REDEFINED,
                                                    PaperReading, Reading)
 
 __all__ = ["ReadClaim", "ReadClaims", "read_claims", "conventional"]
@@ -108,6 +108,8 @@ def _claim_of(display: Any, reading: Reading, paper: PaperReading, resolve: Any)
         if reading.kind == DERIVED:
             return ReadClaim(claim="definition", derived=True, why=f"defines {names}, derived by the paper ('{said}')", **base)
         return ReadClaim(claim="definition", why=f"defines {names}" + (f" ('{said}')" if said else ""), **base)
+    if reading.kind == MODEL:
+        return ReadClaim(claim="identity", why=f"{reading.note} (it defines how they are related)", **base)
     if reading.kind == IDENTITY:
         return ReadClaim(claim="identity", why="an equation between expressions the paper's definitions give",
                          unbound=_uses_unbound(reading), **base)
