@@ -157,10 +157,7 @@ class NumericScene:
         object.__setattr__(self, "delay", int(self.delay))
         if self.T <= 0:
             raise SceneError(f"the sampling period T must be positive, got {self.T}")
-        if self.b < 0:
-            raise SceneError(f"the device damping b must be non-negative, got {self.b}")
-        if self.z_a < 0:
-            raise SceneError(f"the shortage of passivity z_a must be non-negative, got {self.z_a}")
+        # a negative damping (or shortage of passivity) is decided by the definition, not refused
 
     @classmethod
     def virtual_wall(cls, *, K: Any, B: Any, b: Any, T: Any, approximation: str = "forward", delay: int = 0,

@@ -469,7 +469,11 @@ def generate(equation: Equation, paper: Paper, *, text: str | None = None, table
                 factor = r"2\cdot " if a.kind == "number" else "2 "
                 add("scale", a.pos, a.pos, factor, span)
                 if slips:
-                    add("half", a.pos, z.end, half_latex(text[a.pos:z.end]), span)
+                    # the term without the sentence's punctuation that ends a display ("... T).")
+                    term = text[a.pos:z.end]
+                    end = z.end - (len(term) - len(term.rstrip(" .,;")))
+                    if end > a.pos:
+                        add("half", a.pos, end, half_latex(text[a.pos:end]), span)
                 if len(terms) >= 2:
                     if sign is not None:
                         add("drop", body[segment[sign]].pos, z.end, "")
@@ -518,11 +522,15 @@ def generate(equation: Equation, paper: Paper, *, text: str | None = None, table
 
 
 def _index_slips(base: str, sub: str, table: Any) -> list[str]:
-    """Names of the table with the same base, a subscript differing in one index (``K_{02}``: ``K_{01}``)."""
+    """Names of the table with the same base, a subscript differing in one index (``K_{02}``: ``K_{01}``);
+    for a two-index entry any other entry of the same matrix (``z_{11}`` for ``z_{22}``)."""
     inner, out = sub.replace(" ", ""), []
     for key in table_names(table):
         match = re.fullmatch(re.escape(base) + r"_\{?([A-Za-z0-9]+)\}?", key)
-        if match and len(match.group(1)) == len(inner) and sum(x != y for x, y in zip(match.group(1), inner)) == 1:
+        if not match or len(match.group(1)) != len(inner) or match.group(1) == inner:
+            continue
+        differ = sum(x != y for x, y in zip(match.group(1), inner))
+        if differ == 1 or (len(inner) == 2 and inner.isdigit() and match.group(1).isdigit()):
             out.append(f"{base}_{{{match.group(1)}}}")
     return out
 

@@ -410,9 +410,14 @@ def _read_relations(relations: list[tuple[str, str, str, int | None]], table: An
     relation implies (``0 <= a < 1``: nonnegative), else ``real``."""
     from hapticproof.audit.regions import Region, RegionError, read_region
 
+    from hapticproof.audit.reader.lexer import GREEK
+
     restrictions = []
     lines: dict[str, int | None] = {}
+    greek = "|".join(sorted((g.lstrip("\\") for g in GREEK), key=len, reverse=True))
     for printed, name, value, line in relations:
+        # Greek names by name, as the README writes them: "0 <= alpha < 1" is 0 <= \alpha < 1
+        value = re.sub(r"(?<![\\A-Za-z])(" + greek + r")(?![A-Za-z])", r"\\\1", value)
         local = table
         for _ in range(8):
             try:
@@ -500,6 +505,19 @@ def _read_scenes(raw: Any, path: str, text: str, words: Mapping[str, str], regio
 _SIGNS = ("positive", "nonnegative", "real", "integer", "negative", "nonpositive")
 
 
+#: The signs each sign word allows: a scene may narrow a global sign (``real`` -> ``nonnegative``).
+_SIGN_SETS = {"real": {"-", "0", "+"}, "nonnegative": {"0", "+"}, "positive": {"+"}, "nonpositive": {"-", "0"},
+              "negative": {"-"}}
+
+
+def _refines(word: str, declared: str) -> bool:
+    """Whether a scene's sign word narrows the declared one (``nonnegative`` within ``real``,
+    ``positive`` within ``nonnegative``), as an author refines an assumption for one system."""
+    if declared == "real" and word == "integer":
+        return True
+    return word in _SIGN_SETS and declared in _SIGN_SETS and _SIGN_SETS[word] <= _SIGN_SETS[declared]
+
+
 def _check_declarations(table: Mapping[str, Any], name: str, path: str, text: str, prefix: str,
                         words: Mapping[str, str], region: Any, region_lines: Mapping[str, int | None]) -> None:
     """A scene parameter must not contradict ``[symbols]``: another sign word (``B = "real"``
@@ -512,14 +530,15 @@ def _check_declarations(table: Mapping[str, Any], name: str, path: str, text: st
         here = _at(path, _table_line(text, key, f"{prefix}.params"))
         declared = words.get(key)
         there = _at(path, region_lines.get(key) or _table_line(text, key, "symbols"))
-        if isinstance(value, str) and value.strip() in _SIGNS and declared in _SIGNS and value.strip() != declared:
+        if isinstance(value, str) and value.strip() in _SIGNS and declared in _SIGNS and value.strip() != declared \
+                and not _refines(value.strip(), declared):
             raise PaperFileError(f"{here}: scene {name!r}: params: {key} = {value.strip()!r} contradicts [symbols] "
                                  f"({there}: {key} is {declared!r}); declare it once, in [symbols] or in the scene")
         restriction = region.get(key) if region else None
         if restriction is None:
             continue
         if isinstance(value, str) and value.strip() in _SIGNS:
-            if value.strip() != declared:
+            if value.strip() != declared and not _refines(value.strip(), restriction.sign_word() or "real"):
                 raise PaperFileError(f"{here}: scene {name!r}: params: {key} = {value.strip()!r} contradicts [symbols] "
                                      f"({there}: {restriction.text_form()}); declare it once")
             continue

@@ -81,6 +81,10 @@ def read_claims(source: Any) -> ReadClaims:
     for k, d in enumerate(displays):
         if d.row in (None, 0):
             for r in paper.read_inline(d.id, d.prose):
+                if r.kind == MODEL:
+                    inline.append(ReadClaim(d, r.id, r.text, "identity", f"{r.note}, inline in the prose before ({d.id})",
+                                            reading=r))
+                    continue
                 inline.append(ReadClaim(d, r.id, r.text, "definition", "an inline definition in the prose before "
                                         f"({d.id})", reading=r))
         after = displays[k + 1].prose if k + 1 < len(displays) else ""

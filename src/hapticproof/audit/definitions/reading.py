@@ -188,6 +188,7 @@ class PaperReading:
         trial.tentative = set(self.tentative)
         trial.readings = list(self.readings[:index])
         trial.order = list(self.order)
+        trial.system = self.system
         mode = {DEFINITION: "definition", DERIVED: "definition", IDENTITY: "identity", CONDITION: "condition"}.get(original.kind, "auto")
         out = trial.read(id, text, mode=mode if mode != "definition" else "identity", derived=original.derived,
                          stated=original.stated)
@@ -257,8 +258,8 @@ class PaperReading:
                 reading = self.read(f"{id}.inline{len(out) + 1}", math, definitions_only=True)
             except HapticproofError:
                 continue
-            if reading.kind == DEFINITION:
-                out.append(reading)
+            if reading.kind in (DEFINITION, MODEL):
+                out.append(reading)           # a definition, or a port variable / termination among signals
             elif reading in self.readings:
                 self.readings.remove(reading)
         return out
@@ -381,6 +382,7 @@ class PaperReading:
         if not pending:
             reading.kind = OTHER
             return
+        pending_all = list(pending)
         bound: list[str] = []
         notes: list[str] = []
         for _ in range(len(pending)):
@@ -407,10 +409,14 @@ class PaperReading:
             reading.kind = OTHER
             reading.note = "; ".join(notes)
             return
-        reading.kind = DERIVED if reading.derived else DEFINITION
+        # a derived name written through the paper's own bound names (G = c + W(z) h/(z-1)) is its
+        # definition; one written out in the parameters alone is a result to verify
+        composed = reading.derived and not _REFERENCE.search(reading.claim.sentence if reading.claim else "") and all(
+            self._uses_bound(expr, bound) and not self._instance_of_bound(n) for (n, _v), expr in pending_all)
+        reading.kind = DERIVED if reading.derived and not composed else DEFINITION
         reading.binds = tuple(bound)
         reading.note = "; ".join(notes)
-        if reading.derived:
+        if reading.kind == DERIVED:
             self.tentative.update(bound)
         self.assumptions.extend(reading.assumptions)
 
@@ -454,6 +460,17 @@ class PaperReading:
         found = expected_value(main[0].terms[0], main[0].terms[1], self, self._env(reading))
         if found is not None:
             reading.expected, reading.expected_how = found
+            target = definition_target(main[0].terms[0])
+            if target is not None and target[0] not in self.bindings and self._mode == "identity":
+                # a paper file's identity of a name the model determines binds the determined value
+                name, variable = target
+                value = found[0]
+                if variable is None and value.kind == TRANSFER:
+                    variable = "z" if value.domain == "discrete" else "s"
+                self.bindings[name] = Binding(value, variable, reading.id)
+                self.defined_at[name] = reading.id
+                self.order.append(name)
+                reading.binds = (name,)
 
     def _determined(self, reading: Reading, target: tuple[str, str | None], terms: list[Any]) -> bool:
         """A new name the paper's model or port relations determine (a port matrix "eliminating
@@ -503,6 +520,18 @@ class PaperReading:
         reading.note = f"defined again, differently from ({previous}): read as a new definition from here on"
         reading.environment = env
         return True
+
+    def _instance_of_bound(self, name: str) -> bool:
+        """``eta_vc`` when ``eta`` is bound: a defined quantity for one object, a derived claim."""
+        base = re.split(r"_", name, maxsplit=1)[0]
+        return base != name and (base in self.bindings or base in self.formulas or "\\" + base in self.formulas)
+
+    def _uses_bound(self, expr: Any, bound_here: list[str]) -> bool:
+        """Whether an expression names a function or value an earlier display bound."""
+        expr = sp.sympify(expr)
+        names = {f.func.__name__ for f in expr.atoms(AppliedUndef)} if hasattr(expr, "atoms") else set()
+        names |= {s.name for s in getattr(expr, "free_symbols", ())}
+        return any(n in self.bindings and n not in bound_here for n in names)
 
     def _env(self, reading: Reading) -> Environment:
         return Environment(dict(self.bindings), angles=frozenset(_ANGLES), substitutions=reading.substitutions)

@@ -188,8 +188,28 @@ def _against_expected(reading: Reading) -> Finding:
         return Finding(Verdict.UNDECIDED, f"the printed display differs from {reading.expected_how}, but no point was found",
                        Evidence(Method.CANONICAL_FORM))
     difference = witness.pop("difference")
+    evidence = Evidence(Method.COUNTEREXAMPLE, witness=witness)
+    if not printed.is_scalar and printed.shape[0] == printed.shape[1] and (printed.transpose() - reading.expected).is_zero:
+        corrected = _transposed_latex(reading.printed or reading.text)
+        return Finding(Verdict.TYPO, f"the off-diagonal entries are swapped: the transposed matrix is {reading.expected_how}; as "
+                       f"printed the entries differ at {_point_text(witness)} (difference {difference})", evidence,
+                       corrected=corrected)
     return Finding(Verdict.WRONG, f"the printed display differs from {reading.expected_how}: at {_point_text(witness)} the "
-                   f"difference is {difference}", Evidence(Method.COUNTEREXAMPLE, witness=witness))
+                   f"difference is {difference}", evidence)
+
+
+def _transposed_latex(text: str) -> str | None:
+    """The display with its (first) matrix transposed, written as printed (``bmatrix`` rows and cells)."""
+    import re
+
+    m = re.search(r"\\begin\{([bpv]?matrix)\}(.*?)\\end\{\1\}", text, re.S)
+    if not m:
+        return None
+    rows = [[cell.strip() for cell in row.split("&")] for row in re.split(r"\\\\(?:\[[^\]]*\])?", m.group(2)) if row.strip()]
+    if not rows or any(len(r) != len(rows) for r in rows):
+        return None
+    body = r" \\ ".join(" & ".join(rows[j][i] for j in range(len(rows))) for i in range(len(rows)))
+    return text[:m.start(2)] + " " + body + " " + text[m.end(2):]
 
 
 def _sign_cases(terms: list[Any]) -> list[dict[sp.Symbol, sp.Expr]]:
@@ -742,6 +762,9 @@ def _decided(printed: Any, exact: Any, strength: str, what: str, relations: list
         v, g = bound
         nec = necessary(v, g, forms, exact.t, lo, hi)
     facts = {**facts, "instances": count}
+    if strength == "sufficient" and suff and stronger is not None and not nec:
+        return Finding(Verdict.CONSERVATIVE, f"{what} is sufficient (proved term by term) but not necessary: the property "
+                       "holds at the witness where it fails", Evidence(Method.COUNTEREXAMPLE, witness=stronger[0], facts=facts))
     if strength == "sufficient" and suff:
         return Finding(Verdict.CONFIRMED, f"{what} is sufficient: with it every condition at every frequency holds (proved "
                        "term by term)", Evidence(Method.ENDPOINT_ANALYSIS, facts=facts))

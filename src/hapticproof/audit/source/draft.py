@@ -403,8 +403,8 @@ def _entries(source: Source, designs: dict[str, tuple[str, str]]) -> list[Entry]
         else:
             seen[ident] = 1
         for c in inline_before.pop(display.id, []) if seen[display.id] == 1 else []:
-            out.append(Entry(display, c.id, "definition", c.why, symbols=_names_of(c.reading, claims.words),
-                             guessed="definition", printed=c.printed))
+            out.append(Entry(display, c.id, c.claim, c.why, symbols=_names_of(c.reading, claims.words),
+                             guessed=c.claim, printed=c.printed))
         rc = read.get(display.id)
         guess = _scene_guess(display, ident, context, designs, cache)
         if rc is not None and seen[display.id] == 1 and rc.claim is not None:
@@ -519,7 +519,7 @@ def _entry_lines(entry: Entry, active: bool, refused: str | None, source_path: s
         body.append(f"{'form = ' + _toml_string(entry.form):36s} # guessed: listed among conditions")
     if d.section is not None and d.section.id:
         body.append(f"section = {_toml_string(d.section.id)}")
-    notes = [f"{_shown_file(d.file, source_path)}:{d.line} ({'inline, in the prose before the display' if entry.printed and entry.claim == 'definition' and '.inline' in entry.id else d.environment})"]
+    notes = [f"{_shown_file(d.file, source_path)}:{d.line} ({'inline, in the prose before the display' if entry.printed and '.inline' in entry.id else d.environment})"]
     notes += list(d.notes)
     original = re.sub(r"\\(?:label|tag\*?)\s*\{[^{}]*\}|\\(?:nonumber|notag)(?![A-Za-z])", " ", d.original)
     if original.strip() and " ".join(original.split()) != " ".join(d.text.split()):
