@@ -836,11 +836,11 @@ def _read_equations(raw: Any, path: str, text: str, table: Any, scenes: Mapping[
             for key in ("other", "under"):
                 if key in entry:
                     raise PaperFileError(f"{where(key)}: {key} applies to same-as claims")
-        if "assumption" in entry and claim == "condition":
+        if "assumption" in entry and claim in ("condition", "identity"):
             fields["stated"] = _text_field(entry["assumption"], where("assumption"), "assumption").strip()
         elif "assumption" in entry:
             if claim not in CONDITION_CLAIMS:
-                raise PaperFileError(f"{where('assumption')}: assumption applies to condition claims")
+                raise PaperFileError(f"{where('assumption')}: assumption applies to condition and identity claims")
             fields["assumption"] = _assumption(_text_field(entry["assumption"], where("assumption"), "assumption"),
                                                with_scene_names(table, scenes.get(fields.get("scene"))),
                                                where("assumption"), region)
