@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import itertools
 import random
-from functools import lru_cache
+from functools import cache, lru_cache
 from typing import Any
 
 import sympy as sp
@@ -554,10 +554,23 @@ def worst51(ctx: AuditContext) -> Finding:
 P52 = r"(2b - K_0T - 2B_0 - 4B)^3 - 2(KT + 2B)^3 - 3(KT + 2B)^2(2b - K_0T - 2B_0 - 4B) > 0"
 
 
+@cache
+def _factor_list(expr: sp.Expr) -> tuple:
+    """``sp.factor_list(expr)``, once per polynomial: (52) and the claim that simplifies it
+    factor the same display."""
+    return sp.factor_list(expr)
+
+
+@cache
+def _factor(expr: sp.Expr) -> sp.Expr:
+    """``sp.factor(expr)``, once per polynomial (see :func:`_factor_list`)."""
+    return sp.factor(expr)
+
+
 def _solved(expr: sp.Expr) -> list[str]:
     """What ``expr > 0`` says about b, factor by factor (odd-multiplicity factors in b)."""
     out = []
-    for factor, power in sp.factor_list(sp.expand(expr))[1]:
+    for factor, power in _factor_list(sp.expand(expr))[1]:
         if factor.has(b) and power % 2 == 1:
             try:
                 out.append(str(as_bound(sp.Gt(factor, 0, evaluate=False), b)))
@@ -580,21 +593,22 @@ def eq52(ctx: AuditContext) -> Finding:
     values = {b: sp.Rational(8, 5), K_0: 1, B_0: 0, K: 1, B: 0, T: 1}
     holds = condition.holds(values)
     reading = _solved(printed)
-    facts = {"printed_factored": sp.factor(printed), "det_M(-1)_factored": sp.factor(det), "printed_form": (condition.op, sp.srepr(printed)),
+    printed_factored, det_factored = _factor(printed), _factor(det)     # each factored once
+    facts = {"printed_factored": printed_factored, "det_M(-1)_factored": det_factored, "printed_form": (condition.op, sp.srepr(printed)),
              "printed_at_witness": holds, **decision_facts(scene)}
     if not (holds and not_pr(scene)):
-        return Finding(sign.verdict, f"(52) reads {sp.sstr(sp.factor(printed))} {condition.op} 0 (i.e. {reading}), not det M(-1) "
-                       f"= {sp.sstr(sp.factor(det))} > 0 of the uniform triple-user scene: {sign.detail}",
+        return Finding(sign.verdict, f"(52) reads {sp.sstr(printed_factored)} {condition.op} 0 (i.e. {reading}), not det M(-1) "
+                       f"= {sp.sstr(det_factored)} > 0 of the uniform triple-user scene: {sign.detail}",
                        Evidence(sign.evidence.method, witness=sign.evidence.witness, facts=facts),
-                       derived=sp.Gt(sp.factor(det), 0),
+                       derived=sp.Gt(det_factored, 0),
                        corrected=r"(2b - K_0T - 2B_0 - 3(KT + 2B))^2\,(2b - K_0T - 2B_0) > 0,\quad 2b - K_0T - 2B_0 > 0")
     return Finding(
         Verdict.WRONG,
-        f"(52) reads {sp.sstr(sp.factor(printed))} {condition.op} 0, i.e. {'; '.join(reading)}; it is not det M(-1) = "
-        f"{sp.sstr(sp.factor(det))} of the uniform triple-user scene (each user has two couplings), and at the witness "
+        f"(52) reads {sp.sstr(printed_factored)} {condition.op} 0, i.e. {'; '.join(reading)}; it is not det M(-1) = "
+        f"{sp.sstr(det_factored)} of the uniform triple-user scene (each user has two couplings), and at the witness "
         "(B = 0) it holds while G^-1 is not PR",
         Evidence(Method.COUNTEREXAMPLE, witness={str(k): v for k, v in values.items()}, facts=facts),
-        derived=sp.Gt(sp.factor(det), 0),
+        derived=sp.Gt(det_factored, 0),
         corrected=r"(2b - K_0T - 2B_0 - 3(KT + 2B))^2\,(2b - K_0T - 2B_0) > 0,\quad 2b - K_0T - 2B_0 > 0",
     )
 
@@ -605,12 +619,12 @@ def eq52(ctx: AuditContext) -> Finding:
 def simplify52(ctx: AuditContext) -> Finding:
     condition = as_sign_condition(display("52"))
     expr = sp.expand(condition.expr)
-    factored = sp.factor(expr)
+    factored = _factor(expr)
     reading = _solved(expr)
     p53 = display("53")
     facts = {"factored": factored, "simplified": reading, "printed_53": p53}
     bounds = []
-    for factor, power in sp.factor_list(expr)[1]:
+    for factor, power in _factor_list(expr)[1]:
         if factor.has(b) and power % 2 == 1:
             try:
                 bounds.append(as_bound(sp.Gt(factor, 0, evaluate=False), b))

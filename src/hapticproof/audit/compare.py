@@ -38,6 +38,7 @@ from hapticproof.core.errors import HapticproofError
 from hapticproof.core.evidence import Decision, Evidence, Finding, Method, Outcome, Verdict
 from hapticproof.core.symbols import c as C_SYM
 from hapticproof.exact.canonical import Sampler, canonical_rational, certified_nonzero, evaluate_at, is_identically_zero
+from hapticproof.exact.evaluator import relation_at
 
 __all__ = ["Bound", "find_difference", "compare_expressions", "NotABound", "SignCondition", "as_sign_condition", "compare_sign_conditions", "as_bound", "as_lower_bound", "compare_bounds", "sign_on_box"]
 
@@ -344,8 +345,38 @@ def as_lower_bound(condition: sp.Basic, var: sp.Symbol) -> Bound:
     return bound
 
 
+def _signs_seen(expr: sp.Expr, tries: int = 12) -> set[int]:
+    """Signs (-1, 0, +1) ``expr`` takes at a few exact points that satisfy every assumption of
+    its symbols (points where it is undefined are skipped). A sign seen refutes a proof of the
+    opposite one: SymPy's assumptions are sound, so ``is_positive`` cannot hold for an
+    expression (or any form of it) that is ``<= 0`` at a point of its domain."""
+    symbols = sorted(expr.free_symbols, key=str)
+    if not all(isinstance(s, sp.Symbol) for s in symbols):
+        return set()
+    facts = {s: [(f"is_{k}", v) for k, v in s.assumptions0.items()] for s in symbols}
+    seen: set[int] = set()
+    for point in Sampler(symbols, seed=3).draw(tries):
+        if not all(getattr(point[s], name) == v for s in symbols for name, v in facts[s]):
+            continue            # outside a symbol's domain (e.g. 0 for a nonzero symbol)
+        value = evaluate_at(expr, point)
+        if value is not None and value.is_Rational:
+            seen.add(1 if value > 0 else (-1 if value < 0 else 0))
+    return seen
+
+
 def _provable_sign(expr: sp.Expr) -> int | None:
-    """+1 / -1 when ``expr`` is provably positive / negative under the symbols' assumptions."""
+    """+1 / -1 when ``expr`` is provably positive / negative under the symbols' assumptions.
+
+    An expression seen to be zero, or of both signs, at exact points of its domain has neither
+    sign provably (:func:`_signs_seen`): that is settled before any ``factor``.
+
+    >>> x, y = sp.symbols('x y', positive=True)
+    >>> _provable_sign((x + y)**2 / (x*y)), _provable_sign(-x/(1 + y)), _provable_sign(x - y)
+    (1, -1, None)
+    """
+    seen = _signs_seen(expr)
+    if 0 in seen or {-1, 1} <= seen:
+        return None
     for form in (expr, sp.factor(expr), sp.cancel(expr)):
         if form.is_positive:
             return 1
@@ -370,9 +401,11 @@ def sign_on_box(expr: sp.Expr, box: Mapping[sp.Symbol, tuple[Any, Any]] | None =
         if sp.Poly(expr, s).degree() > 1:
             return None
     corners = [expr.subs(dict(zip(boxed, corner))) for corner in itertools.product(*(box[s] for s in boxed))]
-    if all(sp.factor(v).is_nonnegative for v in corners):
+    # a corner seen negative (positive) at an exact point of its domain is not provably >= 0 (<= 0)
+    seen = [_signs_seen(v) if v.free_symbols else set() for v in corners]
+    if not any(-1 in signs for signs in seen) and all(sp.factor(v).is_nonnegative for v in corners):
         return 1
-    if all(sp.factor(v).is_nonpositive for v in corners):
+    if not any(1 in signs for signs in seen) and all(sp.factor(v).is_nonpositive for v in corners):
         return -1
     return None
 
@@ -384,6 +417,9 @@ def _domain_floor(var: sp.Symbol) -> sp.Expr | None:
 
 def _holds(condition: sp.Basic, point: Mapping[sp.Symbol, Any]) -> bool | None:
     """Truth of a condition at an exact point (None when it cannot be decided)."""
+    fast = relation_at(condition, point)
+    if fast is not None:
+        return fast
     try:
         value = condition.xreplace(dict(point)) if isinstance(condition, sp.Basic) else condition
         if isinstance(value, sp.core.relational.Relational):

@@ -54,6 +54,7 @@ import numpy as np
 import sympy as sp
 
 from hapticproof.core.evidence import Decision, Evidence, Method, Outcome
+from hapticproof.exact.evaluator import rational_program
 from hapticproof.exact.realroots import as_fmpq, real_roots
 from hapticproof.core.symbols import c as C_SYM
 from hapticproof.core.symbols import z as Z_SYM
@@ -122,8 +123,20 @@ class PolyRing:
         return self.ctx.gens()[self.params.index(symbol)]
 
     def from_expr(self, expr: Any) -> Any:
-        """A polynomial SymPy expression in the ring's symbols (rational coefficients)."""
-        expr = sp.expand(sp.sympify(expr))
+        """A polynomial SymPy expression in the ring's symbols (rational coefficients).
+
+        The expression tree is evaluated in the ring itself (:mod:`hapticproof.exact.evaluator`:
+        flint products of sums, no SymPy ``expand``); other expressions (a denominator, a
+        float) go through ``expand`` and ``Poly``."""
+        expr = sp.sympify(expr)
+        program = rational_program(expr)
+        if program is not None and program.polynomial and set(program.symbols) <= set(self.symbols):
+            gens = {self.var: self.c}
+            if not self.numeric:
+                gens.update(zip(self.params, self.ctx.gens()))
+            value = program.run(gens)
+            return value if not isinstance(value, flint.fmpq) else self.constant(value)
+        expr = sp.expand(expr)
         stray = expr.free_symbols - set(self.symbols)
         if stray:
             raise ValueError(f"symbols {sorted(map(str, stray))} are not in the ring")
