@@ -9,6 +9,7 @@ from functools import lru_cache
 from typing import Any
 
 import sympy as sp
+from sympy.matrices.expressions.matexpr import MatrixElement
 
 from hapticproof.audit.runner import AuditContext
 from hapticproof.audit.compare import compare_expressions
@@ -107,6 +108,14 @@ def eq25(ctx: AuditContext) -> Finding:
     for eq_id in ("21a", "21b", "23a", "23b"):
         (rel,) = parse_printed(PAPER.get(eq_id).printed, TABLE).relations()
         equations += list(explicit(rel.lhs) - explicit(rel.rhs))
+    confirmed = Finding(Verdict.CONFIRMED, "F_h = (C_m + Z_m) V_h - C_m V_e and F_e = -C_s V_h + (C_s + Z_s) V_e follow from "
+                        "the printed (21) and (23)", Evidence(Method.CANONICAL_FORM,
+                                                             facts={"printed_form": ("follows from (21), (23)",)}))
+    unique = _unique_linear_solution(equations, unknowns)
+    if unique is not None:
+        rel = ctx.statement.relations()[0].as_sympy()
+        if all(sp.expand(e.xreplace(unique)) == 0 for e in explicit(rel.lhs) - explicit(rel.rhs)):
+            return confirmed
     solution = sp.solve(equations, unknowns, dict=True)
     if len(solution) != 1 or any(u not in solution[0] for u in unknowns[:6]):
         return Finding(Verdict.UNDECIDED, "(21) and (23) as printed do not determine the port forces",
@@ -115,12 +124,27 @@ def eq25(ctx: AuditContext) -> Finding:
     difference = (explicit(rel.lhs) - explicit(rel.rhs)).applyfunc(lambda e: sp.expand(e.xreplace(solution[0])))
     bad = [k for k, e in enumerate(difference) if e != 0]
     if not bad:
-        return Finding(Verdict.CONFIRMED, "F_h = (C_m + Z_m) V_h - C_m V_e and F_e = -C_s V_h + (C_s + Z_s) V_e follow from the "
-                       "printed (21) and (23)", Evidence(Method.CANONICAL_FORM, facts={"printed_form": ("follows from (21), (23)",)}))
+        return confirmed
     row = bad[0]
     return Finding(Verdict.TYPO, f"does not follow from (21) and (23): row {row + 1} of the printed system differs from them by "
                    f"{sp.sstr(difference[row])}", Evidence(Method.COUNTEREXAMPLE, facts={"rows": [k + 1 for k in bad],
                                                                                           "printed_form": sp.srepr(difference)}))
+
+
+def _unique_linear_solution(equations: list, unknowns: list) -> dict | None:
+    """The unique solution of linear equations whose unknowns have constant rational
+    coefficients (a port-force system), by the exact inverse of that constant matrix; ``None``
+    for anything else (then ``sp.solve`` decides). Matrix entries are read as plain symbols."""
+    atoms = set().union(*(e.atoms(MatrixElement) for e in equations))
+    names = {a: sp.Dummy(str(a)) for a in atoms}
+    try:
+        A, rhs = sp.linear_eq_to_matrix([e.xreplace(names) for e in equations], [names.get(u, u) for u in unknowns])
+    except (sp.PolynomialError, ValueError):
+        return None
+    if A.rows != A.cols or A.free_symbols or A.det() == 0:
+        return None
+    back = {v: k for k, v in names.items()}
+    return dict(zip(unknowns, (A.inv() * rhs).xreplace(back)))
 
 
 B_PAIRS = {"26": (0, 1), "27": (0, 2), "28": (1, 2), "29": (3, 4), "30": (3, 5), "31": (4, 5)}

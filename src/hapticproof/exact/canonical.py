@@ -6,7 +6,7 @@ from __future__ import annotations
 import itertools
 import math
 import random
-from collections.abc import Iterable, Iterator, Mapping
+from collections.abc import Iterable, Iterator, Mapping, Sequence
 from typing import Any
 
 import flint
@@ -97,8 +97,56 @@ class Sampler:
         for index in itertools.count():
             yield {s: self._value(kind, k, index) for k, (s, kind) in pairs}
 
-    def draw(self, count: int) -> list[dict[sp.Symbol, sp.Rational]]:
-        return list(itertools.islice(iter(self), count))
+    def draw(self, count: int) -> Sequence[dict[sp.Symbol, sp.Rational]]:
+        """The first ``count`` points, drawn as they are read: a search that stops at its
+        first witness draws (and builds) no more rationals than it looked at.
+
+        >>> x = sp.Symbol('x', positive=True)
+        >>> points = Sampler([x], seed=2).draw(300)
+        >>> len(points), points[1], points[1:3] == [{x: 2}, {x: sp.Rational(1, 2)}]
+        (300, {x: 2}, True)
+        """
+        return _Draws(iter(self), count)
+
+
+class _Draws(Sequence):
+    """The first ``count`` items of an iterator, read only as far as they are used; equal to
+    the list of them."""
+
+    def __init__(self, source: Iterator, count: int, start: int = 0, shared: list | None = None):
+        self._source, self._count, self._start = source, max(0, count), start
+        self._items = [] if shared is None else shared
+
+    def _fill(self, upto: int) -> None:
+        while len(self._items) < min(upto, self._start + self._count):
+            self._items.append(next(self._source))
+
+    def __len__(self) -> int:
+        return self._count
+
+    def __getitem__(self, index: Any) -> Any:
+        if isinstance(index, slice):
+            start, stop, step = index.indices(self._count)
+            if step == 1:
+                return _Draws(self._source, max(0, stop - start), self._start + start, self._items)
+            return [self[i] for i in range(start, stop, step)]
+        if index < 0:
+            index += self._count
+        if not 0 <= index < self._count:
+            raise IndexError("sample index out of range")
+        self._fill(self._start + index + 1)
+        return self._items[self._start + index]
+
+    def __iter__(self) -> Iterator:
+        for i in range(self._count):
+            self._fill(self._start + i + 1)
+            yield self._items[self._start + i]
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, Sequence) and list(self) == list(other)
+
+    def __repr__(self) -> str:
+        return repr(list(self))
 
 
 def is_identically_zero(expr: sp.Expr) -> bool:
