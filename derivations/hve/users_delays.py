@@ -330,9 +330,23 @@ def _circle_power(k: int) -> tuple[sp.Rational, sp.Rational]:
 
 
 def _at_theta(expr: Any, values: dict, k: int) -> sp.Expr:
-    """A printed expression in omega, T, t_d at t_d = kT and cos(omega T) = 3/5 (exact)."""
+    """A printed expression in omega, T, t_d at t_d = kT and cos(omega T) = 3/5 (exact).
+
+    Where every angle is a whole multiple m theta, cos(m theta) and sin(m theta) are the exact
+    rationals of :func:`_circle_power` and are put in directly (what expanding the multiple
+    angles and putting in cos(theta) = 3/5, sin(theta) = 4/5 gives, without the expansion)."""
     theta = sp.Dummy("theta")
     e = sp.sympify(expr).subs(t_d, k * T).subs(omega, theta / T).xreplace(values)
+    direct = {}
+    for atom in e.atoms(sp.cos, sp.sin):
+        m, rest = atom.args[0].as_coeff_Mul()
+        if rest != theta or not m.is_Integer or m < 0:
+            break
+        direct[atom] = _circle_power(int(m))[0 if isinstance(atom, sp.cos) else 1]
+    else:
+        value = e.xreplace(direct)
+        if theta not in value.free_symbols:
+            return sp.expand(value)
     e = sp.expand_trig(sp.expand(e))
     c1, s1 = _circle_power(1)
     return sp.expand(e.subs({sp.cos(theta): c1, sp.sin(theta): s1}))

@@ -172,7 +172,9 @@ def is_identically_zero(expr: sp.Expr) -> bool:
         return fast
     if expr.is_rational_function():
         return canonical_rational(expr) == 0  # a canonical form for rational functions over Q
-    if sp.cancel(sp.together(expr)) == 0:
+    # zero as a rational function of its atoms (cos(x), H(z), exp(sT) independent): zero (the
+    # test cancel(together(expr)) makes below, in flint)
+    if evaluator.is_zero_rational(expr, opaque=True) or sp.cancel(sp.together(expr)) == 0:
         return True
     if not expr.has(sp.Function, sp.exp):
         return sp.cancel(sp.together(expr), extension=True) == 0

@@ -72,13 +72,19 @@ class RationalProgram:
         self._loads = loads
 
     @classmethod
-    def compile(cls, expr: Any) -> RationalProgram | None:
+    def compile(cls, expr: Any, opaque: bool = False) -> RationalProgram | None:
         """The program of ``expr``, or ``None`` when it is not a rational expression over Q.
+
+        With ``opaque``, every other sub-expression (``cos(x)``, ``H(s)``, ``sqrt(2)``, a float)
+        is one more independent symbol of the program, which then computes ``expr`` as a
+        rational function of those atoms.
 
         >>> import sympy as sp
         >>> x = sp.Symbol('x')
         >>> RationalProgram.compile(x**3 - 2*x).at({x: sp.Integer(2)}), RationalProgram.compile(sp.Float(0.5) * x)
         (4, None)
+        >>> RationalProgram.compile(sp.cos(x)**2 + x, opaque=True).symbols
+        (x, cos(x))
         """
         if not isinstance(expr, sp.Expr):
             return None
@@ -99,6 +105,9 @@ class RationalProgram:
                 op = (_ADD if e.is_Add else _MUL, tuple(slot(a) for a in e.args))
             elif e.is_Pow and e.exp.is_Integer:
                 op = (_POW, (slot(e.base), int(e.exp)))
+            elif opaque and isinstance(e, sp.Expr):
+                symbols.append(e)
+                op = (_LOAD, len(symbols) - 1)
             else:
                 raise _NotCompilable
             ops.append(op)
@@ -184,7 +193,7 @@ class RationalProgram:
 
 
 @lru_cache(maxsize=4096)
-def rational_program(expr: sp.Basic) -> RationalProgram | None:
+def rational_program(expr: sp.Basic, opaque: bool = False) -> RationalProgram | None:
     """:meth:`RationalProgram.compile`, cached by expression (an expression evaluated at many
     sample points is compiled once).
 
@@ -193,7 +202,7 @@ def rational_program(expr: sp.Basic) -> RationalProgram | None:
     >>> rational_program(x + 1) is rational_program(x + 1)
     True
     """
-    return RationalProgram.compile(expr)
+    return RationalProgram.compile(expr, opaque)
 
 
 _RELATIONS = {sp.StrictGreaterThan: lambda d: d > 0, sp.GreaterThan: lambda d: d >= 0,
@@ -274,18 +283,24 @@ class _Quotient:
     __hash__ = None  # type: ignore[assignment]
 
 
-def is_zero_rational(expr: Any) -> bool | None:
+def is_zero_rational(expr: Any, opaque: bool = False) -> bool | None:
     """Whether a rational expression over Q is identically zero, decided in flint's polynomial
     rings (the numerator of its value in Q(symbols) is the zero polynomial); ``None`` when
     ``expr`` is not such an expression or a sub-expression divides by an identically zero
     denominator (then SymPy decides, and raises).
 
+    With ``opaque`` every other atom (``cos(x)``, ``H(e^{sT})``) is an independent
+    indeterminate: ``True`` then proves ``expr`` zero, while ``False`` only says it is not zero
+    as a rational function of its atoms (``sin(x)**2 + cos(x)**2 - 1`` is zero all the same).
+
     >>> import sympy as sp
     >>> x, y = sp.symbols('x y')
     >>> is_zero_rational((x**2 - y**2)/(x - y) - x - y), is_zero_rational(1/(x + y) - 1/x), is_zero_rational(sp.sqrt(x))
     (True, False, None)
+    >>> is_zero_rational(sp.cos(x)/(1 + sp.cos(x)) - 1 + 1/(1 + sp.cos(x)), opaque=True)
+    True
     """
-    program = rational_program(expr)
+    program = rational_program(expr, opaque)
     if program is None:
         return None
     if not program.symbols:
