@@ -232,3 +232,46 @@ def test_sampler_values_are_the_documented_sequence():
         {K: 2, b: sp.Rational(1, 3), c: -1, n: 2},
         {K: sp.Rational(1, 2), b: -5, c: 1, n: 3}]
     assert Sampler([K], seed=2, ranges={K: (1, 3)}).draw(2) == [{K: 2}, {K: sp.Rational(739, 250)}]
+
+
+def _canonical_theta_by_sympy(expr, omega, T, t_d, n, var):
+    """The SymPy route of canonical_theta, written out (the reference of its flint route)."""
+    from hapticproof.core.symbols import cos_n, sin_n, sin_theta
+
+    theta = sp.Dummy("theta", real=True)
+    e = sp.sympify(expr).subs(t_d, n * T).subs(omega, theta / T)
+    e = sp.expand(sp.expand_trig(sp.expand(e)))
+    e = e.subs({sp.cos(n * theta): cos_n, sp.sin(n * theta): sin_n}).subs({sp.cos(theta): var, sp.sin(theta): sin_theta})
+    num, den = sp.fraction(sp.together(sp.expand(e)))
+
+    def reduce_sin(p):
+        out = sp.Integer(0)
+        for (power,), coeff in sp.Poly(sp.expand(p), sin_theta).terms():
+            out += coeff * (1 - var**2) ** (power // 2) * sin_theta ** (power % 2)
+        return sp.expand(out)
+
+    return sp.expand(sp.cancel(reduce_sin(num) / reduce_sin(den)))
+
+
+@pytest.mark.parametrize("seed", range(40))
+def test_canonical_theta_equals_the_sympy_route(seed):
+    from hapticproof.core.symbols import c as C_SYM
+    from hapticproof.exact.unitcircle import canonical_theta
+
+    w, t_d = sp.symbols("omega t_d", positive=True)
+    rng = random.Random(seed)
+    angles = [w * T, w * t_d, w * (t_d + T), w * (t_d - T), 2 * w * t_d, 3 * w * T, w * (2 * t_d - 3 * T), w * (3 * t_d + T)]
+
+    def trig():
+        return rng.choice((sp.cos, sp.sin))(rng.choice(angles))
+
+    def term():
+        factors = [rng.choice((K, B, b, sp.Rational(rng.randint(-4, 4), rng.randint(1, 3))))]
+        factors += [trig() ** rng.randint(1, 3) for _ in range(rng.randint(0, 2))]
+        return sp.Mul(*factors)
+
+    expr = sp.Add(*[term() for _ in range(rng.randint(1, 4))])
+    if seed % 3 == 0:
+        expr = expr / (K + sp.cos(rng.choice(angles[:3] + angles[4:5])) * rng.choice((1, b)))
+    n = sp.Symbol("n", integer=True)
+    assert canonical_theta(expr, w, T, t_d, n) == _canonical_theta_by_sympy(expr, w, T, t_d, n, C_SYM)

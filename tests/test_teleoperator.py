@@ -168,14 +168,17 @@ def test_cross_paper_and_hve_intro():
 @pytest.mark.parametrize("gains", [None, (1, 1, 2), (sp.Rational(3, 2), 0, sp.Rational(1, 1000)), (0, 5, sp.Rational(1, 3))])
 def test_discretize_pd_is_sympy_physics_control(method, gains):
     """The written-out generalized bilinear transform gives sympy.physics.control's result exactly."""
-    from sympy.physics.control import TransferFunction, backward_diff, bilinear, forward_diff
+    import sympy.physics.control as control
 
     K, B, T = gains or (telemodel.TELE_SYMBOLS["K"], telemodel.TELE_SYMBOLS["B"], telemodel.TELE_SYMBOLS["T"])
     K, B, T = (sp.sympify(v) for v in (K, B, T))
     s = sp.Symbol("s")
-    reference = {"backward": backward_diff, "forward": forward_diff, "bilinear": bilinear}[method]
-    num, den = reference(TransferFunction(K + B * s, 1, s), T)
+    reference = {"backward": control.backward_diff, "forward": control.forward_diff, "bilinear": control.bilinear}[method]
+    num, den = reference(control.TransferFunction(K + B * s, 1, s), T)
     top = max(len(num), len(den)) - 1
-    as_poly = lambda coeffs: sum(c_ * z ** (len(coeffs) - 1 - i) for i, c_ in enumerate(coeffs))  # noqa: E731
+
+    def as_poly(coeffs):
+        return sum(c_ * z ** (len(coeffs) - 1 - i) for i, c_ in enumerate(coeffs))
+
     expected = sp.cancel(as_poly(num) * z ** (top - len(num) + 1) / (as_poly(den) * z ** (top - len(den) + 1)))
     assert telemodel.discretize_pd(method, K, B, T) == expected

@@ -13,7 +13,7 @@ from typing import Any
 import sympy as sp
 
 from hapticproof.audit.runner import AuditContext
-from hapticproof.audit.compare import NotABound, as_bound, as_sign_condition, compare_bounds, compare_expressions, compare_sign_conditions
+from hapticproof.audit.compare import NotABound, as_bound, as_sign_condition, compare_bounds, compare_expressions, compare_sign_conditions, relation
 from hapticproof.exact.canonical import is_identically_zero
 from hapticproof.core.errors import LatexParseError
 from hapticproof.core.evidence import Decision, Evidence, Finding, Method, Verdict
@@ -180,7 +180,7 @@ def eq45(ctx: AuditContext) -> Finding:
         f"w = K_12T + 2B_12); alone it also holds for a < 0 (at the witness a = {a.subs(values)}), where (43) fails and G^-1 "
         "is not PR: it needs a > 0 (the first minor at c = -1), and on a > 0 it is equivalent to a > 2w, i.e. (46)",
         Evidence(Method.COUNTEREXAMPLE, witness={str(k): v for k, v in values.items()}, facts=facts),
-        derived=sp.Gt(det, 0),
+        derived=relation(sp.Gt, det, 0),
         corrected=r"(2b - K_0T - 2B_0)^2 + 2(2b - K_0T - 2B_0)(-K_{12}T - 2B_{12}) > 0, \quad 2b - K_0T - 2B_0 > 0",
     )
 
@@ -451,10 +451,10 @@ def eq50(ctx: AuditContext) -> Finding:
                 f"'= {sp.sstr(rhs)}' in place of '='")
         return Finding(Verdict.MALFORMED, what,
                        Evidence(Method.PARSE, witness={"z": Z0, **{str(k): v for k, v in values.items()}}, facts=facts),
-                       derived=sp.Gt(det, 0),
+                       derived=relation(sp.Gt, det, 0),
                        corrected=r"\det(G^{-1}(e^{j\omega T}) + G^{-T}(e^{-j\omega T})) = (\text{the expression of (51)}) > 0")
     return Finding(Verdict.UNDECIDED, f"the display relates det(...) {ops[0]} {sp.sstr(rhs)}; {head}; it is not an identity the audit can "
-                   "refute at the witness", Evidence(Method.INSTANCES, facts=facts), derived=sp.Gt(det, 0))
+                   "refute at the witness", Evidence(Method.INSTANCES, facts=facts), derived=relation(sp.Gt, det, 0))
 
 
 P51 = (r"(2b_{1} - (K_{01} + K_{12} + K_{13})T + 2(B_{01} + B_{12} + B_{13})\cos(\omega T))(2b_{2} - (K_{02} + K_{12} + K_{23})T + "
@@ -483,7 +483,7 @@ def eq51(ctx: AuditContext) -> Finding:
     if diff == 0 and condition.op in (">", ">="):
         return Finding(Verdict.CONFIRMED, "the printed expression is det M(c), required positive",
                        Evidence(Method.CANONICAL_FORM, facts={"printed_form": ("equals the derived", sp.srepr(det))}),
-                       derived=sp.Gt(det, 0))
+                       derived=relation(sp.Gt, det, 0))
     at_minus_one = sp.factor(diff.subs(C, -1))
     # a sign disagreement: the printed condition holds while det M < 0, at exact rational parameters and c
     rng = random.Random(5)
@@ -507,7 +507,7 @@ def eq51(ctx: AuditContext) -> Finding:
     if witness is None:
         return Finding(Verdict.UNDECIDED, f"the printed condition ({condition.op} 0) is not det M(c) > 0 ({gap}), but no "
                        "point where it holds while det M(c) < 0 was found in 400 exact samples",
-                       Evidence(Method.INSTANCES, instances=400, facts=facts), derived=sp.Gt(det, 0), corrected=C51)
+                       Evidence(Method.INSTANCES, instances=400, facts=facts), derived=relation(sp.Gt, det, 0), corrected=C51)
     pv, dv = printed.xreplace(witness), det.xreplace(witness)
     facts.update({"printed_value": pv, "det_M_value": dv})
     return Finding(
@@ -515,7 +515,7 @@ def eq51(ctx: AuditContext) -> Finding:
         f"the printed expression is not det M(c) ({gap}); at the witness (c = {witness[C]}) the printed condition holds "
         f"({sp.sstr(pv)} {condition.op} 0) while det M(c) = {sp.sstr(dv)} < 0",
         Evidence(Method.COUNTEREXAMPLE, witness={str(k): v for k, v in witness.items()}, facts=facts),
-        derived=sp.Gt(det, 0), corrected=C51,
+        derived=relation(sp.Gt, det, 0), corrected=C51,
     )
 
 

@@ -13,7 +13,7 @@ import sympy as sp
 
 from hapticproof.audit.runner import AuditContext
 from hapticproof.audit.compare import SignCondition as SignConditionT
-from hapticproof.audit.compare import NotABound, as_bound, as_sign_condition, compare_bounds
+from hapticproof.audit.compare import NotABound, as_bound, as_sign_condition, compare_bounds, relation
 from hapticproof.exact.canonical import is_identically_zero
 from hapticproof.core.errors import LatexParseError
 from hapticproof.core.evidence import Decision, Evidence, Finding, Method, Verdict
@@ -412,16 +412,16 @@ def eq59(ctx: AuditContext) -> Finding:
     if error is None:
         if same:
             return Finding(Verdict.UNDECIDED, f"the display parses and {reading}; equal at the witness, not proved for all n",
-                           Evidence(Method.INSTANCES, instances=1, facts=facts), derived=sp.Gt(det, 0))
+                           Evidence(Method.INSTANCES, instances=1, facts=facts), derived=relation(sp.Gt, det, 0))
         return Finding(Verdict.WRONG, f"the display is not the 2x2 determinant a_1a_2 + e(a_1 + a_2) > 0: {reading}",
-                       Evidence(Method.COUNTEREXAMPLE, witness=facts["witness"], facts=facts), derived=sp.Gt(det, 0),
+                       Evidence(Method.COUNTEREXAMPLE, witness=facts["witness"], facts=facts), derived=relation(sp.Gt, det, 0),
                        corrected=C59)
     return Finding(
         Verdict.MALFORMED,
         f"the display does not parse ({error.reason} at position {error.position}: unbalanced parentheses after the "
         f"cos(w(t_d - T)) factors); {reading}: it is not the 2x2 determinant a_1a_2 + e(a_1 + a_2) (which also needs "
         "cos(w(t_d + T)), see (58))",
-        Evidence(Method.PARSE, facts=facts), derived=sp.Gt(det, 0), corrected=C59,
+        Evidence(Method.PARSE, facts=facts), derived=relation(sp.Gt, det, 0), corrected=C59,
     )
 
 

@@ -40,7 +40,7 @@ from hapticproof.core.symbols import c as C_SYM
 from hapticproof.exact.canonical import Sampler, canonical_rational, certified_nonzero, evaluate_at, is_identically_zero
 from hapticproof.exact.evaluator import relation_at
 
-__all__ = ["Bound", "find_difference", "compare_expressions", "NotABound", "SignCondition", "as_sign_condition", "compare_sign_conditions", "as_bound", "as_lower_bound", "compare_bounds", "sign_on_box"]
+__all__ = ["Bound", "find_difference", "compare_expressions", "NotABound", "SignCondition", "as_sign_condition", "compare_sign_conditions", "as_bound", "as_lower_bound", "compare_bounds", "sign_on_box", "relation"]
 
 
 def find_difference(
@@ -362,6 +362,24 @@ def _signs_seen(expr: sp.Expr, tries: int = 12) -> set[int]:
         if value is not None and value.is_Rational:
             seen.add(1 if value > 0 else (-1 if value < 0 else 0))
     return seen
+
+
+def relation(kind: type, lhs: Any, rhs: Any) -> sp.Basic:
+    """``kind(lhs, rhs)`` (``sp.Gt``, ``sp.Ge``, ``sp.Lt``, ``sp.Le``) exactly as SymPy builds it.
+
+    When ``lhs - rhs`` is seen to take both signs at exact points of its domain, SymPy's
+    evaluation cannot decide the relation (its assumptions are sound) and returns it
+    unevaluated: that object is built directly, without SymPy's sign queries on what may be
+    a large expression (a determinant of parameters).
+
+    >>> x, y = sp.symbols('x y', positive=True)
+    >>> relation(sp.Gt, x - y, 0) == sp.Gt(x - y, 0), relation(sp.Gt, x + y, 0)
+    (True, True)
+    """
+    seen = _signs_seen(sp.sympify(lhs - rhs)) if isinstance(lhs - rhs, sp.Expr) else set()
+    if {-1, 1} <= seen:
+        return kind(lhs, rhs, evaluate=False)
+    return kind(lhs, rhs)
 
 
 def _provable_sign(expr: sp.Expr) -> int | None:

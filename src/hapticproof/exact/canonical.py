@@ -3,6 +3,7 @@ the canonical rational function, deterministic sample points for probing."""
 
 from __future__ import annotations
 
+import functools
 import itertools
 import math
 import random
@@ -17,7 +18,7 @@ from sympy.polys.fields import sfield
 from hapticproof.core.symbols import c as C_SYM
 from hapticproof.exact import evaluator
 
-__all__ = ["Sampler", "is_identically_zero", "canonical_rational", "canonical_fraction", "flint_fraction"]
+__all__ = ["Sampler", "is_identically_zero", "canonical_rational", "canonical_fraction", "flint_fraction", "generator_order", "sympy_fraction"]
 
 
 _NICE = [sp.Integer(1), sp.Integer(2), sp.Rational(1, 2), sp.Integer(3), sp.Rational(1, 3), sp.Integer(5),
@@ -229,13 +230,23 @@ def canonical_fraction(expr: sp.Expr) -> tuple[sp.Expr, sp.Expr]:
     return sp.fraction(sp.cancel(sp.together(expr)))
 
 
+@functools.lru_cache(maxsize=1024)
+def generator_order(symbols: frozenset) -> tuple[sp.Symbol, ...]:
+    """SymPy's default order of polynomial generators for these symbols (with distinct names
+    there are no ties, so the order depends on the set alone).
+
+    >>> x, K, a = sp.symbols('x K a')
+    >>> generator_order(frozenset({x, K, a}))
+    (x, a, K)
+    """
+    return sp.Poly(sp.Add(*sorted(symbols, key=str))).gens
+
+
 def _field_element(expr: sp.Expr) -> tuple[sp.Expr, sp.Expr] | None:
     """SymPy's canonical numerator and denominator of a rational expression over Q (what
-    ``sfield(expr)[1]`` holds), computed in flint: the coprime integer polynomials ``p``, ``q``
-    (no common factor, contents included) with ``q``'s leading coefficient positive in the
-    lex order of SymPy's generator order -- the unique pair SymPy's cancellation leaves. ``None``
-    (SymPy decides) for other expressions, or two symbols with one name (SymPy's order
-    between them is not fixed).
+    ``sfield(expr)[1]`` holds), computed in flint (:func:`sympy_fraction`); ``None`` (SymPy
+    decides) for other expressions, or two symbols with one name (SymPy's order between them
+    is not fixed).
 
     >>> x, y = sp.symbols('x y')
     >>> _field_element((x**2 - y**2)/(2*y - 2*x) + sp.Rational(1, 3))
@@ -247,11 +258,25 @@ def _field_element(expr: sp.Expr) -> tuple[sp.Expr, sp.Expr] | None:
     names = [s.name for s in program.symbols]
     if len(set(names)) != len(names):
         return None
-    gens = sp.Poly(sp.Add(*program.symbols)).gens        # SymPy's default generator order
+    gens = generator_order(frozenset(program.symbols))
     found = evaluator.rational_quotient(expr, gens)
     if found is None:
         return None
-    num, den = found
+    return sympy_fraction(*found, gens)
+
+
+def sympy_fraction(num: Any, den: Any, gens: tuple[sp.Symbol, ...]) -> tuple[sp.Expr, sp.Expr]:
+    """The fraction ``num/den`` of flint polynomials in ``gens`` (SymPy's generator order, lex)
+    as SymPy's canonical pair: the coprime integer polynomials ``p``, ``q`` (no common factor,
+    contents included) with ``q``'s leading coefficient positive -- the unique pair SymPy's
+    cancellation (``cancel``, ``sfield``) leaves.
+
+    >>> import flint
+    >>> ctx = flint.fmpq_mpoly_ctx.get(('x0', 'x1'), 'lex')
+    >>> x0, x1 = ctx.gens()
+    >>> sympy_fraction(x0 / 2 - x1, -x1 / 3, sp.symbols('a b'))
+    (-3*a + 6*b, 2*b)
+    """
     if num.is_zero():
         return sp.Integer(0), sp.Integer(1)
     coeffs = num.coeffs() + den.coeffs()

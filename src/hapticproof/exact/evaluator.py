@@ -334,10 +334,25 @@ def rational_quotient(expr: Any, symbols: Sequence[sp.Symbol]) -> tuple[Any, Any
     if program is None or not set(program.symbols) <= set(symbols):
         return None
     ctx = flint.fmpq_mpoly_ctx.get(tuple(f"x{k}" for k in range(max(len(symbols), 1))), "lex")
-    one = ctx.constant(1)
     gens = dict(zip(symbols, ctx.gens()))
+    return run_quotient(program, {s: gens[s] for s in program.symbols}, ctx)
+
+
+def run_quotient(program: RationalProgram, values: Mapping[Any, Any], ctx: Any) -> tuple[Any, Any] | None:
+    """Run ``program`` in the field of fractions of the flint ring ``ctx`` (``values``: an
+    ``fmpq_mpoly`` or ``fmpq`` per program symbol); ``(num, den)`` coprime, ``den`` monic, or
+    ``None`` when a denominator is identically zero.
+
+    >>> import flint, sympy as sp
+    >>> a, t = sp.symbols('a t')
+    >>> ctx = flint.fmpq_mpoly_ctx.get(('c',), 'lex')
+    >>> (c,) = ctx.gens()
+    >>> run_quotient(RationalProgram.compile(a / (1 - t), opaque=False), {a: c, t: c**2}, ctx)
+    (-c, c^2 - 1)
+    """
+    one = ctx.constant(1)
     try:
-        value = program.run({s: _Quotient(gens[s], one) for s in program.symbols})
+        value = program.run({s: _Quotient(one * v, one) for s, v in values.items()})
     except ZeroDivisionError:
         return None
     if not isinstance(value, _Quotient):
