@@ -168,7 +168,7 @@ def test_cross_paper_and_hve_intro():
 @pytest.mark.parametrize("gains", [None, (1, 1, 2), (sp.Rational(3, 2), 0, sp.Rational(1, 1000)), (0, 5, sp.Rational(1, 3))])
 def test_discretize_pd_is_sympy_physics_control(method, gains):
     """The written-out generalized bilinear transform gives sympy.physics.control's result exactly."""
-    import sympy.physics.control as control
+    from sympy.physics import control
 
     K, B, T = gains or (telemodel.TELE_SYMBOLS["K"], telemodel.TELE_SYMBOLS["B"], telemodel.TELE_SYMBOLS["T"])
     K, B, T = (sp.sympify(v) for v in (K, B, T))
