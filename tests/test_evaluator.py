@@ -275,3 +275,25 @@ def test_canonical_theta_equals_the_sympy_route(seed):
         expr = expr / (K + sp.cos(rng.choice(angles[:3] + angles[4:5])) * rng.choice((1, b)))
     n = sp.Symbol("n", integer=True)
     assert canonical_theta(expr, w, T, t_d, n) == _canonical_theta_by_sympy(expr, w, T, t_d, n, C_SYM)
+
+
+def test_cancel_is_sympys_cancel():
+    from hapticproof.exact.canonical import cancel
+
+    x, y, z = sp.symbols("x y z")
+    rho = sp.Symbol("rho", positive=True)
+    rng = random.Random(0)
+    checked = 0
+    for _ in range(150):
+        e = sum(rng.randint(-3, 3) * rng.choice([x, y, rho, x * y, rho**2, 1]) ** rng.randint(0, 2) for _ in range(3))
+        f = sum(rng.randint(-3, 3) * rng.choice([x, y, rho, x * z, 1]) ** rng.randint(0, 2) for _ in range(3))
+        if f == 0:
+            continue
+        for q in (e / f, e * f / (f**2 + x), (e + 1) / (2 * f), e / 6 + f / 4):
+            assert cancel(q) == sp.cancel(q), q
+            checked += 1
+    for expr in EXPRESSIONS[320:]:
+        assert cancel(expr) == sp.cancel(expr), expr
+    assert cancel(sp.sqrt(x) / x) == sp.cancel(sp.sqrt(x) / x)          # SymPy's route
+    assert cancel(sp.Rational(3, 4)) == sp.Rational(3, 4)
+    assert checked > 400

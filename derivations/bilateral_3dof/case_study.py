@@ -11,6 +11,7 @@ from typing import Any
 import sympy as sp
 from sympy.matrices.expressions.matexpr import MatrixElement
 
+from hapticproof.exact.canonical import cancel as exact_cancel
 from hapticproof.audit.runner import AuditContext
 from hapticproof.audit.compare import compare_expressions
 from hapticproof.exact.canonical import is_identically_zero
@@ -165,7 +166,7 @@ def _b_check(ctx: AuditContext) -> Finding:
     if not isinstance(rel, sp.Eq) or printed == 0:
         return Finding(Verdict.WRONG, f"condition B is an equation z_ji - z_ij = 0; the display reads {sp.sstr(rel)}",
                        Evidence(Method.PARSE, facts={"printed_form": sp.srepr(rel)}), derived=sp.Eq(derived, 0))
-    ratio = sp.cancel(derived / printed)
+    ratio = exact_cancel(derived / printed)
     if ratio != 0 and ratio.free_symbols <= {omega} and not ratio.has(sp.zoo, sp.nan):
         a, b = (AXES[i % 3] for i in pair)
         return Finding(Verdict.CONFIRMED,
@@ -479,7 +480,7 @@ def _minor_of(expr: sp.Expr, minors: dict) -> tuple[tuple[int, ...] | None, sp.E
     for S, m in minors.items():
         if m == 0:
             continue
-        ratio = sp.cancel(expr / m)
+        ratio = exact_cancel(expr / m)
         if ratio == 1:
             return S, ratio
         if best is None and ratio.free_symbols <= {rho} and ratio.is_positive:

@@ -13,6 +13,7 @@ from typing import Any
 import numpy as np
 import sympy as sp
 
+from hapticproof.exact.canonical import cancel as exact_cancel
 from hapticproof.audit.runner import AuditContext, Paper
 from hapticproof.analysis.energy import Sinusoid, input_energy, port_admittance
 from hapticproof.core.evidence import Decision, Evidence, Finding, Method, Verdict
@@ -399,7 +400,7 @@ def zprime_under_38() -> tuple[sp.Matrix, sp.Matrix]:
 
 def _real_part_on_axis(expr: sp.Expr) -> sp.Expr:
     """``Re e(j omega)`` of a rational function of ``s`` with real symbolic coefficients."""
-    num, den = sp.fraction(sp.cancel(sp.together(expr)))
+    num, den = sp.fraction(exact_cancel(sp.together(expr)))
 
     def parts(poly_expr):
         poly = sp.Poly(poly_expr, s)
@@ -414,7 +415,7 @@ def _real_part_on_axis(expr: sp.Expr) -> sp.Expr:
 
     nr, ni = parts(num)
     dr, di = parts(den)
-    return sp.cancel((nr * dr + ni * di) / (dr**2 + di**2))
+    return exact_cancel((nr * dr + ni * di) / (dr**2 + di**2))
 
 
 @lru_cache(maxsize=1)
@@ -441,7 +442,7 @@ def real_part_leading_minors() -> tuple[sp.Expr, ...]:
 def residue_zprime() -> sp.Matrix:
     """Residue of ``Z'`` at ``s = 0`` under (38)."""
     _, Zp = zprime_under_38()
-    return Zp.applyfunc(lambda e: sp.cancel(e * s).subs(s, 0))
+    return Zp.applyfunc(lambda e: exact_cancel(e * s).subs(s, 0))
 
 
 def rhs_matrix(ctx: AuditContext) -> sp.Matrix:

@@ -11,6 +11,7 @@ from typing import Any
 
 import sympy as sp
 
+from hapticproof.exact.canonical import cancel as exact_cancel
 from hapticproof.audit.runner import AuditContext
 from hapticproof.audit.compare import SignCondition as SignConditionT
 from hapticproof.audit.compare import NotABound, as_bound, as_sign_condition, compare_bounds, relation
@@ -532,7 +533,7 @@ def eq59b(ctx: AuditContext) -> Finding:
     for k in range(1, 13):
         S = sp.expand((1 + C) * sp.chebyshevu(k - 1, C) / 2)
         direct = canonical_theta(limit.expr.subs(t_d, k * T), omega, T, t_d, n)
-        same = is_identically_zero(sp.expand(direct.subs(sin_theta**2, 1 - C**2)) - S) or is_identically_zero(sp.cancel(direct) - S)
+        same = is_identically_zero(sp.expand(direct.subs(sin_theta**2, 1 - C**2)) - S) or is_identically_zero(exact_cancel(direct) - S)
         if not same:
             return Finding(Verdict.TYPO, f"the limited expression {sp.sstr(limit.expr)} is not S = sin(w t_d) sin(wT)/(2(1 - "
                            f"cos wT)): at t_d = {k}T it is {sp.sstr(sp.factor(direct))}, S = {sp.sstr(sp.factor(S))} in c",

@@ -34,6 +34,7 @@ from typing import Any
 
 import sympy as sp
 
+from hapticproof.exact.canonical import cancel as exact_cancel
 from hapticproof.core.errors import HapticproofError
 from hapticproof.core.evidence import Decision, Evidence, Finding, Method, Outcome, Verdict
 from hapticproof.core.symbols import c as C_SYM
@@ -127,14 +128,14 @@ def _canonical_text(expr: Any) -> str:
     except (sp.PolynomialError, TypeError, ValueError):
         pass
     if isinstance(expr, sp.MatrixBase):
-        return sp.srepr(expr.applyfunc(lambda e: sp.cancel(e)))
+        return sp.srepr(expr.applyfunc(lambda e: exact_cancel(e)))
     return sp.srepr(sp.expand(expr) if isinstance(expr, sp.Expr) else expr)
 
 
 def _short(expr: Any, limit: int = 120) -> str | None:
     """``sstr`` of a simplified expression when it is short enough for a one-sentence detail."""
     try:
-        value = sp.factor(sp.cancel(sp.together(expr))) if isinstance(expr, sp.Expr) else expr
+        value = sp.factor(exact_cancel(sp.together(expr))) if isinstance(expr, sp.Expr) else expr
     except (sp.PolynomialError, TypeError, ValueError):
         value = expr
     text = sp.sstr(value)
@@ -217,12 +218,12 @@ def compare_sign_conditions(
     facts: dict[str, Any] = {"printed": str(p), "derived": str(d)}
     if p.op in ("=", "!=") or d.op in ("=", "!="):
         same_kind = (p.op in ("=",)) == (d.op in ("=",))
-        ratio = sp.cancel(sp.together(p.expr / d.expr)) if d.expr != 0 else None
+        ratio = exact_cancel(sp.together(p.expr / d.expr)) if d.expr != 0 else None
         if same_kind and ratio is not None and ratio != 0 and not ratio.free_symbols:
             return Finding(Verdict.CONFIRMED, f"{what} is the derived condition {d} up to the factor {sp.sstr(ratio)}{suffix}",
                            Evidence(Method.CANONICAL_FORM, facts={**facts, "printed_form": derived_form}), derived=derived)
     else:
-        ratio = sp.cancel(sp.together(p.expr / d.expr)) if d.expr != 0 else None
+        ratio = exact_cancel(sp.together(p.expr / d.expr)) if d.expr != 0 else None
         sign = _provable_sign(ratio) if ratio is not None and ratio != 0 else None
         if sign is not None:
             if sign > 0:
@@ -332,7 +333,7 @@ def as_bound(condition: sp.Basic, var: sp.Symbol) -> Bound:
     if sign is None:
         raise NotABound(f"the sign of the coefficient {sp.sstr(coeff)} of {var} is not fixed by the assumptions")
     bound = -rest / coeff
-    bound = canonical_rational(bound) if bound.is_rational_function() else sp.cancel(bound)
+    bound = canonical_rational(bound) if bound.is_rational_function() else exact_cancel(bound)
     return Bound(var, bound, strict, sign > 0)
 
 
@@ -395,7 +396,7 @@ def _provable_sign(expr: sp.Expr) -> int | None:
     seen = _signs_seen(expr)
     if 0 in seen or {-1, 1} <= seen:
         return None
-    for form in (expr, sp.factor(expr), sp.cancel(expr)):
+    for form in (expr, sp.factor(expr), exact_cancel(expr)):
         if form.is_positive:
             return 1
         if form.is_negative:
@@ -529,7 +530,7 @@ def compare_bounds(
         return _compare_general(printed, p, e, var, f"it is an upper bound, {p}", on_weaker=on_weaker, box=box,
                                 verify=verify, corrected=corrected, what=what, suffix=suffix, tries=tries, exact=exact)
     raw = p.bound - e.bound
-    difference = canonical_rational(raw) if raw.is_rational_function() else sp.cancel(sp.together(raw))
+    difference = canonical_rational(raw) if raw.is_rational_function() else exact_cancel(sp.together(raw))
     strictness = "" if p.strict == e.strict else f"; compared up to the boundary ({'>' if p.strict else '>='} vs {'>' if e.strict else '>='})"
     symbols = sorted((p.bound.free_symbols | e.bound.free_symbols) - {var}, key=str)
     form = _printed_form(p, printed)

@@ -18,7 +18,7 @@ from sympy.polys.fields import sfield
 from hapticproof.core.symbols import c as C_SYM
 from hapticproof.exact import evaluator
 
-__all__ = ["Sampler", "is_identically_zero", "canonical_rational", "canonical_fraction", "flint_fraction", "generator_order", "sympy_fraction"]
+__all__ = ["Sampler", "is_identically_zero", "canonical_rational", "canonical_fraction", "flint_fraction", "generator_order", "sympy_fraction", "cancel"]
 
 
 _NICE = [sp.Integer(1), sp.Integer(2), sp.Rational(1, 2), sp.Integer(3), sp.Rational(1, 3), sp.Integer(5),
@@ -210,6 +210,25 @@ def canonical_rational(expr: sp.Expr) -> sp.Expr:
         return fast[0] / fast[1]
     _, element = sfield(expr)
     return element.as_expr()
+
+
+def cancel(expr: Any) -> Any:
+    """``sp.cancel(expr)``, computed in flint for a rational expression over Q in its symbols.
+
+    SymPy's ``cancel`` of such an expression is ``p/q`` with SymPy's canonical pair (the
+    coprime integer polynomials of :func:`sympy_fraction`), the same pair ``sfield`` holds;
+    other expressions (functions, radicals, floats, numbers) go to ``sp.cancel``.
+
+    >>> x, y = sp.symbols('x y')
+    >>> cancel((x**2 - y**2)/(2*x - 2*y) + y/3), sp.cancel((x**2 - y**2)/(2*x - 2*y) + y/3)
+    (x/2 + 5*y/6, x/2 + 5*y/6)
+    """
+    expr = sp.sympify(expr)
+    if isinstance(expr, sp.Expr) and not expr.is_Number and expr.free_symbols:
+        fast = _field_element(expr)
+        if fast is not None:
+            return fast[0] / fast[1]
+    return sp.cancel(expr)
 
 
 def canonical_fraction(expr: sp.Expr) -> tuple[sp.Expr, sp.Expr]:
