@@ -460,12 +460,13 @@ def _low_order_minors(which: str) -> dict:
     """Principal minors of order <= 3 of the residue (``'residue'``) or real part (``'real'``) of Z'."""
     R = residue_zprime() if which == "residue" else real_part_zprime()
     D = sp.diag(1, 1, 1, sp.sqrt(rho), sp.sqrt(rho), sp.sqrt(rho))
-    P = (D * R * D).applyfunc(sp.simplify)       # polynomial entries; minors scale by rho^(#slave rows)
+    P = (D * R * D).applyfunc(sp.expand)       # polynomial entries; minors scale by rho^(#slave rows)
     out = {}
+    # only their values matter (a printed minor is matched by the cancelled ratio, _minor_of)
     for k in range(1, 4):
         for S in itertools.combinations(range(6), k):
             slave = sum(i >= 3 for i in S)
-            out[S] = sp.factor(P.extract(list(S), list(S)).det(method="bareiss") / rho**slave)
+            out[S] = exact_cancel(P.extract(list(S), list(S)).det(method="bareiss") / rho**slave)
     return out
 
 

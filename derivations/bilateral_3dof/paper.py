@@ -232,7 +232,13 @@ def derived_conditions():
 
 
 def sym3(xx, yy, zz, xy, xz, yz) -> sp.Matrix:
-    return sp.Matrix([[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]]).applyfunc(sp.nsimplify)
+    return sp.Matrix([[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]]).applyfunc(_nsimplified)
+
+
+@lru_cache(maxsize=256)
+def _nsimplified(value: sp.Expr) -> sp.Expr:
+    """``sp.nsimplify(value)``, once per value (Table 1 and the masses repeat a few numbers)."""
+    return sp.nsimplify(value)
 
 
 def table1_gains(kvmyz: int = 60) -> dict[str, sp.Matrix]:
