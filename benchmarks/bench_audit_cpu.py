@@ -5,8 +5,9 @@ Runs ``hapticproof audit --format json`` (every bundled paper, the command as us
 baseline commit and from this checkout, alternating (baseline, this, this, baseline, ...) so
 that both see the same load, and measures the **CPU time** (user + sys of the process and its
 worker processes, ``resource.getrusage(RUSAGE_CHILDREN)``) -- on a shared machine wall time
-mostly measures the neighbours. Reports medians, their ratio, and per paper the median of the
-summed per-equation ``seconds`` of the ``--jobs 1`` runs. Every run's JSON is compared with
+mostly measures the neighbours. Reports medians and their ratio, and per paper the CPU time of
+auditing it in one process (papers in the audit's order, BLAS pinned to one thread on both
+sides), also alternating. Every run's JSON is compared with
 the first baseline run: everything but ``seconds`` must be identical (verdicts, details,
 derived and corrected LaTeX, evidence), and every difference is listed.
 
@@ -69,6 +70,32 @@ def run_audit(python: Path, jobs: str, env: dict[str, str], out: Path) -> tuple[
     return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime), wall
 
 
+#: Run in each side's interpreter: CPU seconds (this process only) of registering the papers
+#: and of auditing each one, in order, in one process (caches shared as in the audit).
+PER_PAPER = """
+import json, time
+t0 = time.process_time()
+from hapticproof.audit.registry import papers
+from hapticproof.audit.runner import audit_paper
+found = papers()
+out = {"import and registration": time.process_time() - t0}
+for pid, paper in found.items():
+    t = time.process_time()
+    audit_paper(paper)
+    out[pid] = time.process_time() - t
+print(json.dumps(out))
+"""
+
+
+def run_per_paper(python: Path, env: dict[str, str]) -> dict[str, float]:
+    """CPU seconds per paper in one process (BLAS pinned to one thread on both sides: this
+    part measures the algebra, not the thread settings of the command line)."""
+    env = {**env, "OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
+    out = subprocess.run([str(python), "-c", PER_PAPER], check=True, env=env, capture_output=True, text=True,
+                         cwd=tempfile.gettempdir()).stdout
+    return json.loads(out.strip().splitlines()[-1])
+
+
 def differences(a: Any, b: Any, path: str = "") -> list[str]:
     """Every difference between two audit JSON documents except the ``seconds`` timings."""
     out: list[str] = []
@@ -91,10 +118,6 @@ def differences(a: Any, b: Any, path: str = "") -> list[str]:
     return out
 
 
-def paper_seconds(report: dict) -> dict[str, float]:
-    return {p["paper"]: sum(eq["seconds"] for eq in p["equations"]) for p in report["papers"]}
-
-
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--baseline", default="96041ee", help="baseline commit")
@@ -103,6 +126,8 @@ def main() -> None:
     parser.add_argument("--modes", nargs="+", default=["default", "1"], help="--jobs values ('default': not given)")
     parser.add_argument("--env", action="append", default=[], metavar="NAME=VALUE", help="set for both sides")
     parser.add_argument("--out", default="audit_cpu", help="name of the JSON and PNG in benchmarks/results/")
+    parser.add_argument("--no-per-paper", dest="per_paper", action="store_false",
+                        help="skip the per-paper CPU runs (one process per side and repeat, papers in order)")
     args = parser.parse_args()
     sides = {"baseline": ensure_baseline(args.baseline, args.baseline_dir), "this": Path(sys.executable)}
     env = dict(os.environ)
@@ -125,9 +150,6 @@ def main() -> None:
                     cpu, wall = run_audit(sides[side], mode, env, out)
                     report = json.loads(out.read_text())
                     runs[mode][side].append({"cpu": cpu, "wall": wall})
-                    if mode == "1":
-                        for paper, sec in paper_seconds(report).items():
-                            per_paper[side].setdefault(paper, []).append(sec)
                     if reference is None and side == "baseline":
                         reference = report
                     if reference is not None:
@@ -135,6 +157,12 @@ def main() -> None:
                         compared += 1
                         found += [f"{side} --jobs {mode} run {r}: {d}" for d in diff]
                     print(f"run {r} --jobs {mode:7s} {side:8s}: cpu {cpu:6.2f} s, wall {wall:6.2f} s", flush=True)
+            if args.per_paper:
+                for side in order:
+                    for paper, sec in run_per_paper(sides[side], env).items():
+                        per_paper[side].setdefault(paper, []).append(sec)
+                    print(f"run {r} per paper {side:8s}: " + ", ".join(f"{p} {v[-1]:.2f}" for p, v in per_paper[side].items()),
+                          flush=True)
     summary: dict[str, Any] = {"baseline_commit": args.baseline, "env": args.env, "repeat": args.repeat,
                                "machine": {"cpus": os.cpu_count(), "python": sys.version.split()[0],
                                            "load_average_at_end": os.getloadavg()}, "modes": {}}
@@ -146,10 +174,11 @@ def main() -> None:
             "runs": by_side}
         print(f"--jobs {mode}: baseline {med['baseline']:.2f} s CPU, this {med['this']:.2f} s CPU "
               f"(ratio {med['this'] / med['baseline']:.3f}, {med['baseline'] / med['this']:.2f}x less)")
-    summary["per_paper_seconds_median"] = {side: {p: statistics.median(v) for p, v in d.items()} for side, d in per_paper.items()}
-    for paper in summary["per_paper_seconds_median"]["baseline"]:
-        a, b = (summary["per_paper_seconds_median"][s].get(paper, float("nan")) for s in ("baseline", "this"))
-        print(f"  {paper:16s} baseline {a:6.2f} s  this {b:6.2f} s  ratio {b / a:.3f}")
+    summary["per_paper_cpu_median"] = {side: {p: statistics.median(v) for p, v in d.items()} for side, d in per_paper.items()}
+    summary["per_paper_cpu_runs"] = per_paper
+    for paper in summary["per_paper_cpu_median"].get("baseline", {}):
+        a, b = (summary["per_paper_cpu_median"][s].get(paper, float("nan")) for s in ("baseline", "this"))
+        print(f"  {paper:24s} baseline {a:6.2f} s CPU  this {b:6.2f} s CPU  ratio {b / a:.3f}")
     summary["json_comparison"] = {"reports_compared": compared, "differences_besides_seconds": found}
     print(f"JSON: {compared} reports compared with the first baseline run, {len(found)} differences besides seconds")
     for line in found[:50]:
@@ -173,19 +202,24 @@ def plot(summary: dict, path: Path) -> None:
             x = k + (j - 0.5) * 0.36
             ax.bar(x, data["cpu_median"][side], width=0.34, color=colors[side], label=side if k == 0 else None)
             ax.scatter([x] * len(data["runs"][side]), [r["cpu"] for r in data["runs"][side]], color="black", s=8, zorder=3)
-        ax.text(k, max(data["cpu_median"].values()) * 1.02, f"{data['ratio_this_over_baseline']:.2f}x", ha="center")
+        ax.text(k, max(data["cpu_median"].values()) * 1.02, f"this / baseline = {data['ratio_this_over_baseline']:.2f}",
+                ha="center", fontsize=9)
     ax.set_xticks(range(len(modes)), [f"--jobs {m}" for m in modes])
     ax.set_ylabel("CPU seconds (user + sys), median")
     ax.set_title(f"bundled audit, baseline {summary['baseline_commit']} vs this")
     ax.axhline(0, color="black", lw=0.5)
     ax.legend()
-    papers = list(summary["per_paper_seconds_median"]["baseline"])
+    medians = summary["per_paper_cpu_median"]
+    papers = list(medians.get("baseline", {}))
     for j, side in enumerate(("baseline", "this")):
-        vals = [summary["per_paper_seconds_median"][side].get(p, 0) for p in papers]
+        vals = [medians[side].get(p, 0) for p in papers]
         bx.bar([i + (j - 0.5) * 0.36 for i in range(len(papers))], vals, width=0.34, color=colors[side], label=side)
-    bx.set_xticks(range(len(papers)), papers, rotation=20)
-    bx.set_ylabel("seconds (sum over the paper's equations, --jobs 1)")
-    bx.set_title("per paper")
+    for i, p in enumerate(papers):
+        top = max(medians["baseline"][p], medians["this"][p])
+        bx.text(i, top * 1.02 + 0.1, f"{medians['this'][p] / medians['baseline'][p]:.2f}", ha="center", fontsize=8)
+    bx.set_xticks(range(len(papers)), [p.replace(" and ", "\n& ") for p in papers], rotation=20, fontsize=8)
+    bx.set_ylabel("CPU seconds, median (one process, BLAS 1 thread)")
+    bx.set_title("per paper (label: this / baseline)")
     bx.legend()
     fig.tight_layout()
     fig.savefig(path, dpi=120)
