@@ -12,7 +12,7 @@ from __future__ import annotations
 import argparse
 import importlib
 import sys
-from collections.abc import Sequence
+from collections.abc import MutableMapping, Sequence
 
 from hapticproof.core.errors import HapticproofError
 
@@ -162,12 +162,36 @@ def _quiet_stdout() -> None:
         pass
 
 
+#: Thread-count variables of the BLAS libraries NumPy and SciPy may load.
+BLAS_THREADS = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
+
+
+def single_threaded_blas(environ: MutableMapping[str, str] | None = None) -> None:
+    """One BLAS thread for this process (unless the user chose a count): the audit's matrices
+    have a few dozen entries, where OpenBLAS's extra threads only spin -- on a busy 2-core
+    machine they doubled the CPU time of a boundary search -- and its worker processes are the
+    parallelism. ``environ`` defaults to ``os.environ``; it takes effect when NumPy is first
+    imported (the command line imports it only after this).
+
+    >>> env = {"MKL_NUM_THREADS": "4"}
+    >>> single_threaded_blas(env); env["OPENBLAS_NUM_THREADS"], env["MKL_NUM_THREADS"]
+    ('1', '4')
+    """
+    import os
+
+    environ = os.environ if environ is None else environ
+    for name in BLAS_THREADS:
+        environ.setdefault(name, "1")
+
+
 def _main(argv: list[str]) -> int:
     from hapticproof.core.limits import parse_limits, set_limits
 
     argv, limits = take_limits(argv)
     if limits:
         set_limits(parse_limits(limits))
+    if argv and argv[0] == "audit":
+        single_threaded_blas()
     _refuse_foreign_digits(argv)
     if argv and argv[0] in ("derive", "boundary") and "--scene" in " ".join(argv):
         from hapticproof.cli.derive import complete_argv
