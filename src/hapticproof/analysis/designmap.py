@@ -882,9 +882,6 @@ def plot_map(result: MapResult, path: str | Path, title: str = "") -> Path:
     ax.set_ylabel(spec.y.name)
     fixed = ", ".join(f"{k} = {_number(v)}" for k, v in spec.fixed)
     ax.set_title(title or f"exact {spec.quantity} map ({fixed}); light: {_label(spec)}", fontsize=9)
-    from hapticproof.core.files import atomic_path
+    from hapticproof.core.files import write_figure
 
-    path = Path(path)
-    with atomic_path(path, "--plot") as temp:     # whole or not at all, no folder created
-        fig.savefig(temp, dpi=110, bbox_inches="tight", format=path.suffix.lstrip(".").lower() or "png")
-    return path
+    return write_figure(fig, path, "--plot")      # the one writer: whole or not at all, no link followed
