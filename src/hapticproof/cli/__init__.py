@@ -96,7 +96,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         return _main(argv)
     except HapticproofError as err:
-        print(f"hapticproof: error: {err}", file=sys.stderr)
+        from hapticproof.core.escape import for_terminal
+
+        print(f"hapticproof: error: {for_terminal(err)}", file=sys.stderr)     # one line, nothing that repaints
         return 2
     except Terminated as stop:      # SIGTERM, SIGHUP: as Ctrl-C, the temporary output is removed
         print(f"hapticproof: terminated ({stop})", file=sys.stderr)

@@ -18,6 +18,7 @@ from __future__ import annotations
 import argparse
 import sys
 
+from hapticproof.core.escape import for_terminal
 from hapticproof.core.files import read_json, read_text
 from hapticproof.core.shapes import check_report as check_shape
 
@@ -46,10 +47,10 @@ def run(args: argparse.Namespace) -> int:
     report = read_json(read_text(args.report, name), name)
     check_shape(report, name)      # a number, null or a table of another form is no report
     result = check_report(report)
-    lines = result.summary().splitlines()
+    lines = [for_terminal(line) for line in result.summary().splitlines()]     # names from the report, escaped
     print("\n".join(lines[-1:] if args.quiet else lines))
     refused = [(name, r) for name, r in result.failed if r.source == "display"]
     if refused:
         name, first = refused[0]
-        print(f"report refused: {name}: {first.reason}", file=sys.stderr)
+        print(f"report refused: {for_terminal(name)}: {for_terminal(first.reason)}", file=sys.stderr)
     return 0 if result.ok else 1

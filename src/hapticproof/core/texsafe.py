@@ -422,6 +422,7 @@ def check_tex(
     allow_comments: bool = False,
     allow_non_ascii: bool = True,
     engine: str = "pdftex",
+    alignments: Collection[str] | None = None,
 ) -> str | None:
     r"""The reason to refuse ``text`` as mathematics in a LaTeX report, or None when TeX
     reads nothing but allowed commands in it.
@@ -434,12 +435,17 @@ def check_tex(
     becomes ``^^5c`` once the report drops the alignment mark), invalid and control characters, and a comment
     unless ``allow_comments`` (the report joins a display's lines, so a comment would swallow
     the report's own closing braces). Characters >= 128 (active in pdflatex, defined by the
-    UTF-8 input encoding) pass unless ``allow_non_ascii`` is False.
+    UTF-8 input encoding) pass unless ``allow_non_ascii`` is False. ``alignments`` (the
+    environments whose cells ``&`` separates): when given, an ``&`` is accepted only directly
+    inside one of them, not in a group such as ``\text{a & b}`` (TeX stops there with
+    "Misplaced alignment tab character").
 
     >>> check_tex(r"\begin{bmatrix} 1 & 0 \\ 0 & 1 \end{bmatrix}", {"begin", "end"}, {"bmatrix"}) is None
     True
     >>> print(check_tex(r"\csname input\endcsname", {"csname", "endcsname"}))
     \csname at offset 0 is never accepted (it builds or runs commands that no allow-list can check)
+    >>> print(check_tex(r"b > \text{a & b}", {"text"}, alignments={"bmatrix"}))
+    & at offset 12 is outside an alignment (inside a group or at the top)
     """
     for k, ch in enumerate(text):
         bad = _bad_character(ch)
@@ -462,11 +468,15 @@ def check_tex(
     envs = set(environments)
     tokens = reading.tokens
     depth = 0
+    opened: list[tuple[str, int]] = []       # environments open (name, brace depth of their cells)
     for k, token in enumerate(tokens):
         where = f"at offset {token.offset}"
         if token.kind == "char":
             if token.catcode == PARAMETER:
                 return f"# {where} is TeX's macro-parameter character"
+            if token.catcode == ALIGN and alignments is not None and \
+                    not (opened and opened[-1][0] in alignments and opened[-1][1] == depth):
+                return f"& {where} is outside an alignment (inside a group or at the top)"
             if token.catcode in (SUPERSCRIPT, SUBSCRIPT) and not _has_argument(tokens, k + 1):
                 # a script without its argument is an error in TeX; the report drops & and \\
                 # when it lays a display out, so ^&^5c would become ^^5c there
@@ -502,6 +512,10 @@ def check_tex(
                 return f"\\{name} {where} is not followed by an environment name in braces"
             if env not in envs:
                 return f"environment {env} {where} is not allowed"
+            if name == "begin":
+                opened.append((env, depth))
+            elif opened and opened[-1][0] == env:
+                opened.pop()
     if depth:
         return f"{depth} group(s) opened and not closed"
     return None

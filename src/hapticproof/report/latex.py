@@ -85,7 +85,7 @@ def prose_with_math(text: str) -> str:
     for k, part in enumerate(parts):
         if k % 2 == 0:
             out.append(escape_text(part))
-        elif is_typesettable(part) and "\\\\" not in part:
+        elif is_typesettable(part) and "\\\\" not in part and _laid_out_safely("$" + part + "$"):
             out.append("$" + part + "$")
         else:
             out.append(escape_text("$" + part + "$"))
@@ -438,8 +438,14 @@ _LAYOUT = frozenset({"hpfit", "hpline", "hptag", "hpcell", "penalty", "allowbrea
                      "tau", "infty", "pm"})
 
 
+#: the environments whose cells ``&`` separates: anywhere else (``\text{a & b}``, a group, a
+#: line of a display once the layout has dropped its own marks) TeX stops the report
+_ALIGNMENTS = frozenset({"aligned", "split", "align", "align*", "alignedat", "bmatrix", "pmatrix", "matrix", "vmatrix",
+                         "Vmatrix", "Bmatrix", "smallmatrix", "cases", "array"})
+
+
 def _laid_out_safely(out: str) -> bool:
-    return check_tex(out, _KNOWN | _LAYOUT, _ENVIRONMENTS | {"hpdisplay"}) is None
+    return check_tex(out, _KNOWN | _LAYOUT, _ENVIRONMENTS | {"hpdisplay"}, alignments=_ALIGNMENTS) is None
 
 
 def labelled(label: str, body: str) -> str:
