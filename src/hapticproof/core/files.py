@@ -259,8 +259,11 @@ def toml_depth(text: str) -> int:
 
 def read_json(text: str, name: str, parse_float: Any = None) -> Any:
     """Parse JSON text of the file ``name``: nesting within
-    :attr:`~hapticproof.core.limits.Limits.depth`, a syntax error as one line with the place,
-    ``NaN``/``Infinity`` refused (not JSON).
+    :attr:`~hapticproof.core.limits.Limits.depth`, every number within
+    :attr:`~hapticproof.core.limits.Limits.digits` (decided from its text, integers included;
+    ``1e999999`` is refused, never read as infinity), a key given twice in one object refused
+    (which one would count?), a syntax error as one line with the place, ``NaN``/``Infinity``
+    refused (not JSON).
 
     >>> read_json('{"a": [1, 2]}', "r.json")
     {'a': [1, 2]}
@@ -268,8 +271,18 @@ def read_json(text: str, name: str, parse_float: Any = None) -> Any:
     Traceback (most recent call last):
     ...
     hapticproof.core.limits.LimitError: r.json: 1000 levels of nesting is above the limit of 100 (raise it with --limit depth=N)
+    >>> read_json('{"verdict": "proved", "verdict": "disproved"}', "r.json")
+    Traceback (most recent call last):
+    ...
+    hapticproof.core.errors.InputFormatError: r.json: not JSON (the key 'verdict' is given twice in one object)
+    >>> read_json('{"inputs": 1e999999}', "r.json")
+    Traceback (most recent call last):
+    ...
+    hapticproof.core.limits.LimitError: r.json: a JSON number: a number of about 1000000 digits is above the limit of 1000 digits (raise it with --limit digits=N)
     """
-    from hapticproof.core.limits import check
+    import math
+
+    from hapticproof.core.limits import LimitError, check, check_number_text
 
     if text.startswith("\ufeff"):
         text = text[1:]
@@ -278,8 +291,29 @@ def read_json(text: str, name: str, parse_float: Any = None) -> Any:
     def refuse(constant: str) -> Any:
         raise ValueError(f"{constant} is not JSON")
 
+    def integer(digits: str) -> int:
+        check_number_text(digits, f"{name}: a JSON number")
+        return int(digits)
+
+    def real(digits: str) -> Any:
+        check_number_text(digits, f"{name}: a JSON number")
+        value = (parse_float or float)(digits)
+        if isinstance(value, float) and not math.isfinite(value):
+            raise ValueError(f"the number {digits[:40]} is outside the range of a double")
+        return value
+
+    def unique(pairs: list[tuple[str, Any]]) -> dict[str, Any]:
+        out: dict[str, Any] = {}
+        for key, value in pairs:
+            if key in out:
+                raise ValueError(f"the key {key[:60]!r} is given twice in one object")
+            out[key] = value
+        return out
+
     try:
-        return json.loads(text, parse_constant=refuse, parse_float=parse_float)
+        return json.loads(text, parse_constant=refuse, parse_float=real, parse_int=integer, object_pairs_hook=unique)
+    except LimitError:
+        raise
     except json.JSONDecodeError as err:
         raise InputFormatError(f"{name}:{err.lineno}: not JSON ({err.msg} at column {err.colno})") from None
     except ValueError as err:
