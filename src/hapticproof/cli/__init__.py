@@ -106,6 +106,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     except KeyboardInterrupt:       # Ctrl-C: one line, no traceback; no output was replaced
         print("hapticproof: interrupted", file=sys.stderr)
         return 130
+    except RecursionError:          # nesting within a raised --limit depth, beyond what Python recurses through
+        print("hapticproof: error: the input is nested too deeply to read (nesting above a few hundred levels; "
+              "lower --limit depth)", file=sys.stderr)
+        return 2
     except BrokenPipeError:  # e.g. piped into `head`
         _quiet_stdout()
         return 0
