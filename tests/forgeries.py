@@ -47,7 +47,7 @@ def _claim_proved(report: dict, keep_definition: bool = False) -> dict:
         cond["decision"] = "proved"
         cond.get("evidence", {}).pop("witness", None)
     report["verdict"], report["witness"] = "proved", None
-    if keep_definition:
+    if keep_definition and isinstance(report.get("definition"), dict):
         report["definition"]["decision"] = "proved"
         report["definition"].pop("witness", None)
     else:

@@ -194,9 +194,9 @@ def _numeric(report: Mapping[str, Any]) -> bool:
 def _shown_inverse(report: Mapping[str, Any], transfer: Mapping[str, Any]) -> list[str]:
     """The ``G_inverse`` shown, read as a rational function of ``z``, is the definition's ``G^{-1}``
     (an identity of polynomials, exact)."""
-    shown = report.get("G_inverse")
-    if shown is None:
+    if "G_inverse" not in report:
         return []
+    shown = report["G_inverse"]
     try:
         num, den = _rational_of(shown, max(len(transfer["num"]), len(transfer["den"])))
     except (ValueError, TypeError, ArithmeticError, RecursionError) as err:
