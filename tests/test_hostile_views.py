@@ -147,3 +147,34 @@ def test_text_with_an_ampersand_does_not_break_the_latex_report(tmp_path, capsys
                          cwd=tmp_path, capture_output=True, text=True, timeout=180, check=False)
     assert run.returncode == 0, run.stdout[-2000:]
     assert (tmp_path / "r.pdf").exists()
+
+
+#: Displays whose alignment marks or row ends TeX cannot place (inside a group, more cells than
+#: the environment has columns): each is shown verbatim, and the report compiles.
+MISPLACED = [r"b > \text{a & b}", r"b > \text{a \\ b}", r"b > {a & b}", r"b > \mbox{a & b}", r"b > \frac{a & b}{2}",
+             r"\begin{aligned} a &= \text{x & y} \end{aligned}", r"\begin{bmatrix} 1 & \text{2 & 3} \end{bmatrix}",
+             r"b > \begin{array}{c} a & b \end{array}", r"\begin{cases} a & b & c \end{cases}",
+             r"\begin{bmatrix} 1&2&3&4&5&6&7&8&9&10&11 \end{bmatrix}", r"b > \sqrt{a \\ b}", r"x^{a \\ b}",
+             r"b > \begin{matrix} {a & b} \end{matrix}"]
+PLACED = [r"\begin{cases} a & b \\ c \end{cases}", r"\begin{bmatrix} 1 & 0 \\ 0 & 1 \end{bmatrix} \succeq 0",
+          r"\begin{aligned} a &= b \\ &\le c \end{aligned}", r"a = b \\ c = d"]
+
+
+def test_misplaced_alignment_marks_are_shown_verbatim_and_the_report_compiles(tmp_path):
+    from hapticproof.audit.runner import AuditReport, EquationResult
+    from hapticproof.core.evidence import Evidence, Verdict
+    from hapticproof.report import latex as tex
+
+    for display in MISPLACED:
+        assert tex.safe_math(display).startswith(r"\begin{hpverbatim}"), display
+    for display in PLACED:
+        assert tex.safe_math(display).startswith(r"\begin{hpdisplay}"), display
+    results = tuple(EquationResult(str(k), "condition", d, d, Verdict.TYPO, d, d, Evidence("counterexample", witness={"c": d}),
+                                   0.0) for k, d in enumerate(MISPLACED + PLACED))
+    (tmp_path / "r.tex").write_text(tex.audit_document([AuditReport("t", "t", results)]), encoding="utf-8")
+    pdflatex = shutil.which("pdflatex")
+    if pdflatex is None:
+        pytest.skip("pdflatex is not installed")
+    run = subprocess.run([pdflatex, "-interaction=nonstopmode", "-no-shell-escape", "-halt-on-error", "r.tex"],
+                         cwd=tmp_path, capture_output=True, text=True, timeout=180, check=False)
+    assert run.returncode == 0, run.stdout[-2000:]

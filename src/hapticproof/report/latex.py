@@ -440,12 +440,16 @@ _LAYOUT = frozenset({"hpfit", "hpline", "hptag", "hpcell", "penalty", "allowbrea
 
 #: the environments whose cells ``&`` separates: anywhere else (``\text{a & b}``, a group, a
 #: line of a display once the layout has dropped its own marks) TeX stops the report
-_ALIGNMENTS = frozenset({"aligned", "split", "align", "align*", "alignedat", "bmatrix", "pmatrix", "matrix", "vmatrix",
-                         "Vmatrix", "Bmatrix", "smallmatrix", "cases", "array"})
+#: with the most cells a row may have (amsmath: 10 matrix columns, 2 in cases and split); array
+#: and alignedat count their columns from an argument, so their ``&`` is shown verbatim
+_ALIGNMENTS = {"aligned": None, "align": None, "align*": None, "split": 2, "cases": 2,
+               **dict.fromkeys(("bmatrix", "pmatrix", "matrix", "vmatrix", "Vmatrix", "Bmatrix", "smallmatrix"), 10)}
+#: the environments whose rows ``\\`` ends
+_ROWS = set(_ALIGNMENTS) | {"gathered", "gather", "gather*", "multline", "multline*", "array", "alignedat"}
 
 
 def _laid_out_safely(out: str) -> bool:
-    return check_tex(out, _KNOWN | _LAYOUT, _ENVIRONMENTS | {"hpdisplay"}, alignments=_ALIGNMENTS) is None
+    return check_tex(out, _KNOWN | _LAYOUT, _ENVIRONMENTS | {"hpdisplay"}, alignments=_ALIGNMENTS, rows=_ROWS) is None
 
 
 def labelled(label: str, body: str) -> str:
