@@ -181,5 +181,10 @@ def test_a_service_that_is_not_dask_is_one_line(capsys):
 
 
 def test_nesting_beyond_what_python_recurses_through_is_one_line(capsys):
+    from hapticproof.core import limits
+
     nested = "(" * 20000 + "K" + ")" * 20000
-    _one_line(capsys, ["--limit", "depth=1000000", "derive", "single-user", "--environment", nested], "nested too deeply")
+    try:
+        _one_line(capsys, ["--limit", "depth=1000000", "derive", "single-user", "--environment", nested], "nested too deeply")
+    finally:
+        limits.set_limits(limits.DEFAULT)              # (--limit holds for the process that ran the command)
