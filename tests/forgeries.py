@@ -120,6 +120,11 @@ def forged_walls(not_passive: dict, passive: dict) -> list[tuple[str, dict, str]
     _sign_condition(r)["evidence"]["witness"]["omega_T"] = "pi/3"
     r["definition"]["witness"]["omega_T"] = "pi/3"
     out.append(("omega_T contradicts c and z", r, "omega_T = pi/3"))
+    # a worst case moved to where Re G^-1 is positive (consistent with the Re G^-1 shown)
+    r = copy.deepcopy(not_passive)
+    for where in (r, _sign_condition(r)):
+        where["minimiser"], where["minimum"] = "1", "3/2000"
+    out.append(("worst case moved", r, "the minimum shown 3/2000"))
     r = copy.deepcopy(not_passive)
     r["witness"]["c"] = "1/2"
     r["definition"]["witness"]["c"] = "1/2"

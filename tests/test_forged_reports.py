@@ -69,7 +69,7 @@ def test_genuine_wall_reports_are_accepted(capsys, tmp_path, walls):
 
 def test_each_forged_wall_report_is_refused(capsys, tmp_path, walls):
     forgeries = forged_walls(*walls)
-    assert len(forgeries) == 13
+    assert len(forgeries) == 14
     for what, report, expected in forgeries:
         status, out, err = _check(capsys, tmp_path, report)
         assert status == 1, (what, out[-800:])

@@ -170,9 +170,31 @@ def derive_binding(report: Mapping[str, Any]) -> list[str]:
                 if not ("transfer" in cert and "numerator" in cert and "denominator" in cert):
                     problems.append(f"{name}: the sign certificate is not tied to Re G^-1 (no transfer function and "
                                     "c-form to compare): its polynomial may be any polynomial")
+            problems += _shown_minimum(report, cond)
     if scalar:
         problems += _shown_inverse(report, transfer)
     return problems
+
+
+def _shown_minimum(report: Mapping[str, Any], cond: Mapping[str, Any]) -> list[str]:
+    """The worst case shown agrees with the sign decision: not negative when ``Re G^-1 >= 0`` is
+    proved, at most the value at the disproof's witness when it is disproved."""
+    out = []
+    try:
+        value = exact_q(((cond.get("evidence") or {}).get("facts") or {}).get("value"))
+    except (TypeError, ValueError, ZeroDivisionError):
+        value = None
+    for where in (report, cond):
+        shown = where.get("minimum")
+        try:
+            low = exact_q(shown)
+        except (TypeError, ValueError, ZeroDivisionError):     # none, or a ball of a long delay's worst case
+            continue
+        if cond.get("decision") == "proved" and low < 0:
+            out.append(f"the minimum shown {shown} is negative, but Re G^-1 >= 0 is proved")
+        if cond.get("decision") == "disproved" and value is not None and low > value:
+            out.append(f"the minimum shown {shown} is above Re G^-1 = {value} at the disproof's witness")
+    return out
 
 
 def _numeric(report: Mapping[str, Any]) -> bool:
