@@ -71,3 +71,24 @@ def test_audit_sections_select_subsections_only(capsys):
     ids = [e["id"] for e in json.loads(out)["equations"]]
     expected = [eq.id for eq in get_paper("classics").ordered() if eq.section == "2004"]
     assert code == 0 and ids == expected and 0 < len(ids) < len(get_paper("classics").ordered())
+
+
+@pytest.mark.parametrize(
+    "argv, message",
+    [
+        (["derive", "single-user", "--format", "htm"], "derive single-user: argument --format: invalid choice"),
+        (["derive", "single-user", "--deadline", "abc"], "invalid float value"),
+        (["derive", "single-user", "--parm", "K=2"], "unrecognized arguments: --parm"),
+        (["derive"], "the following arguments are required"),
+        ([], "the following arguments are required: COMMAND"),
+    ],
+)
+def test_option_mistakes_are_one_line_too(capsys, argv, message):
+    """Mistakes argparse finds are one line and exit 2, like every other mistake (the usage is in --help)."""
+    with pytest.raises(SystemExit) as stop:
+        from hapticproof.cli import main
+
+        main(argv)
+    err = capsys.readouterr().err
+    assert stop.value.code == 2
+    assert err.startswith("hapticproof: error: ") and err.count("\n") == 1 and message in err, err

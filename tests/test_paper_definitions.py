@@ -77,7 +77,9 @@ strength = "sufficient"
 def test_definitions_identities_and_conditions_of_a_wall():
     verdicts = _verdicts(WALL)
     assert verdicts == {"1": "confirmed", "2": "confirmed", "3": "confirmed", "4": "confirmed", "5": "typo",
-                        "6": "confirmed", "7": "conservative", "8": "wrong"}
+                        "6": "confirmed", "7": "typo", "8": "wrong"}
+    # (7) is said "if and only if" but is only sufficient: a nearby display is exact (2b >= KT + 2B)
+    assert "b -> 2b" in _details(WALL)["7"]
 
 
 def test_a_trailing_assumption_is_no_side_of_the_equation():

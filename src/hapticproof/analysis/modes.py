@@ -259,7 +259,7 @@ def mode_conditions(scene: MultiUserScene) -> list[Condition]:
 def _hermitian_from_modes(scene: MultiUserScene, modes: list[ModeDecision], top: sp.Expr) -> Outcome:
     facts = {"modes": [md.to_json() for md in modes], "mode_outcomes": [md.outcome for md in modes],
              "lambda_max": sp.sstr(top), "users": scene.users, "graph": graph_kind(scene)}
-    how = (f"uniform couplings: G^-1 = U diag(g_lambda) U^T over the Laplacian eigenvalues lambda in [0, {sp.sstr(top)}]; "
+    how = (f"uniform couplings: G^-1 = U diag(g_lambda) U^-1 (U orthogonal) over the Laplacian eigenvalues lambda in [0, {sp.sstr(top)}]; "
            "Re g_lambda is affine in lambda, so the modes lambda = 0 and lambda_max decide")
     for md in modes:
         d = md.outcome.decision

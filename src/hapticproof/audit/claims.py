@@ -266,6 +266,8 @@ def _should_repair(state: State, finding: Finding) -> bool:
     if (finding.verdict == Verdict.UNDECIDED and finding.evidence.witness and state.repairable
             and state.spec.claim in ("passivity-condition", "stability-condition")):
         return True          # not necessary at the witness: a nearby display may be exactly right
+    if finding.verdict == Verdict.CONSERVATIVE and state.spec.claim == "condition":
+        return state.spec.strength == "iff"          # "if and only if", but only sufficient: a nearby display may be exact
     return finding.verdict == Verdict.CONSERVATIVE and state.spec.claim in ("passivity-condition", "stability-condition",
                                                                             "hermitian-part")
 
@@ -277,7 +279,8 @@ def _repaired(state: State, finding: Finding) -> bool:
         return True
     if finding.verdict == Verdict.NEEDS_ASSUMPTION:
         return bool(_stated(state))
-    return finding.verdict == Verdict.CONSERVATIVE and state.spec.claim == "sufficient-condition"
+    return finding.verdict == Verdict.CONSERVATIVE and (state.spec.claim == "sufficient-condition" or (
+        state.spec.claim == "condition" and state.spec.strength == "sufficient"))
 
 
 #: At most this many edits are tried (in printed order).

@@ -315,10 +315,12 @@ def _assumption_kwargs(word: str) -> dict[str, bool]:
 _RELATION = re.compile(r"<|>|\\(?:le|ge|leq|geq|leqslant|geqslant|lt|gt|in)(?![A-Za-z])")
 
 
-def _read_symbols(raw: Mapping[str, Any], path: str,
-                  text: str) -> tuple[Any, dict[str, str], Any, dict[str, int | None]]:
+def _read_symbols(raw: Mapping[str, Any], path: str, text: str,
+                  scenes: bool = True) -> tuple[Any, dict[str, str], Any, dict[str, int | None]]:
     """The symbol table of ``[symbols]``, the word of each declared name, the region of the
-    relations it states (``a = "0 <= a < 1"``) and the line of each."""
+    relations it states (``a = "0 <= a < 1"``) and the line of each. The toolkit's own names are
+    refused only where its derivations run (``scenes``): a paper read as its definitions alone
+    gives ``c`` whatever meaning the paper gives it."""
     from hapticproof.audit.reader.names import IndexedFamily, SymbolTable, sympy_name, normalise_name
     from hapticproof.core.symbols import s as S_SYM
     from hapticproof.core.symbols import z as Z_SYM
@@ -346,7 +348,8 @@ def _read_symbols(raw: Mapping[str, Any], path: str,
         if name in ("z", "s"):
             raise PaperFileError(f"{where}: z and s are the transform variables; they need no declaration")
         if _RELATION.search(value):
-            _refuse_toolkit_name(name, "relation", where)
+            if scenes:
+                _refuse_toolkit_name(name, "relation", where)
             relations.append((printed, name, value, line))
             symbols[printed] = sp.Symbol(name, real=True)
             continue
@@ -361,7 +364,8 @@ def _read_symbols(raw: Mapping[str, Any], path: str,
             if len(kinds) != 1:
                 raise PaperFileError(f"{where}: give one word of {', '.join(WORDS)} (and 'symmetric' for a family)")
             word = kinds[0]
-            _refuse_toolkit_name(name, word, where)
+            if scenes:
+                _refuse_toolkit_name(name, word, where)
             if _is_family(printed):
                 if word in ("function", "signal"):
                     raise PaperFileError(f"{where}: an indexed family takes a sign assumption, not {word!r}")
@@ -414,9 +418,10 @@ def _refuse_toolkit_name(name: str, word: str, where: str) -> None:
     """A ``[symbols]`` name that is one of the toolkit's own quantities (``n`` the delay, ``c`` =
     cos(omega T): :data:`hapticproof.core.symbols.TOOLKIT_NAMES`) is refused unless declared with
     that meaning (``n = "integer"``, ``omega = "real"``): it would silently mean both."""
+    from hapticproof.core.expr import KEPT_APART
     from hapticproof.core.symbols import TOOLKIT_NAMES
 
-    if name in TOOLKIT_NAMES and _OWN_MEANING.get(name) != word:
+    if name in TOOLKIT_NAMES and name not in KEPT_APART and _OWN_MEANING.get(name) != word:
         keep = f" (declare it {_OWN_MEANING[name]!r} for that meaning)" if name in _OWN_MEANING else ""
         raise PaperFileError(f"{where}: {name!r} is the toolkit's own name for {TOOLKIT_NAMES[name]}{keep}; "
                              f"give your quantity another name")
@@ -926,7 +931,7 @@ def loads(text: str, path: str = "paper.toml") -> PaperFile:
     raw_symbols = data.get("symbols", {})
     if not isinstance(raw_symbols, Mapping):
         raise PaperFileError(f"{path}: [symbols] must be a table of names")
-    table, words, region, region_lines = _read_symbols(raw_symbols, path, text)
+    table, words, region, region_lines = _read_symbols(raw_symbols, path, text, scenes=bool(data.get("scenes")))
     scenes = _read_scenes(data.get("scenes", {}), path, text, words, region, region_lines)
     claims = _read_equations(data.get("equations", []), path, text, table, scenes, region)
     if not claims:
@@ -1028,8 +1033,29 @@ def file_naming(paper: PaperFile) -> Any:
             extra |= set(dict(scene.params))
         for field_, default, name in scene_roles(scene):
             roles.setdefault(field_, set()).add((default, name))
+    if "period" not in roles:                 # no scene says: the period the displays multiply the frequency by
+        periods = {_period_name(m.group(1)) for spec in paper.claims
+                   for m in _FREQUENCY_TIMES.finditer(spec.printed or "")}
+        periods.discard(None)
+        if len(periods) == 1:
+            roles["period"] = {("T", periods.pop())}
     agreed = tuple((f, *next(iter(v))) for f, v in roles.items() if len(v) == 1)
     return Naming.of_symbols((v for v in table.values() if isinstance(v, sp.Symbol)), agreed, extra)
+
+
+#: ``\omega h`` in ``e^{j\omega h}``, ``\cos\omega h``, ``\cos(\omega T_s)``: the name after the frequency
+_FREQUENCY_TIMES = re.compile(r"\\omega\s*(?:\\,|\\;|\s)*([A-Za-z](?:_\{?[A-Za-z0-9]+\}?)?)")
+
+
+def _period_name(printed: str) -> str | None:
+    """The text name of a period printed after ``\\omega`` (``T_{s}`` -> ``T_s``), ``None`` for a
+    letter that is no name of a period (``j``, a transform variable).
+
+    >>> _period_name("T_{s}"), _period_name("h"), _period_name("j")
+    ('T_s', 'h', None)
+    """
+    name = printed.replace("{", "").replace("}", "")
+    return None if name in ("j", "i", "z", "s", "t") else name
 
 
 def _register(paper: PaperFile) -> FilePaper:

@@ -13,6 +13,7 @@ import argparse
 import importlib
 import sys
 from collections.abc import MutableMapping, Sequence
+from typing import NoReturn
 
 from hapticproof.core.errors import HapticproofError
 
@@ -20,6 +21,18 @@ __all__ = ["main", "build_parser", "take_limits", "help_text", "Terminated"]
 
 #: Subcommand modules, in the order they appear in ``--help``.
 COMMANDS = ("audit", "new-paper", "derive", "check", "export", "boundary", "map", "zwidth", "bench")
+
+
+class OneLineParser(argparse.ArgumentParser):
+    """argparse with a mistake on the command line as one line on standard error and exit code 2
+    (``hapticproof: error: derive single-user: argument --format: invalid choice ...``), as every
+    other mistake is; the usage stays in ``--help``."""
+
+    def error(self, message: str) -> NoReturn:
+        words = self.prog.split()[1:]
+        where = f"{' '.join(words)}: " if words else ""
+        hint = f" (see: {self.prog} --help)"
+        self.exit(2, f"hapticproof: error: {where}{message}{hint}\n")
 
 
 def build_parser(command: str | None = None, system: str | None = None) -> argparse.ArgumentParser:
@@ -34,7 +47,7 @@ def build_parser(command: str | None = None, system: str | None = None) -> argpa
     >>> parser.parse_args(["derive", "single-user", "--delay", "3"]).delay
     '3'
     """
-    parser = argparse.ArgumentParser(
+    parser = OneLineParser(
         prog="hapticproof",
         description="Regenerate, certify and audit stability and passivity conditions of "
         "sampled-data haptic and teleoperation systems.",

@@ -178,8 +178,8 @@ def derive_by_modes(scene: Any, minors: str = "auto") -> dict[str, Any]:
         "reason": verdict.reason,
         "witness": verdict.evidence.witness,
         "skipped": {
-            "G_inverse": (f"the {m} x {m} matrix G^-1(z) = " + w("U diag(g_lambda) U^T is shown by its modes"), "--full"),
-            "hermitian_part": (f"the {m} x {m} matrix " + w("M(c) = U diag(2 Re g_lambda(c)) U^T is shown by its modes"),
+            "G_inverse": (f"the {m} x {m} matrix G^-1(z) = " + w("U diag(g_lambda) U^-1 (U orthogonal) is shown by its modes"), "--full"),
+            "hermitian_part": (f"the {m} x {m} matrix " + w("M(c) = U diag(2 Re g_lambda(c)) U^-1 is shown by its modes"),
                                "--full"),
             "residue_at_1": (w("the residue matrix T Kmat = T (K_0 I + K L) has the eigenvalues T(K_0 + lambda K)"), "--full"),
         },
@@ -197,7 +197,7 @@ def _modes_text(data: dict[str, Any], verbose: bool = False) -> str:
     graph = {"complete": "complete graph", "path": "path", "ring": "ring (circulant)", "star": "star"}.get(data["graph"], "graph")
     lines = [f"system:            {data['users']}-user HVE ({data['approximation']} difference, delay {data['delays'][0]}, "
              f"{graph}, {data['edges_count']} edges), uniform: decided by modes",
-             w("G^-1(z) = U diag(g_lambda(z)) U^T over the Laplacian eigenvalues lambda of the coupling graph, "
+             w("G^-1(z) = U diag(g_lambda(z)) U^-1 (U orthogonal) over the Laplacian eigenvalues lambda of the coupling graph, "
                "g_lambda = single-user wall with K_0 + lambda K, B_0 + lambda B")]
     if data["spectrum"] is not None:
         lines.append("eigenvalues:       " + ", ".join(f"{k} (x{v})" for k, v in data["spectrum"].items()))

@@ -61,6 +61,7 @@ from hapticproof.core.symbols import z as Z_SYM
 __all__ = [
     "ExpressionError",
     "ASSUMPTIONS",
+    "KEPT_APART",
     "DEFAULT_ASSUMPTIONS",
     "parameter_symbol",
     "read_expression",
@@ -161,6 +162,9 @@ def parameter_symbol(name: str, assumption: str | None = None) -> sp.Symbol:
 
 #: The toolkit's own variables of the circle and the axis (:mod:`hapticproof.core.symbols`).
 _CIRCLE_VARIABLES = frozenset({C_SYM, X_SYM, SIN_THETA, COS_N, SIN_N})
+#: The toolkit's own names a parameter may take all the same: its symbol is kept apart from the
+#: variable's (:func:`parameter_symbol`) and the views rename the variable (``c`` -> ``gamma``).
+KEPT_APART = frozenset(v.name for v in _CIRCLE_VARIABLES)
 
 
 _INDEXED = re.compile(r"(b|K_0|B_0|K|B|z_a|m)_?[0-9][0-9_]*")

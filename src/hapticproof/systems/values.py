@@ -228,8 +228,10 @@ def check_substituted_size(params: Mapping[str, Any], where: str = "") -> None:
 
 def refuse_toolkit_names(scene: Any) -> None:
     """No parameter, role or name in an expression of ``scene`` is one of the toolkit's own
-    quantities (``n`` the delay, ``c`` = cos(omega T), ...:
-    :data:`hapticproof.core.symbols.TOOLKIT_NAMES`): such a name would silently mean both.
+    quantities that would silently mean both (``n`` the delay, ``theta``, ``omega`` outside a
+    network: :data:`hapticproof.core.symbols.TOOLKIT_NAMES`). The variables on the circle (``c``
+    = cos(omega T), ``x``, ...: :data:`hapticproof.core.expr.KEPT_APART`) are kept apart from a
+    parameter of the same name, which is then simply a parameter.
 
     >>> from hapticproof.systems.scene import Scene
     >>> Scene("single-user", roles={"device_damping": "n"})
@@ -253,7 +255,10 @@ def refuse_toolkit_names(scene: Any) -> None:
     for value in values:
         if isinstance(value, sp.Basic):
             used |= {sym.name for sym in value.free_symbols}
-    clash = sorted(used & set(TOOLKIT_NAMES))
+    from hapticproof.core.expr import KEPT_APART
+
+    refused = set(TOOLKIT_NAMES) - KEPT_APART - ({"omega"} if scene.system == "network" else set())
+    clash = sorted(used & refused)
     if clash:
         name = clash[0]
         raise SceneError(f"{name!r} is the toolkit's own name for {TOOLKIT_NAMES[name]}; give your parameter "

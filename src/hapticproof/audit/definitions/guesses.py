@@ -85,6 +85,10 @@ def read_claims(source: Any) -> ReadClaims:
                     inline.append(ReadClaim(d, r.id, r.text, "identity", f"{r.note}, inline in the prose before ({d.id})",
                                             reading=r))
                     continue
+                if r.kind == IDENTITY:
+                    inline.append(ReadClaim(d, r.id, r.text, "identity", f"an inline identity in the prose before ({d.id})",
+                                            reading=r, assumption=", ".join(r.claim.assumptions) if r.claim else ""))
+                    continue
                 inline.append(ReadClaim(d, r.id, r.text, "definition", "an inline definition in the prose before "
                                         f"({d.id})", reading=r))
         after = displays[k + 1].prose if k + 1 < len(displays) else ""

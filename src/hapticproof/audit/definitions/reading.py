@@ -41,6 +41,8 @@ from hapticproof.core.symbols import z as Z_SYM
 __all__ = ["PaperReading", "Reading", "definition_target", "DEFINITION", "IDENTITY", "CONDITION", "OTHER", "MALFORMED"]
 
 DEFINITION, IDENTITY, CONDITION, OTHER, MALFORMED = "definition", "identity", "condition", "other", "malformed"
+#: an inline formula about the real or imaginary part of an object (``$\operatorname{Re} Z_c(e^{j\omega T}) = ...$``)
+_INLINE_PART = re.compile(r"\s*(?:\\operatorname\{(?:Re|Im)\}|\\(?:Re|Im|Real|Imag)\b|\\mathrm\{(?:Re|Im)\}|\\mathfrak\{[RI]\})")
 #: a display that introduces a new name as the result of a derivation ("eliminating ... gives")
 DERIVED = "derived"
 #: an equation among signals (a model: ``Z_m v_m = f_h - k_f f_e``)
@@ -262,22 +264,51 @@ class PaperReading:
         return Environment(dict(self.bindings), angles=frozenset(_ANGLES))
 
     def read_inline(self, id: str, prose: str) -> list[Reading]:
-        """The inline ``$...$`` definitions of a prose passage (``$Z_m(s) = m_m s + b_m$``)."""
+        """The inline ``$...$`` definitions of a prose passage (``$Z_m(s) = m_m s + b_m$``), and
+        its identities on a real or imaginary part of a defined object
+        (``$\\operatorname{Re} Z_c(e^{j\\omega T}) = B_c - K_c T/2$``)."""
         out = []
         for k, math in enumerate(inline_math(prose)):
             if "=" not in math or re.search(r"\\[lg]eq?\b|[<>]", math):
                 continue
+            if _INLINE_PART.match(math):
+                before = last_sentence(prose[:prose.find(f"${math}$")])
+                reading = self._inline_identity(f"{id}.inline{len(out) + 1}", math, before)
+                if reading is not None:
+                    out.append(reading)
+                continue
             if not re.match(r"\s*\\?[A-Za-z][^=]*\([zs]\)\s*=|\s*(?:\\mathbf\{?[A-Za-z]\}?|[A-Za-z])(?:_\{?[A-Za-z0-9]+\}?)?(?:\^\{-1\})?\s*=", math):
                 continue
+            known, functions = dict(self.symbols), set(self.functions)
             try:
                 reading = self.read(f"{id}.inline{len(out) + 1}", math, definitions_only=True)
             except HapticproofError:
                 continue
             if reading.kind in (DEFINITION, MODEL):
                 out.append(reading)           # a definition, or a port variable / termination among signals
-            elif reading in self.readings:
+                continue
+            if reading in self.readings:
                 self.readings.remove(reading)
+            self.symbols, self.functions = known, functions      # nothing of it is kept ("writing $Z_c = R + jX$")
         return out
+
+    def _inline_identity(self, id: str, math: str, sentence: str) -> Reading | None:
+        """An inline identity: one relation ``=`` between names the paper has already introduced,
+        under the settings of its sentence ("with ($B_p = 0$), $\\operatorname{Re} z_{11} = b_m$").
+        A formula with new names ("writing $Z_c = R + jX$ one finds $\\operatorname{Re}(Z_c^2) =
+        R^2 - X^2$") or a chain is prose, not a claim: nothing of it is kept."""
+        known, functions = dict(self.symbols), set(self.functions)
+        try:
+            reading = self.read(id, math, prose=sentence, definitions_only=True, mode="identity")
+        except HapticproofError:
+            reading = None
+        if reading is None or reading.kind != IDENTITY or len(reading.main) != 1 or reading.main[0].ops != ("=",) \
+                or set(self.symbols) - set(known):
+            if reading is not None and reading in self.readings:
+                self.readings.remove(reading)
+            self.symbols, self.functions = known, functions
+            return None
+        return reading
 
     def read(self, id: str, text: str, *, prose: str = "", after: str = "", definitions_only: bool = False,
              mode: str = "auto", derived: bool = False, stated: str = "") -> Reading:

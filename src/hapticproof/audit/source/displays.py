@@ -157,6 +157,8 @@ class Source:
     files: list[str]
     macros: dict[str, int] = field(default_factory=dict)
     warnings: list[str] = field(default_factory=list)
+    #: the document's ``\title`` as text ("" when it has none)
+    title: str = ""
 
 
 # ---------------------------------------------------------------------------------------------
@@ -330,6 +332,7 @@ class Reader:
 
     def __init__(self, files: Files, mode: str):
         self.files, self.mode = files, mode
+        self.title = ""                        # the document's \title, as text
         self.warnings: list[str] = []
         self.displays: list[Display] = []
         self.sections: list[Section] = []
@@ -553,6 +556,13 @@ class LatexReader(Reader):
                 return serialize(out)
             out.append(t)
 
+    def read_title(self, stream: _Peek) -> None:
+        """The document's ``\\title{...}`` as text (its footnotes and line breaks left out)."""
+        title = self.group_text(stream)
+        title = re.sub(r"\\thanks\{(?:[^{}]|\{[^{}]*\})*\}|\\\\", " ", title or "")
+        title = re.sub(r"\\(?:emph|text(?:bf|it|rm|sf|sc)?|mathrm|mathbf)\{([^{}]*)\}", r"\1", title)
+        self.title = " ".join(title.split())[:200]
+
     def heading(self, tok, stream: _Peek) -> None:
         starred = False
         nxt = stream.next()
@@ -658,6 +668,9 @@ class LatexReader(Reader):
                 continue
             if kind == CS and text in ("\\numberwithin", "\\setcounter"):
                 self.counter_command(text, stream)
+                continue
+            if kind == CS and text == "\\title" and not self.title:     # in the preamble or the body
+                self.read_title(stream)
                 continue
             if not in_body:
                 continue

@@ -211,7 +211,14 @@ def _designs(source: Source) -> dict[str, tuple[str, str]]:
         roles = _guessed_roles(source, {s.name for s in expr_symbols(out["H"][0])})
         if roles:
             out["roles"] = (roles, out["H"][1])
+    elif not any(_VIRTUAL_DAMPING.search(d.text) for d in source.displays):
+        out["spring"] = ("K", "")               # no display names a virtual damping B: the wall is a spring
     return out
+
+
+#: the virtual damping ``B`` of a wall, as a display writes it (not ``B_c``, not ``\mathbf{B}``)
+_VIRTUAL_DAMPING = re.compile(r"(?<![A-Za-z\\])B(?![A-Za-z_])")
+_BOLD = re.compile(r"\\(?:mathbf|boldsymbol|bm|mathcal|mathsf)\s*\{[^{}]*\}")
 
 
 def expr_symbols(text: str) -> set:
@@ -247,6 +254,10 @@ def _scene_lines(name: str, designs: dict[str, tuple[str, str]] | None = None) -
         if "roles" in designs:
             lines.append(f"{'roles = ' + designs['roles'][0]:36s} # guessed: the paper's period and device damping")
         return lines
+    if name in ("wall", "delayed") and "spring" in designs:
+        return [line if not line.startswith("environment") else
+                f"{'environment = ' + _toml_string('K'):36s} # guessed: a virtual spring (no display names a damping B)"
+                for line in SCENES[name]]
     if name == "teleoperator" and "C" in designs:
         text, ident = designs["C"]
         return [SCENES[name][0], f"{'controller = ' + _toml_string(text):36s} # guessed: C(z) of display ({ident})"]
@@ -408,7 +419,7 @@ def _entries(source: Source, designs: dict[str, tuple[str, str]]) -> list[Entry]
             seen[ident] = 1
         for c in inline_before.pop(display.id, []) if seen[display.id] == 1 else []:
             out.append(Entry(display, c.id, c.claim, c.why, symbols=_names_of(c.reading, claims.words),
-                             guessed=c.claim, printed=c.printed))
+                             guessed=c.claim, printed=c.printed, assumption=c.assumption))
         rc = read.get(display.id)
         guess = _scene_guess(display, ident, context, designs, cache)
         if rc is not None and seen[display.id] == 1 and rc.claim is not None:
@@ -546,7 +557,7 @@ def draft(source: Source, *, paper_id: str | None = None, title: str | None = No
     paper_id = paper_id or paper_id_of(str(source.path))
     if not re.fullmatch(r"[A-Za-z0-9][A-Za-z0-9_.-]*", paper_id):
         raise PaperFileError(f"paper id {paper_id!r}: letters, digits, '-', '_' and '.' only")
-    title = title or (source.sections[0].title if source.sections and not source.sections[0].number else "") \
+    title = title or source.title or (source.sections[0].title if source.sections and not source.sections[0].number else "") \
         or f"Displays of {Path(str(source.path)).name}"
     designs = _designs(source)
     entries = _entries(source, designs)

@@ -135,4 +135,5 @@ def _read(files: Files, main: int, mode: str, path: str) -> Source:
     reader.warnings = warnings
     reader.read(main)
     return Source(path, mode, reader.displays, reader.sections, list(files.names),
-                  {name: macro.params for name, macro in expander.macros.items()}, warnings)
+                  {name: macro.params for name, macro in expander.macros.items()}, warnings,
+                  title=getattr(reader, "title", ""))
