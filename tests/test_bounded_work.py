@@ -80,11 +80,14 @@ def _calls(argv) -> int:
     return count[0]
 
 
-def test_new_paper_is_linear_in_the_number_of_displays(tmp_path, capsys):
+@pytest.mark.parametrize("display", ["b > {k}", "b_{{{k}}} > \\frac{{KT}}{{2}} + B"])
+def test_new_paper_is_linear_in_the_number_of_displays(tmp_path, capsys, display):
+    """Also with a new name in every display (each display's symbol table holds them all: each
+    name is read once)."""
     counts = []
     for n in (40, 160):
         source = tmp_path / f"many{n}.md"
-        source.write_text("\n".join(f"$$b > {k}$$" for k in range(n)) + "\n", encoding="utf-8")
+        source.write_text("\n".join(f"$${display.format(k=k)}$$" for k in range(n)) + "\n", encoding="utf-8")
         counts.append(_calls(["new-paper", tmp_path / f"many{n}.toml", "--from", source]))
         capsys.readouterr()
     assert counts[1] < 5 * counts[0], counts          # 4 times the displays: about 4 times the work (16 if quadratic)
@@ -93,6 +96,8 @@ def test_new_paper_is_linear_in_the_number_of_displays(tmp_path, capsys):
 @pytest.mark.parametrize("source, name", [
     ("Title\n\n$$b >" + " " * 40000 + "1$$\n\n$$b > 1" + " " * 40000 + "(3)$$\n", "s.md"),
     ("\\begin{equation} b >" + " " * 40000 + "1 \\label{" + " " * 40000 + "} \\end{equation}\n", "s.tex"),
+    ("\\begin{equation} b >" + " " * 40000 + "KT \\end{equation}\n", "k.tex"),
+    ("\\begin{equation} b_i >" + " " * 40000 + "K_i T, \\quad i \\in \\{1, 2\\} \\end{equation}\n", "i.tex"),
     ("We have $$b > 1 \\quad" + " " * 40000 + "x$$ where $a$," + " " * 40000 + "and" + " " * 40000 + "x\n", "s.txt"),
 ])
 def test_long_runs_of_spaces_do_not_make_new_paper_backtrack(tmp_path, capsys, source, name):

@@ -59,7 +59,7 @@ _DERIVATION = re.compile(r"\b(?:gives?|giving|yields?|we\s+obtain|one\s+obtains|
 
 #: a real part, imaginary part, modulus or conjugate in a display's text
 _COMPLEX_CONTEXT = re.compile(r"\\(?:Re|Im|Real|Imag|lvert|overline)\b|(?:operatorname|mathrm|text|mathfrak)\{(?:Re|Im)\}|\|")
-_INDEX_SET = re.compile(r",?\s*(?:\\q?quad|\\[,;: ]|~)*\s*\\?(\\[A-Za-z]+|[A-Za-z])\s*\\in\s*\\\{([^{}]{1,80})\\\}\s*[.,;]?\s*$")
+_INDEX_SET = re.compile(r",?(?:\s|\\q?quad|\\[,;: ]|~)*\\?(\\[A-Za-z]+|[A-Za-z])\s*\\in\s*\\\{([^{}]{1,80})\\\}\s*[.,;]?\s*$")
 _ANGLES = ("theta", "vartheta")
 #: words before an inline inequality that make it a result, not an assumption
 _CLAIMED = re.compile(r"reduces?\s+to|becomes?|gives?|yields?|if\s+and\s+only\s+if|\biff\b|condition|requires?|necessary|"
@@ -762,7 +762,10 @@ def _applied(following: str) -> bool:
 
 
 def _index_set(text: str) -> tuple[str, tuple[str, list[str]] | None]:
-    m = _INDEX_SET.search(text)
+    if "\\in" not in text:
+        return text, None                     # (the search is quadratic in a run of spaces: only where it can match)
+    m = _INDEX_SET.search(re.sub(r"\s+", " ", text))
+    text = re.sub(r"\s+", " ", text) if m else text
     if not m:
         return text, None
     members = [x.strip() for x in m.group(2).split(",") if x.strip()]

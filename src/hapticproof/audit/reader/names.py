@@ -4,6 +4,7 @@ and definitions. The reader is driven by the table: an unknown name is an error,
 
 from __future__ import annotations
 
+import functools
 import re
 from collections.abc import Callable, Iterable, Iterator, Mapping
 from dataclasses import dataclass, field, replace
@@ -68,8 +69,16 @@ def name_parts(printed: str) -> NameParts:
     """Parse a table key such as ``K_01``, ``\\mathbf Z_{11}`` or ``G^{-1}`` into parts.
 
     Keys are read leniently: an unbraced script extends to the next script (``K_01`` is
-    ``K_{01}``), which is what a person typing a table means.
+    ``K_{01}``), which is what a person typing a table means. Each key is parsed once per digit
+    limit (every symbol table of a long paper holds its names again).
     """
+    from hapticproof.core.limits import current
+
+    return _parts(printed, current().digits)
+
+
+@functools.lru_cache(maxsize=65536)
+def _parts(printed: str, digits: int) -> NameParts:
     toks = tokenize(printed)
     if not toks:
         raise LatexParseError("empty name", printed, 0)
@@ -156,6 +165,7 @@ def normalise_name(printed: str) -> str:
     return name_parts(printed).canonical
 
 
+@functools.lru_cache(maxsize=65536)
 def sympy_name(canonical: str) -> str:
     """Conventional SymPy name for a canonical printed name (``K_{01}`` -> ``K_01``)."""
     if any(d in canonical for d in DECORATIONS) or "\\mathrm" in canonical:
