@@ -292,13 +292,19 @@ class Naming:
                 if HELPERS[key].symbol is not None and name != HELPERS[key].default}
 
     def renamed(self, expr: Any) -> Any:
-        """``expr`` with the helpers' symbols under their printed names (for text and JSON)."""
+        """``expr`` with the helpers' symbols under their printed names (for text and JSON), and
+        the minimum over them named after them (``min_c(...)`` -> ``min_gamma(...)``)."""
         subs = self.display_symbols()
         if not subs:
             return expr
         if isinstance(expr, (list, tuple)):
             return type(expr)(self.renamed(e) for e in expr)
-        return expr.xreplace(subs) if hasattr(expr, "xreplace") else expr
+        if not hasattr(expr, "xreplace"):
+            return expr
+        cos = self.helper("cos")
+        extrema = {f: sp.Function(f.func.__name__[:4] + cos)(*f.args) for f in expr.atoms(sp.Function)
+                   if getattr(f.func, "__name__", "") in ("min_c", "sup_c") and cos != "c"}
+        return expr.xreplace(extrema).xreplace(subs) if extrema else expr.xreplace(subs)
 
     def text(self, expr: Any) -> str:
         """``sstr(expr)`` in this naming (``gamma`` for ``c`` when ``c`` is taken)."""
@@ -325,6 +331,8 @@ class Naming:
                 out[word] = self.helper(key)
         if self.helper("eigenvalue") != "lambda":
             out["g_lambda"] = f"g_{self.helper('eigenvalue')}"
+        if self.helper("matrix") != "M":             # M(c) = M0 + c M1: its two coefficient matrices
+            out["M0"], out["M1"] = f"{self.helper('matrix')}0", f"{self.helper('matrix')}1"
             out["lambda_max"] = f"{self.helper('eigenvalue')}_max"
         if self.w != "w":
             out["w"] = self.w
