@@ -105,13 +105,17 @@ def run(args: argparse.Namespace) -> int:
     master, slave = names.role("master_damping", "b_m"), names.role("slave_damping", "b_s")
     if args.format == "latex":
         items = [("controller", r"C(z) = " + names.latex(scene.C)),
-                 (f"master damping bound ({cos} = {names.cos_text})", f"{default_name(master)} > "
-                  + names.latex(bd.master, cos=True)),
-                 ("slave damping bound", f"{default_name(slave)} > " + names.latex(bd.slave, cos=True))]
+                 ("error-coordinate damping", f"{names.helper_latex('coupling')} = "
+                  + names.latex(error_coordinate_damping(scene)))]
+        exact = conds[-1].outcome.evidence.facts.get("condition")      # (P5): passive iff, with (D), (P1)-(P4)
+        if isinstance(exact, sp.Basic) and exact not in (sp.true, sp.false):
+            items.append(("exact condition (P5), with (D) and (P1)-(P4): passive iff", names.latex(exact)))
+        items += [(f"the paper's (32), sufficient only: master damping bound ({cos} = {names.cos_text})",
+                   f"{default_name(master)} > " + names.latex(bd.master, cos=True)),
+                  ("the paper's (32), sufficient only: slave damping bound", f"{default_name(slave)} > "
+                   + names.latex(bd.slave, cos=True))]
         if wc.condition is not None:
-            items.append(("worst case over frequency", names.latex(wc.condition)))
-        items.append(("error-coordinate damping", f"{names.helper_latex('coupling')} = "
-                      + names.latex(error_coordinate_damping(scene))))
+            items.append(("the paper's (32) over frequency (sufficient only)", names.latex(wc.condition)))
         items += answers
         if args.fragment:
             write_output(args.output, tex.derivation_fragment(items))
