@@ -78,7 +78,7 @@ ERRORS = [
     (_edit('section = "2"', 'section = "2"\norder = "leading"'), 'order = "leading"',
      ["equation 1", "field 'order'", "stability-condition"]),
     (_edit('claim = "inverse-transfer"          # the display is G^-1(z) of the scene',
-           'claim = "inverse-transfer"\nassumption = "B = 0"'), 'assumption = "B = 0"', ["field 'assumption'", "condition claims"]),
+           'claim = "inverse-transfer"\nassumption = "B = 0"'), 'assumption = "B = 0"', ["field 'assumption'", "condition and identity claims"]),
     (_edit('scene = "wall"', ''), None, ["equation 1", "missing field 'scene'"]),
     (_edit('z = "signal"', 'z = "signal"') if 'z = "signal"' in TEMPLATE else _edit('V_h = "signal"', 'z = "real"'), 'z = "real"',
      ["z and s are the transform variables"]),
