@@ -153,6 +153,8 @@ class ExactCondition:
     parts: tuple[Part, ...] = field(default_factory=tuple)
     #: the boundary variable of the parts' forms (``c`` or ``x``)
     t: Any = None
+    #: decisions already made, by the point's values on the matrix's parameters
+    decided: dict = field(default_factory=dict, compare=False, repr=False)
 
     def decide(self, G: TransferMatrix) -> Outcome:
         return positive_real(G) if self.property == POSITIVE_REAL else absolutely_stable(G)
@@ -168,6 +170,12 @@ class ExactCondition:
         if missing:
             return Outcome(Decision.UNDECIDED, Evidence(Method.INSTANCES), f"no value for {', '.join(sorted(missing))}")
         mine = {k: v for k, v in values.items() if k in self.matrix.parameters}
+        key = tuple(sorted(mine.items()))
+        if key not in self.decided:
+            self.decided[key] = self._verify(mine)
+        return self.decided[key]
+
+    def _verify(self, mine: Mapping[str, sp.Rational]) -> Outcome:
         lo, hi, var = _interval(self.matrix.domain)
         for part in self.parts:
             if part.exact is None:

@@ -267,7 +267,9 @@ def _should_repair(state: State, finding: Finding) -> bool:
             and state.spec.claim in ("passivity-condition", "stability-condition")):
         return True          # not necessary at the witness: a nearby display may be exactly right
     if finding.verdict == Verdict.CONSERVATIVE and state.spec.claim == "condition":
-        return state.spec.strength == "iff"          # "if and only if", but only sufficient: a nearby display may be exact
+        # "if and only if", but only sufficient: a nearby display may be exact (not through the
+        # sign cases of |...|: every trial would decide each case again)
+        return state.spec.strength == "iff" and "|" not in state.printed and "\\lvert" not in state.printed
     return finding.verdict == Verdict.CONSERVATIVE and state.spec.claim in ("passivity-condition", "stability-condition",
                                                                             "hermitian-part")
 

@@ -39,6 +39,7 @@ True
 
 from __future__ import annotations
 
+import contextlib
 import itertools
 import math
 from collections.abc import Iterable, Iterator, Mapping
@@ -482,7 +483,9 @@ def _positive_real(obj: Mapping[str, Any]) -> str:
     except _NotJudged:
         if decision != "disproved" or witness is None or len(entries) > MAX_JUDGED_SIZE:
             raise
-        return _at_witness(entries, witness, domain, [])     # one exact value decides a disproof, whatever the degree
+        if len(entries) == 1:                                 # one certified value decides a disproof, whatever the degree
+            return _scalar_at_witness(entries[0][0], witness, domain)
+        return _at_witness(entries, witness, domain, [])
     structural = _pole_violations(entries, domain)
     den = json_poly(entries[0][0]["den"]) if len(entries) == 1 else flint.fmpq_poly([1])
     if len(entries) > 1:
@@ -508,6 +511,39 @@ def _positive_real(obj: Mapping[str, Any]) -> str:
     if bad is not None:
         return f"definition fails at {_show(bad[1])} ({bad[0]})"
     raise CheckFailed("no violation of the definition found (no pole outside, proper, Hermitian part PSD at every point tried)")
+
+
+@contextlib.contextmanager
+def _precision(bits: int) -> Iterator[None]:
+    old = flint.ctx.prec
+    flint.ctx.prec = bits
+    try:
+        yield
+    finally:
+        flint.ctx.prec = old
+
+
+def _scalar_at_witness(entry: Mapping[str, Any], witness: Gaussian, domain: str) -> str:
+    """A scalar disproof of high degree at its witness: ``Re G`` in ball arithmetic (exact
+    rational coefficients, the witness as exact balls, precision raised until the sign is certain;
+    exact Gaussian rationals would grow to ``degree`` times the witness's digits)."""
+    inside = witness.re * witness.re + witness.im * witness.im < 1 if domain == "disk" else witness.re < 0
+    if inside:
+        raise CheckFailed(f"the witness {_show(witness)} lies inside the {'unit disk' if domain == 'disk' else 'left half plane'}")
+    num, den = json_poly(entry["num"]), json_poly(entry["den"])
+    for prec in (128, 512, 2048):
+        with _precision(prec):
+            point = flint.acb(flint.arb(flint.fmpq(witness.re.numerator, witness.re.denominator)),
+                              flint.arb(flint.fmpq(witness.im.numerator, witness.im.denominator)))
+            d = flint.acb_poly(den)(point)
+            if d.contains(0):
+                continue
+            value = (flint.acb_poly(num)(point) / d).real
+            if value < 0:
+                return f"definition fails at the witness {_show(witness)}: Re G = {value.str(5)} < 0 (ball arithmetic)"
+            if value >= 0:
+                raise CheckFailed(f"the witness {_show(witness)} is no counterexample: Re G = {value.str(5)} >= 0 there")
+    raise _NotJudged(f"the sign of Re G at the witness {_show(witness)} is not certain at 2048 bits")
 
 
 def _at_witness(entries: list[list[dict]], witness: Gaussian, domain: str, structural: list[str]) -> str:

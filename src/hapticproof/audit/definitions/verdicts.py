@@ -18,6 +18,8 @@ A display that uses names no definition gives, or a construct outside the exact 
 
 from __future__ import annotations
 
+import functools
+
 from collections.abc import Mapping
 from fractions import Fraction
 from types import SimpleNamespace
@@ -703,7 +705,7 @@ def condition_finding(reading: Reading, paper: PaperReading, *, about: str | Non
     table = _symbol_map({s.name for s in printed.free_symbols} | set(matrix.parameters), signs)
     printed = _retyped(printed, table)
     relations = [_retyped(r, table) for r in relations if {s.name for s in r.free_symbols} <= set(table)]
-    exact = exact_condition(matrix, prop, table)
+    exact = _exact_condition(matrix, prop, tuple(sorted(table.items())))
     facts = {"object": _shown(name), "object_from": how, "property": prop, "strength": strength, "exact_method": exact.method}
     f = _compared(printed, exact, strength, what, relations, facts)
     if f.verdict != Verdict.WRONG:
@@ -747,6 +749,15 @@ def general_entries(reading: Reading, paper: PaperReading, printed: Any) -> tupl
         return None
     used = {entry[0] for entry in found}
     return (expanded, used.pop()) if len(used) == 1 else None
+
+
+@functools.lru_cache(maxsize=64)
+def _exact_condition(matrix: Any, prop: str, table: tuple) -> Any:
+    """:func:`~hapticproof.analysis.immittance.exact_condition`, once per object, property and
+    names (a repair search tries up to 80 edits of one display about the same object)."""
+    from hapticproof.analysis.immittance import exact_condition
+
+    return exact_condition(matrix, prop, dict(table))
 
 
 def _general_two_port(reading: Reading, paper: PaperReading, printed: Any, prop: str, strength: str) -> Finding | None:
