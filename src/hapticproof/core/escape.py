@@ -97,12 +97,13 @@ def for_markdown_code(text: object) -> str:
 
 
 def for_html(text: object, quote: bool = True) -> str:
-    """``text`` as HTML text or an attribute value (``&``, ``<``, ``>`` and quotes as references).
+    r"""``text`` as HTML text or an attribute value (``&``, ``<``, ``>`` and quotes as references;
+    control and bidirectional characters as visible escapes, as in terminal text).
 
-    >>> for_html('<a href="x">')
-    '&lt;a href=&quot;x&quot;&gt;'
+    >>> for_html('<a href="x">'), for_html("a\x1b]0;t\x07\u202eb")
+    ('&lt;a href=&quot;x&quot;&gt;', 'a\\x1b]0;t\\x07\\u202eb')
     """
-    return html.escape(str(text), quote=quote)
+    return html.escape(for_terminal(text, multiline=True), quote=quote)
 
 
 def for_latex(text: object, breakable: bool = True) -> str:
