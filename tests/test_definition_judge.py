@@ -336,7 +336,13 @@ def test_check_refuses_an_audit_entry_whose_printed_display_was_changed(capsys, 
     entries = data["papers"][0]["equations"] if "papers" in data else data["equations"]
     judged = [e for e in entries if isinstance(e.get("evidence", {}).get("facts", {}).get("judge"), dict)]
     assert judged and all(e["evidence"]["facts"]["judge"]["printed"] == e["printed"] for e in judged)
-    assert main(["check", str(tmp_path / "a.json")]) == 0
+    assert main(["check", str(tmp_path / "a.json")]) == 1          # the template's other entries carry no evidence
+    assert "NOT BACKED" in capsys.readouterr().out
+    if "papers" in data:
+        data["papers"][0]["equations"] = judged
+    else:
+        data["equations"] = judged
+    assert main(["check", _save(tmp_path, "judged.json", data)]) == 0      # the judged entries alone: accepted
     capsys.readouterr()
     judged[0]["printed"] = r"d > \frac{\kappa T_s}{2} - \beta"
     assert main(["check", _save(tmp_path, "t.json", data)]) == 1

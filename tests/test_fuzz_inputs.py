@@ -12,6 +12,13 @@ folder (``-recorder``); Python must open no file outside the temporary folder an
 code (an audit hook records every ``open``, directory listing and process start), and each
 example must stay within a time and a memory bound.
 
+Issue 30 adds the surfaces of a hostile author: outputs named by planted links, FIFOs and
+directories (nothing is written through them, nothing is left beside them), the Markdown report
+(no raw HTML outside code spans), forged saved reports (genuine certificates bound to another
+object, edited decisions, witnesses and kinds: never accepted), parameters defined from each
+other (bounded after substitution), crafted boundary reports (sizes that would abort FLINT) and
+sources with long runs of spaces (no back-tracking).
+
 The limits in force are tightened for the run (:func:`hapticproof.core.limits.raised`), so
 that each example is bounded by what the limits allow. Knobs (environment):
 
@@ -41,8 +48,10 @@ from html.parser import HTMLParser
 from pathlib import Path
 
 import pytest
-from hypothesis import HealthCheck, Phase, event, given, settings
+from hypothesis import HealthCheck, Phase, event, example, given, settings
 from hypothesis import strategies as st
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from hapticproof.cli import main
 from hapticproof.core import limits
@@ -174,8 +183,22 @@ def _fuzzy_scene() -> st.SearchStrategy[dict]:
     })
 
 
+@st.composite
+def _chained_scene(draw) -> dict:
+    """Parameters defined from each other (``K_i = K_{i-1}^e``): each line within the limits,
+    the values they reach after substitution far beyond them."""
+    count = draw(st.integers(1, 40))
+    exponent = draw(st.sampled_from(["2", "3", "10", "-2", "1/2"]))
+    base = draw(st.sampled_from([2, 3, 10, "positive", "0.5", "K"]))
+    params = {"K_0": base, "B": "0.001", "T": "0.001", "b": "1"}
+    for i in range(1, count + 1):
+        params[f"K_{i}"] = draw(st.sampled_from([f"K_{i - 1}**{exponent}", f"K_{i - 1}*K_{i - 1}", f"K_{i - 1} + K_{i - 1}",
+                                                 f"(K_{i - 1} + 1)**{exponent}"]))
+    return {"system": "single-user", "environment": f"K_{count} + B*(z - 1)/(T*z)", "params": params}
+
+
 def _scene() -> st.SearchStrategy[dict]:
-    return st.one_of(_valid_scene(), _valid_scene(), _fuzzy_scene())
+    return st.one_of(_valid_scene(), _valid_scene(), _fuzzy_scene(), _chained_scene())
 
 
 # ---------------------------------------------------------------------------------------------
@@ -329,6 +352,12 @@ def _code_folders() -> tuple[str, ...]:
     folders = {sys.prefix, sys.base_prefix, sys.exec_prefix, *sysconfig.get_paths().values()}
     folders |= {p for p in sys.path if p and os.path.isdir(p)}
     folders.add(str(Path(__file__).resolve().parents[1]))        # the checkout (source, derivations)
+    try:                                                          # matplotlib's font cache (figures)
+        import matplotlib
+
+        folders |= {matplotlib.get_cachedir(), matplotlib.get_configdir()}
+    except ImportError:
+        pass
     return tuple(sorted({os.path.realpath(f) for f in folders if f}))
 
 
@@ -452,6 +481,32 @@ def assert_inert_latex(source: str) -> None:
     assert used & ALWAYS_REFUSED <= own, sorted(used & ALWAYS_REFUSED - own)
 
 
+def outside_code_spans(markdown: str) -> str:
+    """The Markdown text with its inline code spans removed (CommonMark: a run of n backticks
+    opens a span that the next run of exactly n backticks closes)."""
+    out, k = [], 0
+    while k < len(markdown):
+        if markdown[k] == "`":
+            run = re.match(r"`+", markdown[k:]).group()
+            end = re.compile(r"(?<!`)" + run + r"(?!`)").search(markdown, k + len(run))
+            if end is not None:
+                k = end.end()
+                continue
+            out.append(run)
+            k += len(run)
+            continue
+        out.append(markdown[k])
+        k += 1
+    return "".join(out)
+
+
+def assert_inert_markdown(text: str) -> None:
+    """No raw HTML and no autolink (both start with a literal ``<`` outside code spans), no
+    control character (a terminal shows Markdown too)."""
+    assert "<" not in outside_code_spans(text), outside_code_spans(text)[:300]
+    assert not [ch for ch in text if ch != "\n" and (ord(ch) < 32 or 127 <= ord(ch) < 160)]
+
+
 def compile_latex(example: Path, source: str) -> None:
     """pdflatex with TeX Live's defaults (no restriction) on ``source`` in a folder of the example:
     it reads and writes inside that folder and the TeX installation only, as its ``-recorder``
@@ -525,18 +580,24 @@ def test_fuzz_paper_files(text, capsys, bounded):
         work.mkdir()
         path = work / "p.toml"
         path.write_text(text, encoding="utf-8")
-        for fmt in ("html", "tex"):
+        for fmt in ("html", "tex", "markdown"):
             status, _ = run_cli(capsys, ["audit", "--paper", path, "--jobs", "1", "--format", fmt, "-o", work / f"r.{fmt}"])
             if status == 2:
                 assert not (work / f"r.{fmt}").exists()
                 return
         assert_inert_html((work / "r.html").read_text(encoding="utf-8"))
+        assert_inert_markdown((work / "r.markdown").read_text(encoding="utf-8"))
         source = (work / "r.tex").read_text(encoding="utf-8")
         assert_inert_latex(source)
         compile_latex(folder, source)
 
 
+CHAIN = {"system": "single-user", "environment": "K_8 + B*(z - 1)/(T*z)",        # 10^(10^8): 4.4 GB, then a traceback
+         "params": {"K_0": 10, "B": "0.001", "T": "0.001", "b": "1", **{f"K_{i}": f"K_{i - 1}**10" for i in range(1, 9)}}}
+
+
 @FUZZ
+@example(fields=CHAIN, extra=[])
 @given(fields=_scene(), extra=st.lists(st.sampled_from([["--delay-margin"], ["--range", "K"], ["--format", "json"],
                                                          ["--format", "latex"], ["--param", "K=1e999999999"],
                                                          ["--param", "T=0.001"], ["--users", "3"]]), max_size=3)
@@ -591,6 +652,195 @@ def test_fuzz_printed_displays_in_reports(displays, bounded):
         compile_latex(folder, source)
 
 
+# ---------------------------------------------------------------------------------------------
+# issue 30: outputs, forged reports, crafted boundaries, long runs of spaces
+# ---------------------------------------------------------------------------------------------
+OUTPUT_COMMANDS = [
+    (["derive", "single-user", "--param", "K=2", "--param", "T=0.001", "--param", "b=1", "-o"], ".txt"),
+    (["derive", "single-user", "--param", "K=2", "--param", "T=0.001", "--param", "b=1", "--format", "json", "-o"], ".json"),
+    (["new-paper", "--force"], ".toml"),
+    (["map", "passivity", "--x", "b=0.001,0.002", "--y", "K=3", "--param", "T=0.001", "--param", "B=0", "-o"], ".csv"),
+    (["map", "passivity", "--x", "b=0.001,0.002", "--y", "K=3", "--param", "T=0.001", "--param", "B=0", "--plot"], ".png"),
+]
+PLANTED = ["nothing", "file", "link-out", "dangling-link", "link-in", "fifo", "directory"]
+
+
+@FUZZ
+@given(command=st.sampled_from(OUTPUT_COMMANDS), planted=st.sampled_from(PLANTED),
+       name=st.sampled_from(["out", "errata", ".hidden", "a b", "r\u00e9sum\u00e9"]))
+def test_fuzz_output_paths(command, planted, name, capsys, bounded):
+    """An output named by a planted link (out of the folder, dangling or not), a FIFO or a
+    directory is refused in one line and nothing is written through it; a free name or a
+    regular file is written whole; no temporary file is ever left beside it."""
+    argv, suffix = command
+    outside = Path(tempfile.mkdtemp(prefix="hp-fuzz-outside-"))      # (outside the watched folder)
+    (outside / "secret").write_text("SECRET", encoding="utf-8")
+    try:
+        with _Watch() as folder:
+            out = folder / (name + suffix)
+            if planted == "file":
+                out.write_text("old", encoding="utf-8")
+            elif planted == "link-out":
+                out.symlink_to(outside / "secret")
+            elif planted == "dangling-link":
+                out.symlink_to(outside / "created")
+            elif planted == "link-in":
+                (folder / "inside.txt").write_text("in", encoding="utf-8")
+                out.symlink_to(folder / "inside.txt")
+            elif planted == "fifo":
+                os.mkfifo(out)
+            elif planted == "directory":
+                out.mkdir()
+            before = sorted(p.name for p in folder.iterdir())
+            status, err = run_cli(capsys, [*argv, out])
+            refused = planted in ("link-out", "dangling-link", "link-in", "fifo", "directory")
+            assert (status == 2) if refused else (status == 0), (planted, err[-300:])
+            after = sorted(p.name for p in folder.iterdir())
+            assert after == (before if planted != "nothing" or refused else sorted(before + [out.name])), (before, after)
+            if refused:
+                assert out.is_symlink() or out.is_fifo() or out.is_dir()
+            else:
+                assert out.is_file() and not out.is_symlink() and out.stat().st_size > 0
+        assert (outside / "secret").read_text(encoding="utf-8") == "SECRET" and not (outside / "created").exists()
+    finally:
+        shutil.rmtree(outside, ignore_errors=True)
+
+
+_GENUINE: dict = {}
+
+
+def _genuine_walls() -> list[dict]:
+    """The genuine reports of a wall that is not passive and of one that is (computed once)."""
+    if not _GENUINE:
+        import contextlib
+        import io
+
+        from forgeries import NOT_PASSIVE, PASSIVE
+
+        for key, argv in (("bad", NOT_PASSIVE), ("good", PASSIVE)):
+            buffer = io.StringIO()
+            with contextlib.redirect_stdout(buffer), contextlib.redirect_stderr(io.StringIO()):
+                assert main(argv) == 0
+            _GENUINE[key] = json.loads(buffer.getvalue())
+    return [_GENUINE["bad"], _GENUINE["good"]]
+
+
+def _edit(report: dict, how: str, draw) -> None:
+    """One hostile edit of a derive report of the wall that is not passive."""
+    from forgeries import SIGN, _certificates, _claim_proved
+
+    sign = next(c for c in report["conditions"] if c["name"] == SIGN)
+    certs = list(_certificates(report))
+    if not certs and how in ("other-object", "kind", "value"):
+        return
+    if how == "claim-proved":
+        _claim_proved(report, keep_definition=draw(st.booleans()))
+    elif how == "shrink":
+        cert = ((sign.get("evidence") or {}).get("facts") or {}).get("certificate")
+        if not isinstance(cert, dict):
+            return
+        lo = draw(st.sampled_from(["-1/2", "0", "1/3", "-1"]))
+        cert.update(interval=[lo, draw(st.sampled_from(["1", "1/2", "2"]))], points=[lo, "1"], holds=True, roots=[])
+    elif how == "other-object":
+        cert = draw(st.sampled_from(certs))
+        good = list(_certificates(_genuine_walls()[1]))
+        same = [c for c in good if c["certificate"] == cert["certificate"]]
+        if same:
+            cert.clear()
+            cert.update(json.loads(json.dumps(draw(st.sampled_from(same)))))
+    elif how == "kind":
+        obj = draw(st.sampled_from(certs + [report.get("definition") or {}]))
+        key = "judge" if "judge" in obj else "certificate"
+        obj[key] = draw(st.sampled_from(["sgin", "positive-reel", "Sign", "sign ", "psd", "roots", "x-y"]))
+    elif how == "strip":
+        for cond in report["conditions"]:
+            if draw(st.booleans()):
+                cond["evidence"] = {"method": "root-isolation"}
+    elif how == "witness":
+        witness = report.get("witness") or {}
+        witness[draw(st.sampled_from(["omega_T", "c", "z"]))] = draw(st.sampled_from(["pi/3", "0", ["0", "1"], "1/2"]))
+        report["witness"] = witness
+    elif how == "g-inverse":
+        report["G_inverse"] = draw(st.sampled_from([_genuine_walls()[1]["G_inverse"], "1", "z", "(((", 5, None]))
+    elif how == "value":
+        cert = draw(st.sampled_from(certs))
+        key = draw(st.sampled_from(sorted(cert)))
+        cert[key] = draw(JSON_VALUES)
+
+
+@FUZZ
+@given(data=st.data())
+def test_fuzz_forged_reports(data, capsys, bounded):
+    """The report of a wall that is not passive, edited one to four times the ways a hostile
+    author would: whatever it claims, ``check`` never accepts it (and never crashes)."""
+    report = json.loads(json.dumps(_genuine_walls()[0]))
+    edits = data.draw(st.lists(st.sampled_from(["claim-proved", "shrink", "other-object", "kind", "strip", "witness",
+                                                "g-inverse", "value"]), min_size=1, max_size=4))
+    for how in edits:
+        _edit(report, how, data.draw)
+    event("forged: " + "+".join(sorted(set(edits))))
+    with _Watch() as folder:
+        path = folder / "r.json"
+        path.write_text(json.dumps(report), encoding="utf-8")
+        status, err = run_cli(capsys, ["check", path])
+        if report == _genuine_walls()[0]:
+            return                                   # (the edits undid each other)
+        if status == 0:
+            # only a report that still shows the genuine disproof of this wall may be accepted
+            assert report.get("verdict") == "disproved" and report.get("G_inverse") == _genuine_walls()[0]["G_inverse"], err
+
+
+@FUZZ
+@given(field=st.sampled_from(["inputs", "outputs", "controller", "plant"]),
+       value=st.one_of(st.integers(-(2**70), 2**70), st.sampled_from([-1, 0, 65, 100000000, 1e8, 2.5, "2", True, None,
+                                                                        [2, 3], [-1, -1], [10**6, 10**6]])))
+def test_fuzz_crafted_boundary_reports(field, value, capsys, bounded):
+    """A saved boundary whose loop sizes are edited (``-1`` aborted the process inside FLINT,
+    ``1e8`` asked for 9 GB): one line or a refusal, within the bounds."""
+    with _Watch() as folder:
+        status, _ = run_cli(capsys, ["boundary", "single-user", "--param", "m=0.015", "--param", "b=0.02", "--param",
+                                     "T=0.001", "--vary", "K", "--json", folder / "b.json"])
+        assert status == 0
+        report = json.loads((folder / "b.json").read_text(encoding="utf-8"))
+        shape = report["judge"]["sides"][data_side(value)]["loop"]["shape"]
+        unchanged = shape[field] == value and type(shape[field]) is type(value)
+        shape[field] = value
+        (folder / "b.json").write_text(json.dumps(report), encoding="utf-8")
+        status, _ = run_cli(capsys, ["check", folder / "b.json"])
+        assert status in (1, 2) or unchanged
+
+
+def data_side(value) -> int:
+    return hash(str(value)) % 2
+
+
+@FUZZ
+@given(kind=st.sampled_from(["md", "tex", "txt"]), runs=st.lists(st.integers(0, 60_000), min_size=1, max_size=3),
+       where=st.sampled_from(["display", "number", "where", "heading", "label", "prose"]))
+@example(kind="md", runs=[60_000, 60_000, 60_000], where="display")     # back-tracking took minutes on these
+@example(kind="tex", runs=[60_000, 60_000, 60_000], where="label")
+@example(kind="txt", runs=[60_000, 60_000, 60_000], where="where")
+def test_fuzz_sources_with_long_runs_of_spaces(kind, runs, where, capsys, bounded):
+    """Sources with runs of spaces where the reader's patterns look (a display's trailing number,
+    a 'where $a$, $b$' clause, a heading, a label): linear, within the time bound."""
+    gap = [" " * n for n in runs] + [" "] * 3
+    pieces = {
+        "display": f"$$b >{gap[0]}1{gap[1]}(3){gap[2]}x$$",
+        "number": f"$$b > 1 \\quad{gap[0]}({gap[1]}3{gap[2]})$$",
+        "where": f"where $a$,{gap[0]}$b${gap[1]}and{gap[2]}$c$ hold",
+        "heading": f"## 2.{gap[0]}Wall{gap[1]}#",
+        "label": f"\\begin{{equation}} b > 1 \\label{{{gap[0]}}} \\tag{{{gap[1]}}} \\end{{equation}}",
+        "prose": f"Text{gap[0]}with{gap[1]}spaces{gap[2]}.",
+    }
+    body = pieces[where] + "\n\n$$b > \\frac{KT}{2} + B$$\n"
+    if kind == "tex":
+        body = body.replace("$$", "\n\\[\n", 1).replace("$$", "\n\\]\n", 1)
+    with _Watch() as folder:
+        source = folder / f"s.{kind}"
+        source.write_text(body, encoding="utf-8")
+        run_cli(capsys, ["new-paper", folder / "p.toml", "--from", source])
+
+
 def test_the_checks_can_fail():
     """The controls: each check refuses what it exists to refuse."""
     with pytest.raises(AssertionError):
@@ -601,5 +851,7 @@ def test_the_checks_can_fail():
         assert_inert_latex(r"\begin{document} b > ^^5cinput{/etc/hostname}")
     with pytest.raises(AssertionError):
         assert_inert_latex(r"\begin{document} \csname input\endcsname")
+    with pytest.raises(AssertionError):
+        assert_inert_markdown("| 1 | <img src=x onerror=alert(1)> | `ok` |")
     with pytest.raises(AssertionError), _Watch():
         Path("/etc/hostname").read_text(encoding="utf-8") if os.path.exists("/etc/hostname") else open("/etc/passwd")

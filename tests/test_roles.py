@@ -133,8 +133,8 @@ def test_multi_user_group_and_per_user_names():
 def test_multi_user_masses_by_role_in_the_boundary(capsys):
     common = ["boundary", "multi-user", "--uniform", "--param", "B_0=0", "--param", "B=0", "--param", "K_0=K/2",
               "--vary", "K", "--delay", "0,1"]
-    code, own, _ = run(capsys, *common, "--role", "mass=M", "--role", "period=Ts", "--role", "device_damping=c",
-                       "--param", "M=0.015", "--param", "c=0.02", "--param", "Ts=0.001")
+    code, own, _ = run(capsys, *common, "--role", "mass=M", "--role", "period=Ts", "--role", "device_damping=d",
+                       "--param", "M=0.015", "--param", "d=0.02", "--param", "Ts=0.001")
     code2, papers, _ = run(capsys, *common, "--param", "m=0.015", "--param", "b=0.02", "--param", "T=0.001")
     assert code == code2 == 0 and own == papers and own.startswith("K* = 8.0042")
 

@@ -158,8 +158,10 @@ def test_an_output_that_is_an_input_is_refused(tmp_path, capsys):
 
 
 @pytest.mark.skipif(not os.path.exists("/dev/full"), reason="no /dev/full")
-def test_a_full_disk_is_one_line(tmp_path, capsys):
-    refused(capsys, ["derive", "single-user", "--delay", "1", "-o", "/dev/full"], "No space left on device")
+def test_a_device_as_output_is_one_line(tmp_path, capsys):
+    """A device is no output file (issue 30): refused before the work, and never replaced."""
+    refused(capsys, ["derive", "single-user", "--delay", "1", "-o", "/dev/full"], "is a character device")
+    assert Path("/dev/full").is_char_device()
 
 
 def test_a_failed_write_leaves_the_previous_file_whole(tmp_path, monkeypatch):

@@ -162,3 +162,23 @@ def test_cross_paper_and_hve_intro():
     assert [r.verdict.value for r in cross.results] == ["inconsistent", "confirmed", "confirmed", "inconsistent", "inconsistent"]
     hve = audit_paper(get_paper("hve"), ["2", "4", "5", "25-identical-7", "36-identical-7"])
     assert [r.verdict.value for r in hve.results] == ["needs-assumption", "needs-assumption", "typo", "inconsistent", "inconsistent"]
+
+
+@pytest.mark.parametrize("method", ["backward", "forward", "bilinear"])
+@pytest.mark.parametrize("gains", [None, (1, 1, 2), (sp.Rational(3, 2), 0, sp.Rational(1, 1000)), (0, 5, sp.Rational(1, 3))])
+def test_discretize_pd_is_sympy_physics_control(method, gains):
+    """The written-out generalized bilinear transform gives sympy.physics.control's result exactly."""
+    from sympy.physics import control
+
+    K, B, T = gains or (telemodel.TELE_SYMBOLS["K"], telemodel.TELE_SYMBOLS["B"], telemodel.TELE_SYMBOLS["T"])
+    K, B, T = (sp.sympify(v) for v in (K, B, T))
+    s = sp.Symbol("s")
+    reference = {"backward": control.backward_diff, "forward": control.forward_diff, "bilinear": control.bilinear}[method]
+    num, den = reference(control.TransferFunction(K + B * s, 1, s), T)
+    top = max(len(num), len(den)) - 1
+
+    def as_poly(coeffs):
+        return sum(c_ * z ** (len(coeffs) - 1 - i) for i, c_ in enumerate(coeffs))
+
+    expected = sp.cancel(as_poly(num) * z ** (top - len(num) + 1) / (as_poly(den) * z ** (top - len(den) + 1)))
+    assert telemodel.discretize_pd(method, K, B, T) == expected

@@ -13,6 +13,7 @@ from typing import Any
 import numpy as np
 import sympy as sp
 
+from hapticproof.exact.canonical import cancel as exact_cancel
 from hapticproof.audit.runner import AuditContext, Paper
 from hapticproof.analysis.energy import Sinusoid, input_energy, port_admittance
 from hapticproof.core.evidence import Decision, Evidence, Finding, Method, Verdict
@@ -231,7 +232,13 @@ def derived_conditions():
 
 
 def sym3(xx, yy, zz, xy, xz, yz) -> sp.Matrix:
-    return sp.Matrix([[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]]).applyfunc(sp.nsimplify)
+    return sp.Matrix([[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]]).applyfunc(_nsimplified)
+
+
+@lru_cache(maxsize=256)
+def _nsimplified(value: sp.Expr) -> sp.Expr:
+    """``sp.nsimplify(value)``, once per value (Table 1 and the masses repeat a few numbers)."""
+    return sp.nsimplify(value)
 
 
 def table1_gains(kvmyz: int = 60) -> dict[str, sp.Matrix]:
@@ -399,7 +406,7 @@ def zprime_under_38() -> tuple[sp.Matrix, sp.Matrix]:
 
 def _real_part_on_axis(expr: sp.Expr) -> sp.Expr:
     """``Re e(j omega)`` of a rational function of ``s`` with real symbolic coefficients."""
-    num, den = sp.fraction(sp.cancel(sp.together(expr)))
+    num, den = sp.fraction(exact_cancel(sp.together(expr)))
 
     def parts(poly_expr):
         poly = sp.Poly(poly_expr, s)
@@ -414,7 +421,7 @@ def _real_part_on_axis(expr: sp.Expr) -> sp.Expr:
 
     nr, ni = parts(num)
     dr, di = parts(den)
-    return sp.cancel((nr * dr + ni * di) / (dr**2 + di**2))
+    return exact_cancel((nr * dr + ni * di) / (dr**2 + di**2))
 
 
 @lru_cache(maxsize=1)
@@ -441,7 +448,7 @@ def real_part_leading_minors() -> tuple[sp.Expr, ...]:
 def residue_zprime() -> sp.Matrix:
     """Residue of ``Z'`` at ``s = 0`` under (38)."""
     _, Zp = zprime_under_38()
-    return Zp.applyfunc(lambda e: sp.cancel(e * s).subs(s, 0))
+    return Zp.applyfunc(lambda e: exact_cancel(e * s).subs(s, 0))
 
 
 def rhs_matrix(ctx: AuditContext) -> sp.Matrix:

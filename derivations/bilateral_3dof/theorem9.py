@@ -10,6 +10,7 @@ from typing import Any
 
 import sympy as sp
 
+from hapticproof.exact.canonical import cancel as exact_cancel
 from hapticproof.audit.runner import AuditContext
 from hapticproof.exact.canonical import is_identically_zero
 from hapticproof.core.evidence import Decision, Evidence, Finding, Method, Verdict
@@ -271,7 +272,7 @@ def condition_d(ctx: AuditContext) -> Finding:
     if reading is not None:
         return reading
     Zp = _table1_symmetrization().zprime()
-    R = Zp.applyfunc(lambda e: sp.cancel(e * s).subs(s, 0))
+    R = Zp.applyfunc(lambda e: exact_cancel(e * s).subs(s, 0))
     leading = [sp.nsimplify(sp.simplify(R[:k, :k].det())) for k in range(1, 7)]
     verdict = table1_verdict(60)
     psd, _ = matrix_psd(R)

@@ -7,13 +7,13 @@ from __future__ import annotations
 
 import itertools
 import random
-from functools import lru_cache
+from functools import cache, lru_cache
 from typing import Any
 
 import sympy as sp
 
 from hapticproof.audit.runner import AuditContext
-from hapticproof.audit.compare import NotABound, as_bound, as_sign_condition, compare_bounds, compare_expressions, compare_sign_conditions
+from hapticproof.audit.compare import NotABound, as_bound, as_sign_condition, compare_bounds, compare_expressions, compare_sign_conditions, relation
 from hapticproof.exact.canonical import is_identically_zero
 from hapticproof.core.errors import LatexParseError
 from hapticproof.core.evidence import Decision, Evidence, Finding, Method, Verdict
@@ -180,7 +180,7 @@ def eq45(ctx: AuditContext) -> Finding:
         f"w = K_12T + 2B_12); alone it also holds for a < 0 (at the witness a = {a.subs(values)}), where (43) fails and G^-1 "
         "is not PR: it needs a > 0 (the first minor at c = -1), and on a > 0 it is equivalent to a > 2w, i.e. (46)",
         Evidence(Method.COUNTEREXAMPLE, witness={str(k): v for k, v in values.items()}, facts=facts),
-        derived=sp.Gt(det, 0),
+        derived=relation(sp.Gt, det, 0),
         corrected=r"(2b - K_0T - 2B_0)^2 + 2(2b - K_0T - 2B_0)(-K_{12}T - 2B_{12}) > 0, \quad 2b - K_0T - 2B_0 > 0",
     )
 
@@ -451,10 +451,10 @@ def eq50(ctx: AuditContext) -> Finding:
                 f"'= {sp.sstr(rhs)}' in place of '='")
         return Finding(Verdict.MALFORMED, what,
                        Evidence(Method.PARSE, witness={"z": Z0, **{str(k): v for k, v in values.items()}}, facts=facts),
-                       derived=sp.Gt(det, 0),
+                       derived=relation(sp.Gt, det, 0),
                        corrected=r"\det(G^{-1}(e^{j\omega T}) + G^{-T}(e^{-j\omega T})) = (\text{the expression of (51)}) > 0")
     return Finding(Verdict.UNDECIDED, f"the display relates det(...) {ops[0]} {sp.sstr(rhs)}; {head}; it is not an identity the audit can "
-                   "refute at the witness", Evidence(Method.INSTANCES, facts=facts), derived=sp.Gt(det, 0))
+                   "refute at the witness", Evidence(Method.INSTANCES, facts=facts), derived=relation(sp.Gt, det, 0))
 
 
 P51 = (r"(2b_{1} - (K_{01} + K_{12} + K_{13})T + 2(B_{01} + B_{12} + B_{13})\cos(\omega T))(2b_{2} - (K_{02} + K_{12} + K_{23})T + "
@@ -483,7 +483,7 @@ def eq51(ctx: AuditContext) -> Finding:
     if diff == 0 and condition.op in (">", ">="):
         return Finding(Verdict.CONFIRMED, "the printed expression is det M(c), required positive",
                        Evidence(Method.CANONICAL_FORM, facts={"printed_form": ("equals the derived", sp.srepr(det))}),
-                       derived=sp.Gt(det, 0))
+                       derived=relation(sp.Gt, det, 0))
     at_minus_one = sp.factor(diff.subs(C, -1))
     # a sign disagreement: the printed condition holds while det M < 0, at exact rational parameters and c
     rng = random.Random(5)
@@ -507,7 +507,7 @@ def eq51(ctx: AuditContext) -> Finding:
     if witness is None:
         return Finding(Verdict.UNDECIDED, f"the printed condition ({condition.op} 0) is not det M(c) > 0 ({gap}), but no "
                        "point where it holds while det M(c) < 0 was found in 400 exact samples",
-                       Evidence(Method.INSTANCES, instances=400, facts=facts), derived=sp.Gt(det, 0), corrected=C51)
+                       Evidence(Method.INSTANCES, instances=400, facts=facts), derived=relation(sp.Gt, det, 0), corrected=C51)
     pv, dv = printed.xreplace(witness), det.xreplace(witness)
     facts.update({"printed_value": pv, "det_M_value": dv})
     return Finding(
@@ -515,7 +515,7 @@ def eq51(ctx: AuditContext) -> Finding:
         f"the printed expression is not det M(c) ({gap}); at the witness (c = {witness[C]}) the printed condition holds "
         f"({sp.sstr(pv)} {condition.op} 0) while det M(c) = {sp.sstr(dv)} < 0",
         Evidence(Method.COUNTEREXAMPLE, witness={str(k): v for k, v in witness.items()}, facts=facts),
-        derived=sp.Gt(det, 0), corrected=C51,
+        derived=relation(sp.Gt, det, 0), corrected=C51,
     )
 
 
@@ -554,10 +554,23 @@ def worst51(ctx: AuditContext) -> Finding:
 P52 = r"(2b - K_0T - 2B_0 - 4B)^3 - 2(KT + 2B)^3 - 3(KT + 2B)^2(2b - K_0T - 2B_0 - 4B) > 0"
 
 
+@cache
+def _factor_list(expr: sp.Expr) -> tuple:
+    """``sp.factor_list(expr)``, once per polynomial: (52) and the claim that simplifies it
+    factor the same display."""
+    return sp.factor_list(expr)
+
+
+@cache
+def _factor(expr: sp.Expr) -> sp.Expr:
+    """``sp.factor(expr)``, once per polynomial (see :func:`_factor_list`)."""
+    return sp.factor(expr)
+
+
 def _solved(expr: sp.Expr) -> list[str]:
     """What ``expr > 0`` says about b, factor by factor (odd-multiplicity factors in b)."""
     out = []
-    for factor, power in sp.factor_list(sp.expand(expr))[1]:
+    for factor, power in _factor_list(sp.expand(expr))[1]:
         if factor.has(b) and power % 2 == 1:
             try:
                 out.append(str(as_bound(sp.Gt(factor, 0, evaluate=False), b)))
@@ -580,21 +593,22 @@ def eq52(ctx: AuditContext) -> Finding:
     values = {b: sp.Rational(8, 5), K_0: 1, B_0: 0, K: 1, B: 0, T: 1}
     holds = condition.holds(values)
     reading = _solved(printed)
-    facts = {"printed_factored": sp.factor(printed), "det_M(-1)_factored": sp.factor(det), "printed_form": (condition.op, sp.srepr(printed)),
+    printed_factored, det_factored = _factor(printed), _factor(det)     # each factored once
+    facts = {"printed_factored": printed_factored, "det_M(-1)_factored": det_factored, "printed_form": (condition.op, sp.srepr(printed)),
              "printed_at_witness": holds, **decision_facts(scene)}
     if not (holds and not_pr(scene)):
-        return Finding(sign.verdict, f"(52) reads {sp.sstr(sp.factor(printed))} {condition.op} 0 (i.e. {reading}), not det M(-1) "
-                       f"= {sp.sstr(sp.factor(det))} > 0 of the uniform triple-user scene: {sign.detail}",
+        return Finding(sign.verdict, f"(52) reads {sp.sstr(printed_factored)} {condition.op} 0 (i.e. {reading}), not det M(-1) "
+                       f"= {sp.sstr(det_factored)} > 0 of the uniform triple-user scene: {sign.detail}",
                        Evidence(sign.evidence.method, witness=sign.evidence.witness, facts=facts),
-                       derived=sp.Gt(sp.factor(det), 0),
+                       derived=sp.Gt(det_factored, 0),
                        corrected=r"(2b - K_0T - 2B_0 - 3(KT + 2B))^2\,(2b - K_0T - 2B_0) > 0,\quad 2b - K_0T - 2B_0 > 0")
     return Finding(
         Verdict.WRONG,
-        f"(52) reads {sp.sstr(sp.factor(printed))} {condition.op} 0, i.e. {'; '.join(reading)}; it is not det M(-1) = "
-        f"{sp.sstr(sp.factor(det))} of the uniform triple-user scene (each user has two couplings), and at the witness "
+        f"(52) reads {sp.sstr(printed_factored)} {condition.op} 0, i.e. {'; '.join(reading)}; it is not det M(-1) = "
+        f"{sp.sstr(det_factored)} of the uniform triple-user scene (each user has two couplings), and at the witness "
         "(B = 0) it holds while G^-1 is not PR",
         Evidence(Method.COUNTEREXAMPLE, witness={str(k): v for k, v in values.items()}, facts=facts),
-        derived=sp.Gt(sp.factor(det), 0),
+        derived=sp.Gt(det_factored, 0),
         corrected=r"(2b - K_0T - 2B_0 - 3(KT + 2B))^2\,(2b - K_0T - 2B_0) > 0,\quad 2b - K_0T - 2B_0 > 0",
     )
 
@@ -605,12 +619,12 @@ def eq52(ctx: AuditContext) -> Finding:
 def simplify52(ctx: AuditContext) -> Finding:
     condition = as_sign_condition(display("52"))
     expr = sp.expand(condition.expr)
-    factored = sp.factor(expr)
+    factored = _factor(expr)
     reading = _solved(expr)
     p53 = display("53")
     facts = {"factored": factored, "simplified": reading, "printed_53": p53}
     bounds = []
-    for factor, power in sp.factor_list(expr)[1]:
+    for factor, power in _factor_list(expr)[1]:
         if factor.has(b) and power % 2 == 1:
             try:
                 bounds.append(as_bound(sp.Gt(factor, 0, evaluate=False), b))

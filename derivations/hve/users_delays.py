@@ -11,9 +11,10 @@ from typing import Any
 
 import sympy as sp
 
+from hapticproof.exact.canonical import cancel as exact_cancel
 from hapticproof.audit.runner import AuditContext
 from hapticproof.audit.compare import SignCondition as SignConditionT
-from hapticproof.audit.compare import NotABound, as_bound, as_sign_condition, compare_bounds
+from hapticproof.audit.compare import NotABound, as_bound, as_sign_condition, compare_bounds, relation
 from hapticproof.exact.canonical import is_identically_zero
 from hapticproof.core.errors import LatexParseError
 from hapticproof.core.evidence import Decision, Evidence, Finding, Method, Verdict
@@ -330,9 +331,23 @@ def _circle_power(k: int) -> tuple[sp.Rational, sp.Rational]:
 
 
 def _at_theta(expr: Any, values: dict, k: int) -> sp.Expr:
-    """A printed expression in omega, T, t_d at t_d = kT and cos(omega T) = 3/5 (exact)."""
+    """A printed expression in omega, T, t_d at t_d = kT and cos(omega T) = 3/5 (exact).
+
+    Where every angle is a whole multiple m theta, cos(m theta) and sin(m theta) are the exact
+    rationals of :func:`_circle_power` and are put in directly (what expanding the multiple
+    angles and putting in cos(theta) = 3/5, sin(theta) = 4/5 gives, without the expansion)."""
     theta = sp.Dummy("theta")
     e = sp.sympify(expr).subs(t_d, k * T).subs(omega, theta / T).xreplace(values)
+    direct = {}
+    for atom in e.atoms(sp.cos, sp.sin):
+        m, rest = atom.args[0].as_coeff_Mul()
+        if rest != theta or not m.is_Integer or m < 0:
+            break
+        direct[atom] = _circle_power(int(m))[0 if isinstance(atom, sp.cos) else 1]
+    else:
+        value = e.xreplace(direct)
+        if theta not in value.free_symbols:
+            return sp.expand(value)
     e = sp.expand_trig(sp.expand(e))
     c1, s1 = _circle_power(1)
     return sp.expand(e.subs({sp.cos(theta): c1, sp.sin(theta): s1}))
@@ -398,16 +413,16 @@ def eq59(ctx: AuditContext) -> Finding:
     if error is None:
         if same:
             return Finding(Verdict.UNDECIDED, f"the display parses and {reading}; equal at the witness, not proved for all n",
-                           Evidence(Method.INSTANCES, instances=1, facts=facts), derived=sp.Gt(det, 0))
+                           Evidence(Method.INSTANCES, instances=1, facts=facts), derived=relation(sp.Gt, det, 0))
         return Finding(Verdict.WRONG, f"the display is not the 2x2 determinant a_1a_2 + e(a_1 + a_2) > 0: {reading}",
-                       Evidence(Method.COUNTEREXAMPLE, witness=facts["witness"], facts=facts), derived=sp.Gt(det, 0),
+                       Evidence(Method.COUNTEREXAMPLE, witness=facts["witness"], facts=facts), derived=relation(sp.Gt, det, 0),
                        corrected=C59)
     return Finding(
         Verdict.MALFORMED,
         f"the display does not parse ({error.reason} at position {error.position}: unbalanced parentheses after the "
         f"cos(w(t_d - T)) factors); {reading}: it is not the 2x2 determinant a_1a_2 + e(a_1 + a_2) (which also needs "
         "cos(w(t_d + T)), see (58))",
-        Evidence(Method.PARSE, facts=facts), derived=sp.Gt(det, 0), corrected=C59,
+        Evidence(Method.PARSE, facts=facts), derived=relation(sp.Gt, det, 0), corrected=C59,
     )
 
 
@@ -518,7 +533,7 @@ def eq59b(ctx: AuditContext) -> Finding:
     for k in range(1, 13):
         S = sp.expand((1 + C) * sp.chebyshevu(k - 1, C) / 2)
         direct = canonical_theta(limit.expr.subs(t_d, k * T), omega, T, t_d, n)
-        same = is_identically_zero(sp.expand(direct.subs(sin_theta**2, 1 - C**2)) - S) or is_identically_zero(sp.cancel(direct) - S)
+        same = is_identically_zero(sp.expand(direct.subs(sin_theta**2, 1 - C**2)) - S) or is_identically_zero(exact_cancel(direct) - S)
         if not same:
             return Finding(Verdict.TYPO, f"the limited expression {sp.sstr(limit.expr)} is not S = sin(w t_d) sin(wT)/(2(1 - "
                            f"cos wT)): at t_d = {k}T it is {sp.sstr(sp.factor(direct))}, S = {sp.sstr(sp.factor(S))} in c",

@@ -18,6 +18,7 @@ from typing import Any
 
 import sympy as sp
 
+from hapticproof.exact.canonical import cancel as exact_cancel
 from hapticproof.audit.runner import AuditContext
 from hapticproof.audit.compare import NotABound, as_sign_condition, compare_expressions, compare_sign_conditions
 from hapticproof.exact.canonical import is_identically_zero
@@ -345,7 +346,7 @@ def eq37b(ctx: AuditContext) -> Finding:
         printed = align(instance(rhs, m, i=1))
         derived = _h_entry(m, 0, 0)
         same = is_identically_zero(printed - derived)
-        facts[f"m={m}"] = "equal" if same else sp.factor(sp.cancel(printed - derived))
+        facts[f"m={m}"] = "equal" if same else sp.factor(exact_cancel(printed - derived))
         if not same:
             return Finding(
                 Verdict.TYPO,
@@ -560,7 +561,7 @@ def poles39(ctx: AuditContext) -> Finding:
         G = inverse_transfer_matrix(scene)
         poles = set()
         for e in G:
-            den = sp.fraction(sp.cancel(sp.together(e)))[1]
+            den = sp.fraction(exact_cancel(sp.together(e)))[1]
             for root, mult in sp.roots(sp.Poly(den, z)).items():
                 poles.add((root, mult))
         unit = [(p, mlt) for p, mlt in poles if abs(p) == 1]
@@ -715,7 +716,7 @@ def minor_in_c(rel: Any, derived: sp.Expr, what: str) -> Finding:
         condition = as_sign_condition(printed)
         if not is_identically_zero(condition.expr - derived):
             return Finding(Verdict.TYPO, f"{what} is the derived minor up to the positive factor "
-                           f"{sp.sstr(sp.cancel(condition.expr / derived))}: {sign.detail}", sign.evidence, derived=derived)
+                           f"{sp.sstr(exact_cancel(condition.expr / derived))}: {sign.detail}", sign.evidence, derived=derived)
         return Finding(Verdict.CONFIRMED, f"{what} equals the derived minor {sp.sstr(derived)} and the relation says it "
                        "is positive", sign.evidence, derived=derived)
     if sign.evidence.facts.get("ratio") is None:

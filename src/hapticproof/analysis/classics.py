@@ -49,6 +49,7 @@ from typing import Any
 import mpmath
 import sympy as sp
 
+from hapticproof.exact.canonical import cancel as exact_cancel
 from hapticproof.core.errors import DerivationError
 from hapticproof.systems.singleuser import SYMBOLS
 from hapticproof.core.symbols import c as C_SYM
@@ -180,7 +181,7 @@ def colgate_bound(H: Any, T: Any, z: sp.Symbol = Z_SYM, var: sp.Symbol = C_SYM) 
     3/20
     """
     numerator = hermitian_part(sp.sympify(H) * (1 - 1 / z), z, var)
-    return sp.cancel(sp.sympify(T) * numerator / (2 * (1 - var)))
+    return exact_cancel(sp.sympify(T) * numerator / (2 * (1 - var)))
 
 
 @lru_cache(maxsize=4)
@@ -211,7 +212,7 @@ def sampling_kernel(H: Any, T: Any = T, z: sp.Symbol = Z_SYM) -> sp.Expr:
     in_z = jw_zoh.subs(sp.exp(-sp.sympify(T) * s), 1 / z)
     if in_z.has(s):  # pragma: no cover - the pulse transform is s-free after multiplying by s
         raise ValueError("unexpected ZOH form")
-    return sp.cancel(-in_z * sp.sympify(H) / sp.sympify(T))
+    return exact_cancel(-in_z * sp.sympify(H) / sp.sympify(T))
 
 
 def alias_weight(T: Any = T, var: sp.Symbol = C_SYM) -> sp.Expr:
@@ -256,7 +257,7 @@ def leak_bound(H: Any, T: Any = T, z: sp.Symbol = Z_SYM, var: sp.Symbol = C_SYM)
     -B*c + K*T/2
     """
     kernel = sampling_kernel(H, T, z)
-    return sp.cancel(-hermitian_part(kernel, z, var) * alias_weight(T, var))
+    return exact_cancel(-hermitian_part(kernel, z, var) * alias_weight(T, var))
 
 
 def colgate_wall(K: Any = K, B: Any = sp.Symbol("B", real=True), T: Any = T, b: Any = b) -> sp.Basic:
@@ -395,10 +396,10 @@ def gil_sufficiency_region() -> tuple[sp.Basic, sp.Expr]:
     eps = sp.Symbol("eps", positive=True)
     # p = e^{-alpha} by its Taylor polynomial (enough terms for two orders of the ratio)
     taylor = sp.Add(*[(-eps * ALPHA) ** k / sp.factorial(k) for k in range(8)])
-    ratio = sp.cancel((cf.complex_pair / linear).subs({ALPHA: eps * ALPHA, DELTA: eps * DELTA}).subs(P, taylor))
+    ratio = exact_cancel((cf.complex_pair / linear).subs({ALPHA: eps * ALPHA, DELTA: eps * DELTA}).subs(P, taylor))
     num, den = (sp.Poly(part, eps) for part in sp.fraction(ratio))
     low = min(min(m[0] for m in num.monoms()), min(m[0] for m in den.monoms()))
     n0, n1 = num.coeff_monomial(eps**low), num.coeff_monomial(eps ** (low + 1))
     d0, d1 = den.coeff_monomial(eps**low), den.coeff_monomial(eps ** (low + 1))
-    expansion = sp.expand(sp.cancel(n0 / d0 + (n1 * d0 - n0 * d1) / d0**2))
+    expansion = sp.expand(exact_cancel(n0 / d0 + (n1 * d0 - n0 * d1) / d0**2))
     return region, expansion

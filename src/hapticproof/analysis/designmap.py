@@ -927,9 +927,6 @@ def plot_map(result: MapResult, path: str | Path, title: str = "", *, overlay: M
         handles, _ = ax.get_legend_handles_labels()
         ax.legend(handles=handles + legend, fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0),
                   borderaxespad=0.0)        # beside the map, never over it
-    from hapticproof.core.files import atomic_path
+    from hapticproof.core.files import write_figure
 
-    path = Path(path)
-    with atomic_path(path, "--plot") as temp:     # whole or not at all, no folder created
-        fig.savefig(temp, dpi=110, bbox_inches="tight", format=path.suffix.lstrip(".").lower() or "png")
-    return path
+    return write_figure(fig, path, "--plot")      # the one writer: whole or not at all, no link followed

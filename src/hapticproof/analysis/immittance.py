@@ -28,7 +28,7 @@ a coupling impedance, an m-user matrix, a two-port in ``z`` or ``s``):
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any, NamedTuple
 

@@ -960,13 +960,10 @@ def plot_curves(
 
 
 def _save(fig: Any, path: str | Path) -> Path:
-    """Save a figure whole or not at all (a temporary file beside ``path``, renamed)."""
-    from hapticproof.core.files import atomic_path
+    """Save a figure through the one output writer (whole or not at all, no link followed)."""
+    from hapticproof.core.files import write_figure
 
-    path = Path(path)
-    with atomic_path(path, "--plot") as temp:
-        fig.savefig(temp, dpi=110, bbox_inches="tight", format=path.suffix.lstrip(".").lower() or "png")
-    return path
+    return write_figure(fig, path, "--plot")
 
 
 def plot_map(

@@ -63,6 +63,7 @@ from typing import Any
 import flint
 import sympy as sp
 
+from hapticproof.exact.canonical import cancel as exact_cancel
 from hapticproof.core.errors import DerivationError, SceneError
 from hapticproof.core.evidence import Decision, Evidence, Method, Outcome
 from hapticproof.exact.kernel import decide_constant_psd, locate_roots, poly_json
@@ -95,7 +96,7 @@ def _kernels(approximation: str, n: int) -> tuple[tuple[flint.fmpq_poly, flint.f
     """``(Re, Im/sin)`` of ``k_K = z^-n I/T`` and ``k_B = z^-n I (z-1)/(Tz)`` as (num, den)."""
     iota = integrator(approximation, 1)
     out = []
-    for kernel in (Z_SYM ** (-n) * iota, Z_SYM ** (-n) * sp.cancel(iota * (Z_SYM - 1) / Z_SYM)):
+    for kernel in (Z_SYM ** (-n) * iota, Z_SYM ** (-n) * exact_cancel(iota * (Z_SYM - 1) / Z_SYM)):
         re = hermitian_part_rational(kernel).numeric()
         im = imaginary_part_rational(kernel).numeric()
         out.append(((re.num, re.den), (im.num, im.den)))
@@ -105,10 +106,10 @@ def _kernels(approximation: str, n: int) -> tuple[tuple[flint.fmpq_poly, flint.f
 @lru_cache(maxsize=None)
 def _kernel_polynomials(approximation: str, n: int) -> tuple[tuple[flint.fmpq_poly, flint.fmpq_poly], ...]:
     """``k_K = z^-n I/T`` and ``k_B = z^-n I (z-1)/(Tz)`` as coprime (num, den) in ``z`` (flint)."""
-    iota = sp.cancel(integrator(approximation, 1))
+    iota = exact_cancel(integrator(approximation, 1))
     out = []
-    for kernel in (iota, sp.cancel(iota * (Z_SYM - 1) / Z_SYM)):
-        num, den = sp.fraction(sp.cancel(kernel))
+    for kernel in (iota, exact_cancel(iota * (Z_SYM - 1) / Z_SYM)):
+        num, den = sp.fraction(exact_cancel(kernel))
         pn = flint.fmpq_poly([flint.fmpq(int(sp.Rational(a).p), int(sp.Rational(a).q)) for a in sp.Poly(num, Z_SYM).all_coeffs()[::-1]])
         pd = flint.fmpq_poly([flint.fmpq(int(sp.Rational(a).p), int(sp.Rational(a).q)) for a in sp.Poly(den, Z_SYM).all_coeffs()[::-1]])
         pd = pd * flint.fmpq_poly([0] * n + [1])
@@ -564,7 +565,7 @@ def _mode_condition(wall: SingleUserScene) -> sp.Basic:
     K = wall.H
     if wall.has_delay:
         # B = 0: Dirichlet kernel, exact (see hapticproof.analysis.delayed)
-        stiffness = sp.cancel(K).subs(Z_SYM, 1)
+        stiffness = exact_cancel(K).subs(Z_SYM, 1)
         kb = kernel_bounds(wall.approximation, int(wall.delay))
         return sp.Ge(wall.b - wall.z_a, sp.expand(kb.kappa_K * wall.T * stiffness))
     cond = single_worst_case(wall).condition

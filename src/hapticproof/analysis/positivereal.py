@@ -26,6 +26,7 @@ from typing import Any
 import flint
 import sympy as sp
 
+from hapticproof.exact.canonical import cancel as exact_cancel
 from hapticproof.core.evidence import Decision, Evidence, Method, Outcome, to_jsonable
 from hapticproof.exact.kernel import decide_rational_sign, locate_roots, transfer_json
 from hapticproof.core.lazy import stage
@@ -96,7 +97,7 @@ def _location(value: sp.Expr) -> str:
     lt = (modulus - 1).is_negative
     if lt:
         return "inside"
-    if sp.cancel(sp.expand(modulus - 1)) == 0:      # (no simplify: it loads sympy.physics on first use)
+    if exact_cancel(sp.expand(modulus - 1)) == 0:      # (no simplify: it loads sympy.physics on first use)
         return "on"
     if (modulus - 1).is_positive:
         return "outside"
@@ -110,7 +111,7 @@ def poles_of(F: Any, z: sp.Symbol = Z_SYM) -> list[Pole]:
     >>> [(p.value, p.multiplicity, p.location) for p in poles_of(3 + 2/(z - 1) + 1/z**2)]
     [(0, 2, 'inside'), (1, 1, 'on')]
     """
-    P, Q = numerator_denominator(sp.cancel(sp.sympify(F)), z)
+    P, Q = numerator_denominator(exact_cancel(sp.sympify(F)), z)
     roots = sp.roots(Q, z)
     out: list[Pole] = []
     if sum(roots.values()) != Q.degree():
@@ -159,7 +160,7 @@ def unit_circle_residues(F: Any, poles: list[Pole], z: sp.Symbol = Z_SYM) -> lis
 def _simple_residue(F: Any, z0: Any, z: sp.Symbol) -> sp.Expr:
     """The residue of ``F`` at a simple pole ``z0``: ``P(z0)/Q'(z0)`` for ``F = P/Q`` rational in
     ``z`` with a rational pole (no limit taken), else the limit of ``(z - z0) F``."""
-    F = sp.cancel(sp.sympify(F))
+    F = exact_cancel(sp.sympify(F))
     if sp.sympify(z0).is_Rational:
         num, den = sp.fraction(sp.together(F))
         try:
@@ -167,8 +168,8 @@ def _simple_residue(F: Any, z0: Any, z: sp.Symbol) -> sp.Expr:
         except sp.PolynomialError:
             P = Q = None
         if P is not None and Q.eval(z0) == 0 and Q.diff(z).eval(z0) != 0:
-            return sp.cancel(P.eval(z0) / Q.diff(z).eval(z0))
-    return sp.cancel(sp.limit((z - z0) * F, z, z0))
+            return exact_cancel(P.eval(z0) / Q.diff(z).eval(z0))
+    return exact_cancel(sp.limit((z - z0) * F, z, z0))
 
 
 def _tidy_value(value: Any) -> sp.Expr:
@@ -177,7 +178,7 @@ def _tidy_value(value: Any) -> sp.Expr:
     value = sp.sympify(value)
     if all(a.is_Rational for a in value.atoms(sp.Number)) and not value.atoms(sp.Pow, sp.exp) - {
             p for p in value.atoms(sp.Pow) if p.exp.is_Integer}:
-        return sp.cancel(value)
+        return exact_cancel(value)
     return sp.simplify(value)
 
 
@@ -265,7 +266,7 @@ def symbolic_minimum(expr: sp.Expr, var: sp.Symbol = C_SYM, names: Any = None) -
 
 
 def _symbolic_minimum(expr: sp.Expr, var: sp.Symbol) -> WorstCase:
-    num, den = sp.fraction(sp.cancel(sp.together(expr)))
+    num, den = sp.fraction(exact_cancel(sp.together(expr)))
     den_poly = sp.Poly(den, var)
     if den_poly.degree() > 0:
         return _rational_minimum(expr, num, den, var)
@@ -327,12 +328,12 @@ def _coefficient_sign(value: sp.Expr) -> int | None:
     value = sp.sympify(value)
     if value == 0:
         return 0
-    for form in (value, sp.factor(sp.cancel(value))):
+    for form in (value, sp.factor(exact_cancel(value))):
         if form.is_positive:
             return 2
         if form.is_negative:
             return -2
-    for form in (value, sp.factor(sp.cancel(value))):
+    for form in (value, sp.factor(exact_cancel(value))):
         if form.is_nonnegative:
             return 1
         if form.is_nonpositive:
@@ -356,7 +357,7 @@ def _rational_minimum(expr: sp.Expr, num: sp.Expr, den: sp.Expr, var: sp.Symbol)
         return _undecided_symbolic(expr, "a rational function of c whose derivative's sign on [-1, 1] is not proved "
                                    "(a stationary point may lie inside)")
     end = sp.Integer(-1) if slope_sign > 0 else sp.Integer(1)
-    value = sp.factor(sp.cancel(num.subs(var, end) / den.subs(var, end)))
+    value = sp.factor(exact_cancel(num.subs(var, end) / den.subs(var, end)))
     value = sp.collect(sp.expand(value), sorted(value.free_symbols, key=str), func=sp.factor)   # one term per parameter
     side = "increasing" if slope_sign > 0 else "decreasing"
     return _symbolic(_ge(value), end, value, f"rational in c with a denominator of fixed sign, {side} on [-1, 1] "
@@ -574,7 +575,7 @@ SYMBOLIC_CFORM_LIMIT = 100
 
 def symbolic_c_degree(scene: SingleUserScene) -> int:
     """A bound on the degree in ``c`` of ``Re G^{-1}`` for an integer delay, read off ``G^{-1}``'s degrees in ``z``."""
-    num, den = sp.fraction(sp.cancel(environment_path(scene)))
+    num, den = sp.fraction(exact_cancel(environment_path(scene)))
     dn, dd = (sp.Poly(p, Z_SYM).degree() if p.has(Z_SYM) else 0 for p in (num, den))
     return max(dn, dd + int(scene.delay))
 

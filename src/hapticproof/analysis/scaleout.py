@@ -19,6 +19,7 @@ from __future__ import annotations
 import concurrent.futures
 import multiprocessing
 import os
+import re
 import sys
 import time
 from collections.abc import Callable, Iterable, Iterator, Sequence
@@ -26,7 +27,7 @@ from typing import Any
 
 from hapticproof.core.errors import InputFormatError
 
-__all__ = ["ordered_map", "ProgressBar", "default_workers", "dask_client"]
+__all__ = ["ordered_map", "ProgressBar", "default_workers", "dask_client", "scheduler_address", "probe_scheduler"]
 
 
 def default_workers() -> int:
@@ -89,12 +90,86 @@ def dask_client(scheduler: str, workers: int | None = None):
         cluster = LocalCluster(n_workers=workers or default_workers(), threads_per_worker=1, processes=True,
                                dashboard_address=None, silence_logs=logging.ERROR)
         return Client(cluster)
-    if not scheduler.startswith(("tcp://", "tls://", "inproc://", "ucx://")):
-        raise InputFormatError(f"--scheduler: expected 'dask' or an address such as tcp://host:8786, got {scheduler!r}")
+    host, port = scheduler_address(scheduler)
+    if scheduler.startswith("tcp://"):
+        probe_scheduler(host, port, scheduler)
     try:
         return Client(scheduler, timeout="10s")
+    except (OSError, ValueError, TypeError, MemoryError) as err:
+        raise InputFormatError(f"--scheduler {scheduler}: cannot connect ({type(err).__name__}: {str(err)[:160]})") from None
+
+
+_HOST = re.compile(r"(?:[A-Za-z0-9](?:[A-Za-z0-9-]{0,61}[A-Za-z0-9])?)(?:\.[A-Za-z0-9](?:[A-Za-z0-9-]{0,61}[A-Za-z0-9])?)*")
+
+
+def scheduler_address(text: str) -> tuple[str, int]:
+    """``tcp://HOST:PORT`` or ``tls://HOST:PORT`` (a host name, an IPv4 address or ``[IPv6]``, a
+    port from 1 to 65535), checked before anything connects; anything else is one line.
+
+    >>> scheduler_address("tcp://10.0.0.5:8786")
+    ('10.0.0.5', 8786)
+    >>> scheduler_address("tcp://")
+    Traceback (most recent call last):
+    ...
+    hapticproof.core.errors.InputFormatError: --scheduler 'tcp://': expected 'dask' or tcp://HOST:PORT (e.g. tcp://10.0.0.5:8786)
+    """
+    import ipaddress
+
+    refuse = InputFormatError(f"--scheduler {text[:80]!r}: expected 'dask' or tcp://HOST:PORT (e.g. tcp://10.0.0.5:8786)")
+    scheme, sep, rest = text.partition("://")
+    if not sep or scheme not in ("tcp", "tls") or not text.isascii() or not text.isprintable():
+        raise refuse
+    if rest.startswith("["):
+        host, close, port_text = rest[1:].partition("]")
+        if not close or not port_text.startswith(":"):
+            raise refuse
+        port_text = port_text[1:]
+        try:
+            ipaddress.IPv6Address(host)
+        except ValueError:
+            raise refuse from None
+    else:
+        host, colon, port_text = rest.rpartition(":")
+        if not colon or not host or not _HOST.fullmatch(host) or len(host) > 253:
+            raise refuse
+    if not (port_text.isascii() and port_text.isdigit() and len(port_text) <= 5 and 1 <= int(port_text) <= 65535):
+        raise refuse
+    return host, int(port_text)
+
+
+#: The largest handshake a Dask scheduler sends first (its first 8 bytes are the message's
+#: length): a service that is not Dask (an SSH or mail server's banner read as a length) would
+#: make Dask allocate exabytes.
+MAX_HANDSHAKE = 1 << 20
+
+
+def probe_scheduler(host: str, port: int, shown: str, seconds: float = 5.0) -> None:
+    """Connect once and read what the service says first: a Dask scheduler sends its handshake
+    (an 8-byte length, then that many bytes) as soon as it accepts; anything else -- a banner, a
+    length above :data:`MAX_HANDSHAKE`, silence -- is one line, before Dask reads a byte."""
+    import socket
+    import struct
+
+    try:
+        with socket.create_connection((host, port), timeout=seconds) as sock:
+            sock.settimeout(seconds)
+            head = b""
+            while len(head) < 8:
+                chunk = sock.recv(8 - len(head))
+                if not chunk:
+                    break
+                head += chunk
+    except TimeoutError:
+        head = None
     except OSError as err:
-        raise InputFormatError(f"--scheduler {scheduler}: cannot connect ({err})") from None
+        raise InputFormatError(f"--scheduler {shown}: cannot connect ({err.strerror or type(err).__name__})") from None
+    if head is None or len(head) < 8:
+        raise InputFormatError(f"--scheduler {shown}: no Dask scheduler answers there (no handshake within {seconds:g} s)")
+    (length,) = struct.unpack("<Q", head)
+    if length > MAX_HANDSHAKE:
+        raise InputFormatError(f"--scheduler {shown}: the service there does not speak Dask's protocol "
+                               f"(its first message claims {length} bytes)")
+
 
 
 def ordered_map(func: Callable[[Any], Any], tasks: Sequence[Any], *, workers: int = 1, scheduler: str | None = None,

@@ -31,6 +31,7 @@ from typing import Any
 import flint
 import sympy as sp
 
+from hapticproof.exact.canonical import cancel as exact_cancel
 from hapticproof.exact.canonical import canonical_fraction
 from hapticproof.core.errors import InputFormatError
 from hapticproof.core.evidence import Decision, Evidence, Method
@@ -319,7 +320,7 @@ class Symmetrization:
                 if k == l:
                     out[i, j] = Z[i, j].expr(s)
                 elif not (Z[i, j] * Z[j, i]).is_zero():
-                    out[i, j] = sp.cancel(delta[k] / delta[l] * Z[i, j].expr(s))
+                    out[i, j] = exact_cancel(delta[k] / delta[l] * Z[i, j].expr(s))
         return out
 
 

@@ -302,10 +302,14 @@ def _repair(state: State, finding: Finding) -> Finding:
     """Search the edits of :mod:`hapticproof.audit.edits` for one that makes the display right."""
     try:
         from hapticproof.audit.edits import generate
+        from hapticproof.core.limits import LimitError
     except ImportError:  # pragma: no cover - the mutation operators are not available
         return finding
-    mutants = _most_likely(generate(state.equation, state.source.paper, text=state.printed, table=state.table,
-                                    slips=True))
+    try:
+        mutants = _most_likely(generate(state.equation, state.source.paper, text=state.printed, table=state.table,
+                                        slips=True))
+    except LimitError:             # a display too long to search its edits: no repair is offered
+        return finding
     found = []
     for mutant in mutants:
         trial = State(state.spec, state.source, mutant.printed, equation=state.equation, repairing=True,

@@ -34,13 +34,15 @@ from typing import Any
 
 import sympy as sp
 
+from hapticproof.exact.canonical import cancel as exact_cancel
 from hapticproof.core.errors import HapticproofError
 from hapticproof.core.evidence import Decision, Evidence, Finding, Method, Outcome, Verdict
 from hapticproof.core.naming import marked
 from hapticproof.core.symbols import c as C_SYM
 from hapticproof.exact.canonical import Sampler, canonical_rational, certified_nonzero, evaluate_at, is_identically_zero
+from hapticproof.exact.evaluator import relation_at
 
-__all__ = ["Bound", "find_difference", "compare_expressions", "NotABound", "SignCondition", "as_sign_condition", "compare_sign_conditions", "as_bound", "as_lower_bound", "compare_bounds", "sign_on_box"]
+__all__ = ["Bound", "find_difference", "compare_expressions", "NotABound", "SignCondition", "as_sign_condition", "compare_sign_conditions", "as_bound", "as_lower_bound", "compare_bounds", "sign_on_box", "relation"]
 
 
 def find_difference(
@@ -127,14 +129,14 @@ def _canonical_text(expr: Any) -> str:
     except (sp.PolynomialError, TypeError, ValueError):
         pass
     if isinstance(expr, sp.MatrixBase):
-        return sp.srepr(expr.applyfunc(lambda e: sp.cancel(e)))
+        return sp.srepr(expr.applyfunc(lambda e: exact_cancel(e)))
     return sp.srepr(sp.expand(expr) if isinstance(expr, sp.Expr) else expr)
 
 
 def _short(expr: Any, limit: int = 120) -> str | None:
     """``sstr`` of a simplified expression when it is short enough for a one-sentence detail."""
     try:
-        value = sp.factor(sp.cancel(sp.together(expr))) if isinstance(expr, sp.Expr) else expr
+        value = sp.factor(exact_cancel(sp.together(expr))) if isinstance(expr, sp.Expr) else expr
     except (sp.PolynomialError, TypeError, ValueError):
         value = expr
     text = marked(value)
@@ -217,12 +219,12 @@ def compare_sign_conditions(
     facts: dict[str, Any] = {"printed": str(p), "derived": str(d)}
     if p.op in ("=", "!=") or d.op in ("=", "!="):
         same_kind = (p.op in ("=",)) == (d.op in ("=",))
-        ratio = sp.cancel(sp.together(p.expr / d.expr)) if d.expr != 0 else None
+        ratio = exact_cancel(sp.together(p.expr / d.expr)) if d.expr != 0 else None
         if same_kind and ratio is not None and ratio != 0 and not ratio.free_symbols:
             return Finding(Verdict.CONFIRMED, f"{what} is the derived condition {d} up to the factor {marked(ratio)}{suffix}",
                            Evidence(Method.CANONICAL_FORM, facts={**facts, "printed_form": derived_form}), derived=derived)
     else:
-        ratio = sp.cancel(sp.together(p.expr / d.expr)) if d.expr != 0 else None
+        ratio = exact_cancel(sp.together(p.expr / d.expr)) if d.expr != 0 else None
         sign = _provable_sign(ratio) if ratio is not None and ratio != 0 else None
         if sign is not None:
             if sign > 0:
@@ -332,7 +334,7 @@ def as_bound(condition: sp.Basic, var: sp.Symbol) -> Bound:
     if sign is None:
         raise NotABound(f"the sign of the coefficient {marked(coeff)} of {var} is not fixed by the assumptions")
     bound = -rest / coeff
-    bound = canonical_rational(bound) if bound.is_rational_function() else sp.cancel(bound)
+    bound = canonical_rational(bound) if bound.is_rational_function() else exact_cancel(bound)
     return Bound(var, bound, strict, sign > 0)
 
 
@@ -345,9 +347,57 @@ def as_lower_bound(condition: sp.Basic, var: sp.Symbol) -> Bound:
     return bound
 
 
+def _signs_seen(expr: sp.Expr, tries: int = 12) -> set[int]:
+    """Signs (-1, 0, +1) ``expr`` takes at a few exact points that satisfy every assumption of
+    its symbols (points where it is undefined are skipped). A sign seen refutes a proof of the
+    opposite one: SymPy's assumptions are sound, so ``is_positive`` cannot hold for an
+    expression (or any form of it) that is ``<= 0`` at a point of its domain."""
+    symbols = sorted(expr.free_symbols, key=str)
+    if not all(isinstance(s, sp.Symbol) for s in symbols):
+        return set()
+    facts = {s: [(f"is_{k}", v) for k, v in s.assumptions0.items()] for s in symbols}
+    seen: set[int] = set()
+    for point in Sampler(symbols, seed=3).draw(tries):
+        if not all(getattr(point[s], name) == v for s in symbols for name, v in facts[s]):
+            continue            # outside a symbol's domain (e.g. 0 for a nonzero symbol)
+        value = evaluate_at(expr, point)
+        if value is not None and value.is_Rational:
+            seen.add(1 if value > 0 else (-1 if value < 0 else 0))
+    return seen
+
+
+def relation(kind: type, lhs: Any, rhs: Any) -> sp.Basic:
+    """``kind(lhs, rhs)`` (``sp.Gt``, ``sp.Ge``, ``sp.Lt``, ``sp.Le``) exactly as SymPy builds it.
+
+    When ``lhs - rhs`` is seen to take both signs at exact points of its domain, SymPy's
+    evaluation cannot decide the relation (its assumptions are sound) and returns it
+    unevaluated: that object is built directly, without SymPy's sign queries on what may be
+    a large expression (a determinant of parameters).
+
+    >>> x, y = sp.symbols('x y', positive=True)
+    >>> relation(sp.Gt, x - y, 0) == sp.Gt(x - y, 0), relation(sp.Gt, x + y, 0)
+    (True, True)
+    """
+    seen = _signs_seen(sp.sympify(lhs - rhs)) if isinstance(lhs - rhs, sp.Expr) else set()
+    if {-1, 1} <= seen:
+        return kind(lhs, rhs, evaluate=False)
+    return kind(lhs, rhs)
+
+
 def _provable_sign(expr: sp.Expr) -> int | None:
-    """+1 / -1 when ``expr`` is provably positive / negative under the symbols' assumptions."""
-    for form in (expr, sp.factor(expr), sp.cancel(expr)):
+    """+1 / -1 when ``expr`` is provably positive / negative under the symbols' assumptions.
+
+    An expression seen to be zero, or of both signs, at exact points of its domain has neither
+    sign provably (:func:`_signs_seen`): that is settled before any ``factor``.
+
+    >>> x, y = sp.symbols('x y', positive=True)
+    >>> _provable_sign((x + y)**2 / (x*y)), _provable_sign(-x/(1 + y)), _provable_sign(x - y)
+    (1, -1, None)
+    """
+    seen = _signs_seen(expr)
+    if 0 in seen or {-1, 1} <= seen:
+        return None
+    for form in (expr, sp.factor(expr), exact_cancel(expr)):
         if form.is_positive:
             return 1
         if form.is_negative:
@@ -371,9 +421,11 @@ def sign_on_box(expr: sp.Expr, box: Mapping[sp.Symbol, tuple[Any, Any]] | None =
         if sp.Poly(expr, s).degree() > 1:
             return None
     corners = [expr.subs(dict(zip(boxed, corner))) for corner in itertools.product(*(box[s] for s in boxed))]
-    if all(sp.factor(v).is_nonnegative for v in corners):
+    # a corner seen negative (positive) at an exact point of its domain is not provably >= 0 (<= 0)
+    seen = [_signs_seen(v) if v.free_symbols else set() for v in corners]
+    if not any(-1 in signs for signs in seen) and all(sp.factor(v).is_nonnegative for v in corners):
         return 1
-    if all(sp.factor(v).is_nonpositive for v in corners):
+    if not any(1 in signs for signs in seen) and all(sp.factor(v).is_nonpositive for v in corners):
         return -1
     return None
 
@@ -385,6 +437,9 @@ def _domain_floor(var: sp.Symbol) -> sp.Expr | None:
 
 def _holds(condition: sp.Basic, point: Mapping[sp.Symbol, Any]) -> bool | None:
     """Truth of a condition at an exact point (None when it cannot be decided)."""
+    fast = relation_at(condition, point)
+    if fast is not None:
+        return fast
     try:
         value = condition.xreplace(dict(point)) if isinstance(condition, sp.Basic) else condition
         if isinstance(value, sp.core.relational.Relational):
@@ -476,7 +531,7 @@ def compare_bounds(
         return _compare_general(printed, p, e, var, f"it is an upper bound, {p}", on_weaker=on_weaker, box=box,
                                 verify=verify, corrected=corrected, what=what, suffix=suffix, tries=tries, exact=exact)
     raw = p.bound - e.bound
-    difference = canonical_rational(raw) if raw.is_rational_function() else sp.cancel(sp.together(raw))
+    difference = canonical_rational(raw) if raw.is_rational_function() else exact_cancel(sp.together(raw))
     strictness = "" if p.strict == e.strict else f"; compared up to the boundary ({'>' if p.strict else '>='} vs {'>' if e.strict else '>='})"
     symbols = sorted((p.bound.free_symbols | e.bound.free_symbols) - {var}, key=str)
     form = _printed_form(p, printed)

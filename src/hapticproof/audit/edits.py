@@ -36,6 +36,7 @@ import sympy as sp
 
 from hapticproof.audit.runner import Equation, Paper
 from hapticproof.core.errors import LatexParseError
+from hapticproof.core.limits import check_mutants
 
 __all__ = ["OPERATORS", "REPAIR_OPERATORS", "Mutant", "Token", "generate", "half_latex", "halved", "is_relation", "resolves",
            "table_names"]
@@ -437,6 +438,7 @@ def generate(equation: Equation, paper: Paper, *, text: str | None = None, table
             replacement += " "      # '\omega' before 'T' must not become '\omegaT'
         if not replacement and text[hi:hi + 1] == " " and (lo == 0 or text[lo - 1] in " {($&"):
             hi += 1                 # a dropped term leaves one space, not two
+        check_mutants(len(found) + 1, len(text), f"{paper.id}:{equation.id}")   # each mutant is the whole display
         printed = text[:lo] + replacement + text[hi:]
         if printed == text or printed in found:
             return

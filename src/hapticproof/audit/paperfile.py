@@ -346,6 +346,7 @@ def _read_symbols(raw: Mapping[str, Any], path: str,
         if name in ("z", "s"):
             raise PaperFileError(f"{where}: z and s are the transform variables; they need no declaration")
         if _RELATION.search(value):
+            _refuse_toolkit_name(name, "relation", where)
             relations.append((printed, name, value, line))
             symbols[printed] = sp.Symbol(name, real=True)
             continue
@@ -360,6 +361,7 @@ def _read_symbols(raw: Mapping[str, Any], path: str,
             if len(kinds) != 1:
                 raise PaperFileError(f"{where}: give one word of {', '.join(WORDS)} (and 'symmetric' for a family)")
             word = kinds[0]
+            _refuse_toolkit_name(name, word, where)
             if _is_family(printed):
                 if word in ("function", "signal"):
                     raise PaperFileError(f"{where}: an indexed family takes a sign assumption, not {word!r}")
@@ -402,6 +404,22 @@ def _read_symbols(raw: Mapping[str, Any], path: str,
         table = table.with_symbols({printed: expr})
         words[name] = "definition"
     return table, words, region, lines
+
+
+#: The toolkit's own names a paper file may declare, with the one word that keeps their meaning.
+_OWN_MEANING = {"n": "integer", "omega": "real"}
+
+
+def _refuse_toolkit_name(name: str, word: str, where: str) -> None:
+    """A ``[symbols]`` name that is one of the toolkit's own quantities (``n`` the delay, ``c`` =
+    cos(omega T): :data:`hapticproof.core.symbols.TOOLKIT_NAMES`) is refused unless declared with
+    that meaning (``n = "integer"``, ``omega = "real"``): it would silently mean both."""
+    from hapticproof.core.symbols import TOOLKIT_NAMES
+
+    if name in TOOLKIT_NAMES and _OWN_MEANING.get(name) != word:
+        keep = f" (declare it {_OWN_MEANING[name]!r} for that meaning)" if name in _OWN_MEANING else ""
+        raise PaperFileError(f"{where}: {name!r} is the toolkit's own name for {TOOLKIT_NAMES[name]}{keep}; "
+                             f"give your quantity another name")
 
 
 def _read_relations(relations: list[tuple[str, str, str, int | None]], table: Any, words: dict[str, str],
@@ -745,6 +763,15 @@ def _read_equations(raw: Any, path: str, text: str, table: Any, scenes: Mapping[
     specs: list[ClaimSpec] = []
     pending_other: list[tuple[str, str]] = []
     ids: set[str] = set()
+    tables: dict[Any, Any] = {}
+
+    def scene_table(name: Any) -> Any:
+        """The symbol table with a scene's names, built once per scene (reading stays linear)."""
+        key = name if isinstance(name, str) else None
+        if key not in tables:
+            tables[key] = with_scene_names(table, scenes.get(name) if isinstance(name, str) else None)
+        return tables[key]
+
     for k, entry in enumerate(raw):
         block = blocks[k] if k < len(blocks) else None
         start = block[0] if block else None
@@ -836,17 +863,16 @@ def _read_equations(raw: Any, path: str, text: str, table: Any, scenes: Mapping[
             for key in ("other", "under"):
                 if key in entry:
                     raise PaperFileError(f"{where(key)}: {key} applies to same-as claims")
-        if "assumption" in entry and claim == "condition":
+        if "assumption" in entry and claim in ("condition", "identity"):
             fields["stated"] = _text_field(entry["assumption"], where("assumption"), "assumption").strip()
         elif "assumption" in entry:
             if claim not in CONDITION_CLAIMS:
-                raise PaperFileError(f"{where('assumption')}: assumption applies to condition claims")
+                raise PaperFileError(f"{where('assumption')}: assumption applies to condition and identity claims")
             fields["assumption"] = _assumption(_text_field(entry["assumption"], where("assumption"), "assumption"),
-                                               with_scene_names(table, scenes.get(fields.get("scene"))),
-                                               where("assumption"), region)
+                                               scene_table(fields.get("scene")), where("assumption"), region)
         # names: an unknown name is the file's mistake (declare it); other parse errors are the
         # paper's (the audit calls them malformed)
-        check_table = with_scene_names(table, scenes.get(fields.get("scene")))
+        check_table = scene_table(fields.get("scene"))
         try:
             parse_printed(printed, check_table)
         except LatexParseError as err:

@@ -35,6 +35,7 @@ from pathlib import Path
 from typing import Any
 
 import sympy as sp
+from hapticproof.core.files import write_atomic
 from hapticproof.bench.timing import jsonable, machine_info, median_time
 
 __all__ = ["margin_cases", "margin_study", "boundary_study", "audit_study", "lazy_study", "stress_study", "stress_cases", "plot_time_error", "run"]
@@ -351,7 +352,9 @@ def plot_time_error(rows: list[dict[str, Any]], path: str | Path, title: str) ->
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=7)
     fig.suptitle(title, fontsize=10)
-    fig.savefig(path, dpi=110, bbox_inches="tight")
+    from hapticproof.core.files import write_figure
+
+    write_figure(fig, path, "bench")
 
 
 def run(tasks: Iterable[str], outdir: str | Path, quick: bool = False, repeat: int = 3,
@@ -434,9 +437,9 @@ def run(tasks: Iterable[str], outdir: str | Path, quick: bool = False, repeat: i
         else:
             raise ValueError(f"unknown task {task!r}")
         data["seconds"] = time.perf_counter() - start
-        (outdir / f"{task}.json").write_text(json.dumps(jsonable(data), indent=1))
+        write_atomic(outdir / f"{task}.json", json.dumps(jsonable(data), indent=1), "bench")
         summary[task] = {"seconds": data["seconds"]}
     if progress is not None:
         progress(len(tasks), len(tasks), "bench")
-    (outdir / "summary.json").write_text(json.dumps(summary, indent=1))
+    write_atomic(outdir / "summary.json", json.dumps(summary, indent=1), "bench")
     return summary

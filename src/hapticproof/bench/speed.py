@@ -265,7 +265,9 @@ def plot_peers(data: dict[str, Any], path: str | Path) -> None:
     ax.set_title("end-to-end numeric passivity decisions (HVE virtual wall, b near the exact boundary)", fontsize=9)
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=7)
-    fig.savefig(path, dpi=110, bbox_inches="tight")
+    from hapticproof.core.files import write_figure
+
+    write_figure(fig, path, "bench")
 
 
 # ---------------------------------------------------------------------------------------------
@@ -332,7 +334,9 @@ def plot_delays(data: dict[str, Any], path: str | Path) -> None:
     ax.set_title("exact decisions with long delays", fontsize=9)
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=7)
-    fig.savefig(path, dpi=110, bbox_inches="tight")
+    from hapticproof.core.files import write_figure
+
+    write_figure(fig, path, "bench")
 
 
 def margin_search_study(delays: Sequence[int] = (10, 100, 1000), repeat: int = 3,

@@ -12,11 +12,11 @@ from __future__ import annotations
 import argparse
 import importlib
 import sys
-from collections.abc import Sequence
+from collections.abc import MutableMapping, Sequence
 
 from hapticproof.core.errors import HapticproofError
 
-__all__ = ["main", "build_parser", "take_limits", "help_text"]
+__all__ = ["main", "build_parser", "take_limits", "help_text", "Terminated"]
 
 #: Subcommand modules, in the order they appear in ``--help``.
 COMMANDS = ("audit", "new-paper", "derive", "check", "export", "boundary", "map", "zwidth", "bench")
@@ -131,14 +131,24 @@ def main(argv: Sequence[str] | None = None) -> int:
     # work by core.limits (digits, exponents, degrees), so the conversions stay bounded too.
     if hasattr(sys, "set_int_max_str_digits") and 0 < sys.get_int_max_str_digits() < 10**6:
         sys.set_int_max_str_digits(10**6)
+    previous = _catch_termination()
     try:
         return _main(argv)
     except HapticproofError as err:
-        print(f"hapticproof: error: {err}", file=sys.stderr)
+        from hapticproof.core.escape import for_terminal
+
+        print(f"hapticproof: error: {for_terminal(err)}", file=sys.stderr)     # one line, nothing that repaints
         return 2
+    except Terminated as stop:      # SIGTERM, SIGHUP: as Ctrl-C, the temporary output is removed
+        print(f"hapticproof: terminated ({stop})", file=sys.stderr)
+        return 128 + stop.signal
     except KeyboardInterrupt:       # Ctrl-C: one line, no traceback; no output was replaced
         print("hapticproof: interrupted", file=sys.stderr)
         return 130
+    except RecursionError:          # nesting within a raised --limit depth, beyond what Python recurses through
+        print("hapticproof: error: the input is nested too deeply to read (nesting above a few hundred levels; "
+              "lower --limit depth)", file=sys.stderr)
+        return 2
     except BrokenPipeError:  # e.g. piped into `head`
         _quiet_stdout()
         return 0
@@ -148,6 +158,57 @@ def main(argv: Sequence[str] | None = None) -> int:
             print(f"hapticproof: error: cannot write the output: {err.strerror}", file=sys.stderr)
             return 2
         raise
+    finally:
+        _restore_signals(previous)
+        from hapticproof.core.files import discard_temporaries
+
+        discard_temporaries()
+
+
+class Terminated(KeyboardInterrupt):
+    """SIGTERM or SIGHUP arrived: raised in the main thread, so that every ``with``/``finally``
+    block unwinds (a temporary output file is removed, worker pools are shut down) as for
+    Ctrl-C."""
+
+    def __init__(self, signum: int):
+        import signal
+
+        super().__init__(signal.Signals(signum).name)
+        self.signal = signum
+
+
+def _catch_termination() -> dict:
+    """Turn SIGTERM and SIGHUP into :class:`Terminated` while a command runs (main thread only;
+    returns the previous handlers)."""
+    import signal
+    import threading
+
+    if threading.current_thread() is not threading.main_thread():
+        return {}
+
+    def stop(signum, _frame):
+        raise Terminated(signum)
+
+    previous = {}
+    for name in ("SIGTERM", "SIGHUP"):
+        number = getattr(signal, name, None)
+        if number is None:
+            continue
+        try:
+            previous[number] = signal.signal(number, stop)
+        except (ValueError, OSError):
+            pass
+    return previous
+
+
+def _restore_signals(previous: dict) -> None:
+    import signal
+
+    for number, handler in previous.items():
+        try:
+            signal.signal(number, handler)
+        except (ValueError, OSError, TypeError):
+            pass
 
 
 def _quiet_stdout() -> None:
@@ -162,12 +223,36 @@ def _quiet_stdout() -> None:
         pass
 
 
+#: Thread-count variables of the BLAS libraries NumPy and SciPy may load.
+BLAS_THREADS = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
+
+
+def single_threaded_blas(environ: MutableMapping[str, str] | None = None) -> None:
+    """One BLAS thread for this process (unless the user chose a count): the audit's matrices
+    have a few dozen entries, where OpenBLAS's extra threads only spin -- on a busy 2-core
+    machine they doubled the CPU time of a boundary search -- and its worker processes are the
+    parallelism. ``environ`` defaults to ``os.environ``; it takes effect when NumPy is first
+    imported (the command line imports it only after this).
+
+    >>> env = {"MKL_NUM_THREADS": "4"}
+    >>> single_threaded_blas(env); env["OPENBLAS_NUM_THREADS"], env["MKL_NUM_THREADS"]
+    ('1', '4')
+    """
+    import os
+
+    environ = os.environ if environ is None else environ
+    for name in BLAS_THREADS:
+        environ.setdefault(name, "1")
+
+
 def _main(argv: list[str]) -> int:
     from hapticproof.core.limits import parse_limits, set_limits
 
     argv, limits = take_limits(argv)
     if limits:
         set_limits(parse_limits(limits))
+    if argv and argv[0] == "audit":
+        single_threaded_blas()
     _refuse_foreign_digits(argv)
     if argv and argv[0] in ("derive", "boundary") and "--scene" in " ".join(argv):
         from hapticproof.cli.derive import complete_argv

@@ -15,6 +15,7 @@ import sys
 import time
 
 from hapticproof.cli.common import check_output, input_files, write_text
+from hapticproof.core.escape import for_terminal
 from hapticproof.cli.terminal import colour_verdict, progress_bar, summary_line, use_colour
 
 __all__ = ["register", "FAIL_STATUS", "fail_on_verdicts", "failing"]
@@ -209,11 +210,11 @@ def _mutate(args: argparse.Namespace, selected: list) -> int:
         report = mutate_paper(paper, only, count=args.sample, seed=args.seed, jobs=args.jobs or 1)
         reports.append(report)
         if args.format == "table" and not args.output:
-            print(report.to_text(), flush=True)
+            print(for_terminal(report.to_text(), multiline=True), flush=True)
     if args.format == "json":
         text = json.dumps({"papers": [r.to_json() for r in reports]}, indent=2)
     else:
-        text = "\n".join(r.to_text() for r in reports)
+        text = "\n".join(for_terminal(r.to_text(), multiline=True) for r in reports)
     if args.output:
         path = write_text(args.output, text)
         print(f"wrote {path}", file=sys.stderr)

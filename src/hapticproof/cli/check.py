@@ -7,10 +7,14 @@ function, Routh-Hurwitz); every verdict that carries its original object (``G^{-
 printed display as given, the scene at the witness) is judged against the definition
 (:mod:`hapticproof.exact.judge`); and what the report *displays* -- a verdict, a witness -- is
 re-derived from what it carries: a tampered verdict, witness or certificate number is refused
-with a line saying what does not match. Entries without a certificate are listed as not
-re-verifiable. Exit code 0 when everything holds, 1 when something fails or is refused, 2 for
-a file that cannot be read or is not a report (its shape is checked first:
-:mod:`hapticproof.core.shapes`).
+with a line saying what does not match. Every certificate and judge object must be bound to
+what its verdict is about (:mod:`hapticproof.exact.acceptance`: the same transfer function, the
+whole range of ``c``, a known kind, one point of the circle). Exit code 0 only when the report
+is **accepted** -- every verdict that claims something backed by evidence that was re-verified
+and bound to it --, 1 when something fails or is refused, when a verdict carries no
+certificate or judge object, or when a certificate could not be re-verified (a limit): an
+unverifiable ``proved`` is never success; 2 for a file that cannot be read or is not a report
+(its shape is checked first: :mod:`hapticproof.core.shapes`).
 """
 
 from __future__ import annotations
@@ -18,6 +22,7 @@ from __future__ import annotations
 import argparse
 import sys
 
+from hapticproof.core.escape import for_terminal
 from hapticproof.core.files import read_json, read_text
 from hapticproof.core.shapes import check_report as check_shape
 
@@ -46,10 +51,19 @@ def run(args: argparse.Namespace) -> int:
     report = read_json(read_text(args.report, name), name)
     check_shape(report, name)      # a number, null or a table of another form is no report
     result = check_report(report)
-    lines = result.summary().splitlines()
+    lines = [for_terminal(line) for line in result.summary().splitlines()]     # names from the report, escaped
     print("\n".join(lines[-1:] if args.quiet else lines))
-    refused = [(name, r) for name, r in result.failed if r.source == "display"]
-    if refused:
-        name, first = refused[0]
-        print(f"report refused: {name}: {first.reason}", file=sys.stderr)
-    return 0 if result.ok else 1
+    if not result.accepted:                     # one line saying why; every verdict must be backed
+        order = ("display", "binding", "certificate", "judge")
+        failed = sorted(result.failed, key=lambda item: order.index(item[1].source) if item[1].source in order else 0)
+        if failed:
+            name, first = failed[0]
+            more = f" (and {len(failed) - 1} more)" if len(failed) > 1 else ""
+            print(f"report refused: {for_terminal(name)}: {for_terminal(first.reason)}{more}", file=sys.stderr)
+        else:
+            missing = result.not_verified
+            name, first = next(((n, r) for n, r in missing if r.source != "unbacked"), missing[0])
+            what = first.reason if first.source == "unbacked" else f"not re-verified: {first.reason}"
+            more = f" (and {len(missing) - 1} more)" if len(missing) > 1 else ""
+            print(f"report not accepted: {for_terminal(name)}: {for_terminal(what)}{more}", file=sys.stderr)
+    return 0 if result.accepted else 1

@@ -142,14 +142,12 @@ def input_files(args: argparse.Namespace) -> list[str]:
 
 
 def write_text(path: str | Path, text: str) -> Path | None:
-    """Write ``text`` to ``path`` (``-``: standard output, returns ``None``): whole or not at
-    all (a temporary file beside it, renamed when complete); no folder is created."""
-    from hapticproof.core.files import write_atomic
+    """Write ``text`` to ``path`` (``-``: standard output, returns ``None``) with the one output
+    writer (:func:`hapticproof.core.files.write_output`): whole or not at all, no link followed,
+    no folder created."""
+    from hapticproof.core.files import write_output as write
 
-    if str(path) == "-":
-        sys.stdout.write(text if text.endswith("\n") else text + "\n")
-        return None
-    return write_atomic(path, text)
+    return write(path, text)
 
 
 def write_output(path: str | None, text: str) -> None:

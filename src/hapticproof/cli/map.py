@@ -74,6 +74,10 @@ def run(args: argparse.Namespace) -> int:
         raise InputFormatError("--workers must be at least 1")
     if args.chunk_lines is not None and args.chunk_lines < 1:
         raise InputFormatError("--chunk-lines must be at least 1")
+    if args.scheduler is not None and args.scheduler != "dask":
+        from hapticproof.analysis.scaleout import scheduler_address
+
+        scheduler_address(args.scheduler)          # a malformed address is one line before any work
     scene = scene_from_any_args(args, LOOP_SYSTEMS, default="single-user")
     spec = designmap.MapSpec.build(args.quantity, args.x, args.y, scene)
     to_file = bool(args.output) and args.output != "-"           # "-" is standard output, as everywhere

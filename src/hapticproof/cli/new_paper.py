@@ -4,8 +4,8 @@ fill in, or a draft read from the paper's LaTeX source or transcription."""
 from __future__ import annotations
 
 import argparse
+import os
 import sys
-from pathlib import Path
 
 from hapticproof.cli.common import check_output, write_text
 from hapticproof.core.errors import InputFormatError
@@ -38,8 +38,8 @@ def run(args: argparse.Namespace) -> int:
 
     path = args.file
     if path != "-":
-        check_output(path, "new-paper", (".toml",))
-        if Path(path).exists() and not args.force:
+        check_output(path, "new-paper", (".toml",), inputs=[args.source])     # never its own source
+        if os.path.lexists(path) and not args.force:
             raise InputFormatError(f"new-paper {path}: the file exists (use --force to overwrite it)")
     note = ""
     if args.source is None:

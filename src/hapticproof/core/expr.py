@@ -88,7 +88,7 @@ ASSUMPTIONS: dict[str, dict[str, bool]] = {
 DEFAULT_ASSUMPTIONS: dict[str, str] = {
     "b": "positive", "T": "positive", "K": "positive", "B": "nonnegative", "z_a": "nonnegative",
     "t_d": "nonnegative", "m": "positive", "m_m": "positive", "m_s": "positive",
-    "b_m": "positive", "b_s": "positive", "alpha": "positive", "a": "nonnegative",
+    "b_m": "positive", "b_s": "positive", "alpha": "positive",
     "K_0": "positive", "B_0": "nonnegative",
 }
 

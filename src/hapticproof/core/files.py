@@ -13,11 +13,14 @@ Reading
 
 Writing
     :func:`check_output` refuses, before any work, an output that cannot be written: a
-    directory, a parent that is missing or a file, a read-only file or folder, a wrong suffix,
-    or one of the command's own inputs. :func:`write_atomic` and :class:`AtomicOutput` write to
-    a temporary file beside the target and rename it over the target when it is complete: a
-    failed or interrupted write leaves the previous file as it was, and no reader ever sees a
-    half-written one. No directory is ever created.
+    symbolic link (even a dangling one), a FIFO, a device, a directory, a parent that is missing
+    or a file, a read-only file or folder, a wrong suffix, or one of the command's own inputs.
+    :func:`write_output` is the one writer of every format and figure (``-`` is standard
+    output; :func:`write_figure` renders a figure in memory first): :func:`write_atomic` and
+    :class:`AtomicOutput` write to a temporary file beside the target and rename it over the
+    target when it is complete -- a failed or interrupted write (Ctrl-C, SIGTERM) leaves the
+    previous file as it was and no temporary file, no reader ever sees a half-written one, and
+    no link is ever written through. No directory is ever created.
 
 >>> import tempfile, pathlib
 >>> folder = pathlib.Path(tempfile.mkdtemp())
@@ -33,6 +36,7 @@ hapticproof.core.files.FileAccessError: scene.toml:3: matrix: '/etc/shadow' is a
 
 from __future__ import annotations
 
+import atexit
 import contextlib
 import io
 import json
@@ -41,7 +45,7 @@ import re
 import stat
 import sys
 import tempfile
-from collections.abc import Iterable, Iterator
+from collections.abc import Iterable
 from pathlib import Path
 from typing import IO, Any
 
@@ -255,8 +259,11 @@ def toml_depth(text: str) -> int:
 
 def read_json(text: str, name: str, parse_float: Any = None) -> Any:
     """Parse JSON text of the file ``name``: nesting within
-    :attr:`~hapticproof.core.limits.Limits.depth`, a syntax error as one line with the place,
-    ``NaN``/``Infinity`` refused (not JSON).
+    :attr:`~hapticproof.core.limits.Limits.depth`, every number within
+    :attr:`~hapticproof.core.limits.Limits.digits` (decided from its text, integers included;
+    ``1e999999`` is refused, never read as infinity), a key given twice in one object refused
+    (which one would count?), a syntax error as one line with the place, ``NaN``/``Infinity``
+    refused (not JSON).
 
     >>> read_json('{"a": [1, 2]}', "r.json")
     {'a': [1, 2]}
@@ -264,8 +271,18 @@ def read_json(text: str, name: str, parse_float: Any = None) -> Any:
     Traceback (most recent call last):
     ...
     hapticproof.core.limits.LimitError: r.json: 1000 levels of nesting is above the limit of 100 (raise it with --limit depth=N)
+    >>> read_json('{"verdict": "proved", "verdict": "disproved"}', "r.json")
+    Traceback (most recent call last):
+    ...
+    hapticproof.core.errors.InputFormatError: r.json: not JSON (the key 'verdict' is given twice in one object)
+    >>> read_json('{"inputs": 1e999999}', "r.json")
+    Traceback (most recent call last):
+    ...
+    hapticproof.core.limits.LimitError: r.json: a JSON number: a number of about 1000000 digits is above the limit of 1000 digits (raise it with --limit digits=N)
     """
-    from hapticproof.core.limits import check
+    import math
+
+    from hapticproof.core.limits import LimitError, check, check_number_text
 
     if text.startswith("\ufeff"):
         text = text[1:]
@@ -274,8 +291,29 @@ def read_json(text: str, name: str, parse_float: Any = None) -> Any:
     def refuse(constant: str) -> Any:
         raise ValueError(f"{constant} is not JSON")
 
+    def integer(digits: str) -> int:
+        check_number_text(digits, f"{name}: a JSON number")
+        return int(digits)
+
+    def real(digits: str) -> Any:
+        check_number_text(digits, f"{name}: a JSON number")
+        value = (parse_float or float)(digits)
+        if isinstance(value, float) and not math.isfinite(value):
+            raise ValueError(f"the number {digits[:40]} is outside the range of a double")
+        return value
+
+    def unique(pairs: list[tuple[str, Any]]) -> dict[str, Any]:
+        out: dict[str, Any] = {}
+        for key, value in pairs:
+            if key in out:
+                raise ValueError(f"the key {key[:60]!r} is given twice in one object")
+            out[key] = value
+        return out
+
     try:
-        return json.loads(text, parse_constant=refuse, parse_float=parse_float)
+        return json.loads(text, parse_constant=refuse, parse_float=real, parse_int=integer, object_pairs_hook=unique)
+    except LimitError:
+        raise
     except json.JSONDecodeError as err:
         raise InputFormatError(f"{name}:{err.lineno}: not JSON ({err.msg} at column {err.colno})") from None
     except ValueError as err:
@@ -297,9 +335,46 @@ def same_file(a: str | Path, b: str | Path) -> bool:
         return os.path.realpath(a) == os.path.realpath(b)
 
 
+_KINDS = ((stat.S_ISFIFO, "a FIFO (named pipe)"), (stat.S_ISCHR, "a character device"), (stat.S_ISBLK, "a block device"),
+          (stat.S_ISSOCK, "a socket"))
+
+
+def refuse_special(path: str | Path, option: str = "--output") -> None:
+    """Fail if the output ``path`` itself is a symbolic link (even one that points nowhere), a
+    FIFO, a device or a socket: an output is a regular file, written whole beside its name and
+    renamed over it, never written through a link or into a special file. (``-`` is standard
+    output: the callers never pass it here.)
+
+    >>> import tempfile, pathlib, os
+    >>> folder = pathlib.Path(tempfile.mkdtemp())
+    >>> os.symlink("/nowhere/at/all", folder / "r.html")
+    >>> refuse_special(folder / "r.html", "-o")
+    Traceback (most recent call last):
+    ...
+    hapticproof.core.files.OutputError: -o ...r.html: is a symbolic link; an output is never written through a link (remove the link or name another file)
+    """
+    text = str(path)
+    try:
+        info = os.lstat(path)
+    except (FileNotFoundError, NotADirectoryError):     # (a parent that is a file: the caller says so)
+        return
+    except OSError as err:
+        raise OutputError(f"{option} {text}: {_reason(err)}") from None
+    if stat.S_ISLNK(info.st_mode):
+        raise OutputError(f"{option} {text}: is a symbolic link; an output is never written through a link "
+                          "(remove the link or name another file)")
+    if stat.S_ISDIR(info.st_mode):
+        raise OutputError(f"{option} {text}: is a directory")
+    for test, kind in _KINDS:
+        if test(info.st_mode):
+            raise OutputError(f"{option} {text}: is {kind}, not a regular file; name a regular file "
+                              "('-' is standard output)")
+
+
 def check_output(path: str | Path | None, option: str, suffixes: tuple[str, ...] = (),
                  inputs: Iterable[str | Path | None] = ()) -> None:
-    """Fail, before any work, if ``path`` cannot be an output: a wrong suffix, a directory, a
+    """Fail, before any work, if ``path`` cannot be an output: a wrong suffix, a symbolic link
+    (even a dangling one), a FIFO, a device or a socket (:func:`refuse_special`), a directory, a
     missing parent folder (none is created) or one that is a file, a file or folder that is not
     writable, or one of ``inputs`` (the command's own input files). ``-`` and ``None``
     (standard output) are always fine.
@@ -313,6 +388,10 @@ def check_output(path: str | Path | None, option: str, suffixes: tuple[str, ...]
     Traceback (most recent call last):
     ...
     hapticproof.core.files.OutputError: -o /nonexistent/dir/r.html: the folder /nonexistent/dir does not exist (create it first)
+    >>> check_output("/dev/null", "-o")
+    Traceback (most recent call last):
+    ...
+    hapticproof.core.files.OutputError: -o /dev/null: is a character device, not a regular file; name a regular file ('-' is standard output)
     """
     if path is None or str(path) == "-":
         return
@@ -320,39 +399,54 @@ def check_output(path: str | Path | None, option: str, suffixes: tuple[str, ...]
     target = Path(text)
     if not text.strip() or text.endswith(("/", os.sep)):
         raise OutputError(f"{option} {text!r}: a file name is needed")
+    if any(ord(ch) < 32 or ord(ch) == 127 for ch in text):
+        raise OutputError(f"{option} {text!r}: a file name without control characters is needed")
     if suffixes and target.suffix.lower() not in suffixes:
         shown = ", ".join(suffixes[:-1]) + (" or " if len(suffixes) > 1 else "") + suffixes[-1]
         raise OutputError(f"{option} {text}: the file name must end in {shown}")
+    refuse_special(target, option)
     for source in inputs:
         if source is not None and str(source) != "-" and os.path.exists(source) and same_file(source, target):
             raise OutputError(f"{option} {text}: is an input of this command ({source}); write the output elsewhere")
-    real = Path(os.path.realpath(target))
-    parent = real.parent
-    if real.is_dir():
-        raise OutputError(f"{option} {text}: is a directory")
+    parent = Path(os.path.abspath(target)).parent
     if not parent.exists():
         shown_parent = target.parent if str(target.parent) not in ("", ".") else parent
         raise OutputError(f"{option} {text}: the folder {shown_parent} does not exist (create it first)")
     if not parent.is_dir():
         raise OutputError(f"{option} {text}: {parent} is not a directory")
-    if real.exists():
-        mode = real.stat().st_mode
-        if stat.S_ISREG(mode) and (not os.access(real, os.W_OK) or not mode & 0o222):   # (root may write anyway)
+    if os.path.lexists(target):
+        mode = os.lstat(target).st_mode
+        if not os.access(target, os.W_OK) or not mode & 0o222:   # (root may write anyway)
             raise OutputError(f"{option} {text}: the file is read-only")
-        if stat.S_ISREG(mode) and not os.access(parent, os.W_OK | os.X_OK):
-            raise OutputError(f"{option} {text}: the folder {parent} is not writable")
-        if not stat.S_ISREG(mode) and not os.access(real, os.W_OK):
-            raise OutputError(f"{option} {text}: not writable")
-    elif not os.access(parent, os.W_OK | os.X_OK):
+    if not os.access(parent, os.W_OK | os.X_OK):
         raise OutputError(f"{option} {text}: the folder {parent} is not writable")
+
+
+#: Temporary files being written now: removed when the write fails, when the process is
+#: interrupted (Ctrl-C, SIGTERM: the command line turns both into an exception) and, as a last
+#: resort, at exit (:func:`discard_temporaries`).
+_LIVE: set[str] = set()
+
+
+def discard_temporaries() -> None:
+    """Remove every temporary output file this process is still writing (the targets are left
+    as they were)."""
+    for temp in list(_LIVE):
+        with contextlib.suppress(OSError):
+            os.unlink(temp)
+        _LIVE.discard(temp)
+
+
+atexit.register(discard_temporaries)
 
 
 class AtomicOutput:
     r"""A file written whole or not at all: the data goes to a temporary file beside the target
     (same folder, so the rename is atomic), which :meth:`commit` renames over the target; leaving
-    the ``with`` block without :meth:`commit` (an error, Ctrl-C) removes it and the target is
-    untouched. A target that is not a regular file (``/dev/null``, a FIFO) is written directly.
-    A symbolic link is followed: the file it points to is replaced.
+    the ``with`` block without :meth:`commit` (an error, Ctrl-C, SIGTERM) removes it and the
+    target is untouched. The target must be a regular file or not exist (:func:`refuse_special`,
+    checked again when the write starts): a symbolic link is never followed -- the rename
+    replaces a name, never the file a link points to -- and FIFOs and devices are refused.
 
     >>> import tempfile, pathlib
     >>> target = pathlib.Path(tempfile.mkdtemp()) / "map.csv"
@@ -367,27 +461,21 @@ class AtomicOutput:
         self.path = Path(path)
         self.option = option
         self.binary = binary
-        self.temp: Path | None = None
+        self.temp: str | None = None
         self.stream: Any = None
         self.done = False
 
     def __enter__(self) -> AtomicOutput:
-        real = Path(os.path.realpath(self.path))
+        refuse_special(self.path, self.option)
+        folder = Path(os.path.abspath(self.path)).parent
         try:
-            direct = real.exists() and not stat.S_ISREG(real.stat().st_mode)
-            if direct:
-                self.stream = open(real, "wb" if self.binary else "w", **({} if self.binary else
-                                                                          {"encoding": "utf-8", "newline": ""}))
-                self.target = real
-                return self
-            fd, temp = tempfile.mkstemp(prefix=f".{real.name}.", suffix=".tmp", dir=real.parent)
+            fd, temp = tempfile.mkstemp(prefix=f".{self.path.name}.", suffix=".tmp", dir=folder)
         except OSError as err:
             raise OutputError(f"cannot write {self.path}: {_reason(err)}") from None
-        self.temp, self.target = Path(temp), real
-        try:
-            os.fchmod(fd, _mode_for(real))
-        except OSError:
-            pass
+        self.temp = temp
+        _LIVE.add(temp)
+        with contextlib.suppress(OSError):
+            os.fchmod(fd, _mode_for(self.path))
         self.stream = os.fdopen(fd, "wb") if self.binary else io.open(fd, "w", encoding="utf-8", newline="")
         return self
 
@@ -395,12 +483,11 @@ class AtomicOutput:
         """Flush, sync and rename the temporary file over the target."""
         try:
             self.stream.flush()
-            if self.temp is not None:
-                os.fsync(self.stream.fileno())
+            os.fsync(self.stream.fileno())
             self.stream.close()
-            if self.temp is not None:
-                os.replace(self.temp, self.target)
-                self.temp = None
+            os.replace(self.temp, self.path)      # replaces the name: a link planted meanwhile is replaced, not followed
+            _LIVE.discard(self.temp)
+            self.temp = None
         except OSError as err:
             self._discard()
             raise OutputError(f"cannot write {self.path}: {_reason(err)}") from None
@@ -413,6 +500,7 @@ class AtomicOutput:
         if self.temp is not None:
             with contextlib.suppress(OSError):
                 os.unlink(self.temp)
+            _LIVE.discard(self.temp)
             self.temp = None
 
     def __exit__(self, *exc: Any) -> None:
@@ -421,13 +509,16 @@ class AtomicOutput:
 
 
 def _mode_for(target: Path) -> int:
-    """The permissions of the file being replaced, else those a new file gets (umask)."""
+    """The permissions of the regular file being replaced, else those a new file gets (umask)."""
     try:
-        return stat.S_IMODE(target.stat().st_mode)
+        info = os.lstat(target)
+        if stat.S_ISREG(info.st_mode):
+            return stat.S_IMODE(info.st_mode)
     except OSError:
-        mask = os.umask(0)
-        os.umask(mask)
-        return 0o666 & ~mask
+        pass
+    mask = os.umask(0)
+    os.umask(mask)
+    return 0o666 & ~mask
 
 
 def write_atomic(path: str | Path, data: str | bytes, option: str = "--output") -> Path:
@@ -442,25 +533,32 @@ def write_atomic(path: str | Path, data: str | bytes, option: str = "--output") 
         return out.commit()
 
 
-@contextlib.contextmanager
-def atomic_path(path: str | Path, option: str = "--output") -> Iterator[Path]:
-    """A temporary path beside ``path`` for writers that want a file name (matplotlib,
-    pyarrow); renamed over ``path`` when the block ends normally, removed otherwise."""
-    real = Path(os.path.realpath(path))
-    try:
-        fd, temp = tempfile.mkstemp(prefix=f".{real.name}.", suffix=real.suffix or ".tmp", dir=real.parent)
-    except OSError as err:
-        raise OutputError(f"cannot write {path}: {_reason(err)}") from None
-    os.close(fd)
-    try:
-        yield Path(temp)
-        os.chmod(temp, _mode_for(real))
-        os.replace(temp, real)
-    except OSError as err:
-        raise OutputError(f"cannot write {path}: {_reason(err)}") from None
-    finally:
-        with contextlib.suppress(OSError):
-            os.unlink(temp)
+def write_output(path: str | Path | None, data: str | bytes, option: str = "--output") -> Path | None:
+    """The one writer of every output: ``-`` or ``None`` is standard output (text gets a final
+    newline; returns ``None``), anything else a file through :func:`write_atomic`.
+
+    >>> write_output("-", "to standard output")
+    to standard output
+    """
+    if path is None or str(path) == "-":
+        if isinstance(data, bytes):
+            sys.stdout.flush()
+            sys.stdout.buffer.write(data)
+            sys.stdout.buffer.flush()
+        else:
+            sys.stdout.write(data if data.endswith("\n") else data + "\n")
+        return None
+    return write_atomic(path, data, option)
 
 
-__all__ += ["atomic_path"]
+def write_figure(figure: Any, path: str | Path, option: str = "--plot", dpi: int = 110) -> Path:
+    """A matplotlib figure rendered in memory (the format from the suffix: ``.png``, ``.pdf``,
+    ``.svg``) and written by :func:`write_atomic`: figures go through the same writer as every
+    other output (no link followed, no FIFO or device replaced, no partial file)."""
+    path = Path(path)
+    buffer = io.BytesIO()
+    figure.savefig(buffer, dpi=dpi, bbox_inches="tight", format=path.suffix.lstrip(".").lower() or "png")
+    return write_atomic(path, buffer.getvalue(), option)
+
+
+__all__ += ["discard_temporaries", "refuse_special", "write_figure", "write_output"]

@@ -47,7 +47,8 @@ from dataclasses import dataclass, fields, replace
 from hapticproof.core.errors import InputFormatError
 
 __all__ = ["Limits", "LimitError", "DEFAULT", "current", "raised", "set_limits", "parse_limits", "check",
-           "check_number_text", "check_power", "check_minors", "degree_bound", "nesting_depth", "check_depth"]
+           "check_number_text", "check_power", "check_minors", "degree_bound", "nesting_depth", "check_depth",
+           "MUTANT_TEXT", "check_mutants"]
 
 
 class LimitError(InputFormatError):
@@ -165,7 +166,7 @@ def check_number_text(text: str, where: str) -> None:
         exp = exponent.lstrip("+-")
         if len(exp) > 18:
             size = 10**18
-        elif exp.isdigit():
+        elif exp.isascii() and exp.isdigit():
             size = digits + int(exp)
     limit = current().digits
     if size > limit:
@@ -193,7 +194,7 @@ def check_power(base: object, exponent: int, where: str, degree: int | None = No
                          "(raise it with --limit exponent=N)")
     size = _digits_of(base)
     if size is not None and size * k > limits.digits + 1:
-        raise LimitError(f"{where}: a number of about {size * k} digits is above the limit of {limits.digits} digits "
+        raise LimitError(f"{where}: a number of about {size * k:.0f} digits is above the limit of {limits.digits} digits "
                          "(raise it with --limit digits=N)")
     if degree and degree * k > limits.degree:
         raise LimitError(f"{where}: a degree of {degree * k} is above the limit of {limits.degree} "
@@ -295,3 +296,21 @@ def nesting_depth(text: str, opening: str = "{([", closing: str = "})]", escape:
 def check_depth(text: str, where: str, opening: str = "{([", closing: str = "})]", escape: str | None = "\\") -> None:
     """Refuse ``text`` nested deeper than :attr:`Limits.depth` (before a recursive parser sees it)."""
     check("depth", nesting_depth(text, opening, closing, escape), where)
+
+
+#: The characters the mutants of one display may hold together (each mutant is the whole display
+#: changed once): ``audit --mutate`` of a 100 KB display would build gigabytes of text.
+MUTANT_TEXT = 20_000_000
+
+
+def check_mutants(count: int, length: int, where: str) -> None:
+    """``count`` mutants of a display of ``length`` characters within :data:`MUTANT_TEXT`.
+
+    >>> check_mutants(20_001, 1000, "p:3")
+    Traceback (most recent call last):
+    ...
+    hapticproof.core.limits.LimitError: p:3: the mutants of a 1000-character display exceed 20000000 characters (mutate shorter displays, or others with --equation)
+    """
+    if count * length > MUTANT_TEXT:
+        raise LimitError(f"{where}: the mutants of a {length}-character display exceed {MUTANT_TEXT} characters "
+                         "(mutate shorter displays, or others with --equation)")

@@ -13,7 +13,8 @@ from __future__ import annotations
 
 import sympy as sp
 
-__all__ = ["z", "s", "c", "x", "omega", "theta", "n", "j", "sin_theta", "cos_n", "sin_n", "HELPERS", "helper_definitions"]
+__all__ = ["z", "s", "c", "x", "omega", "theta", "n", "j", "sin_theta", "cos_n", "sin_n", "HELPERS", "helper_definitions",
+           "TOOLKIT_NAMES", "toolkit_name"]
 
 #: Complex frequency variable of discrete-time transfer functions.
 z = sp.Symbol("z")
@@ -39,6 +40,25 @@ sin_n = sp.Symbol("S_n", real=True)
 
 #: What each helper symbol of the canonical forms stands for (text output defines those it uses).
 HELPERS: dict[str, str] = {"c": "cos wT", "s_theta": "sin wT", "C_n": "cos(n wT)", "S_n": "sin(n wT)", "theta": "wT"}
+
+#: The toolkit's own quantities, by name: a scene's parameter, a role or a paper file's symbol
+#: may not take one of these names (a device damping named ``n`` was read as the delay, one
+#: named ``c`` as cos(omega T)); ``n`` (as an integer) and ``omega`` (real) may be declared by
+#: a paper file with that meaning.
+TOOLKIT_NAMES: dict[str, str] = {
+    "n": "the delay n = t_d/T in samples", "c": "cos(omega T) on the unit circle", "x": "omega^2 on the imaginary axis",
+    "omega": "the angular frequency", "theta": "the angle omega T", "s_theta": "sin(omega T)",
+    "C_n": "cos(n omega T)", "S_n": "sin(n omega T)",
+}
+
+
+def toolkit_name(name: str) -> str | None:
+    """What the toolkit's own name ``name`` means (:data:`TOOLKIT_NAMES`), ``None`` for a free name.
+
+    >>> toolkit_name("c"), toolkit_name("b")
+    ('cos(omega T) on the unit circle', None)
+    """
+    return TOOLKIT_NAMES.get(name)
 
 
 def helper_definitions(expr) -> str:

@@ -34,7 +34,7 @@ from __future__ import annotations
 
 import re
 import unicodedata
-from collections.abc import Collection, Iterable
+from collections.abc import Collection, Iterable, Mapping
 from dataclasses import dataclass, field
 
 __all__ = [
@@ -422,6 +422,8 @@ def check_tex(
     allow_comments: bool = False,
     allow_non_ascii: bool = True,
     engine: str = "pdftex",
+    alignments: Mapping[str, int | None] | Collection[str] | None = None,
+    rows: Collection[str] | None = None,
 ) -> str | None:
     r"""The reason to refuse ``text`` as mathematics in a LaTeX report, or None when TeX
     reads nothing but allowed commands in it.
@@ -434,12 +436,20 @@ def check_tex(
     becomes ``^^5c`` once the report drops the alignment mark), invalid and control characters, and a comment
     unless ``allow_comments`` (the report joins a display's lines, so a comment would swallow
     the report's own closing braces). Characters >= 128 (active in pdflatex, defined by the
-    UTF-8 input encoding) pass unless ``allow_non_ascii`` is False.
+    UTF-8 input encoding) pass unless ``allow_non_ascii`` is False. ``alignments`` (the
+    environments whose cells ``&`` separates, optionally with the most cells a row may have):
+    when given, an ``&`` is accepted only directly inside one of them and within its cells, not
+    in a group such as ``\text{a & b}`` (TeX stops there with "Misplaced alignment tab
+    character"), and a ``\\`` only directly inside one of ``rows`` (default: the alignments).
 
     >>> check_tex(r"\begin{bmatrix} 1 & 0 \\ 0 & 1 \end{bmatrix}", {"begin", "end"}, {"bmatrix"}) is None
     True
     >>> print(check_tex(r"\csname input\endcsname", {"csname", "endcsname"}))
     \csname at offset 0 is never accepted (it builds or runs commands that no allow-list can check)
+    >>> print(check_tex(r"b > \text{a & b}", {"text"}, alignments={"bmatrix"}))
+    & at offset 12 is outside an alignment (inside a group or at the top)
+    >>> print(check_tex(r"\begin{cases} a & b & c \end{cases}", {"begin", "end"}, {"cases"}, alignments={"cases": 2}))
+    & at offset 20 makes more than 2 cells in a row of cases
     """
     for k, ch in enumerate(text):
         bad = _bad_character(ch)
@@ -462,11 +472,21 @@ def check_tex(
     envs = set(environments)
     tokens = reading.tokens
     depth = 0
+    cells = alignments if isinstance(alignments, Mapping) else dict.fromkeys(alignments or (), None)
+    row_envs = set(cells) if rows is None else set(rows)
+    opened: list[list] = []                  # environments open: [name, brace depth of their cells, cells in this row]
     for k, token in enumerate(tokens):
         where = f"at offset {token.offset}"
         if token.kind == "char":
             if token.catcode == PARAMETER:
                 return f"# {where} is TeX's macro-parameter character"
+            if token.catcode == ALIGN and alignments is not None:
+                if not (opened and opened[-1][0] in cells and opened[-1][1] == depth):
+                    return f"& {where} is outside an alignment (inside a group or at the top)"
+                opened[-1][2] += 1
+                most = cells[opened[-1][0]]
+                if most is not None and opened[-1][2] > most:
+                    return f"& {where} makes more than {most} cells in a row of {opened[-1][0]}"
             if token.catcode in (SUPERSCRIPT, SUBSCRIPT) and not _has_argument(tokens, k + 1):
                 # a script without its argument is an error in TeX; the report drops & and \\
                 # when it lays a display out, so ^&^5c would become ^^5c there
@@ -491,6 +511,10 @@ def check_tex(
                 f"\\{name} {where} is never accepted (files, definitions, category codes or PDF actions)"
         if is_word and name not in allowed_words:
             return f"\\{name} {where} is not an allowed command"
+        if name == "\\" and alignments is not None:
+            if not (opened and opened[-1][0] in row_envs and opened[-1][1] == depth):
+                return f"\\\\ {where} ends a row outside an alignment (inside a group or at the top)"
+            opened[-1][2] = 1
         if not is_word and name not in allowed_symbols:
             shown = {"\r": "^^M", " ": "\\ ", "": "(empty)"}.get(name, name)
             if name == "\r" and k == len(tokens) - 1:
@@ -502,6 +526,10 @@ def check_tex(
                 return f"\\{name} {where} is not followed by an environment name in braces"
             if env not in envs:
                 return f"environment {env} {where} is not allowed"
+            if name == "begin":
+                opened.append([env, depth, 1])
+            elif opened and opened[-1][0] == env:
+                opened.pop()
     if depth:
         return f"{depth} group(s) opened and not closed"
     return None

@@ -3,9 +3,11 @@ the canonical rational function, deterministic sample points for probing."""
 
 from __future__ import annotations
 
+import functools
 import itertools
+import math
 import random
-from collections.abc import Iterable, Iterator, Mapping
+from collections.abc import Iterable, Iterator, Mapping, Sequence
 from typing import Any
 
 import flint
@@ -14,12 +16,15 @@ from sympy.core.evalf import PrecisionExhausted
 from sympy.polys.fields import sfield
 
 from hapticproof.core.symbols import c as C_SYM
+from hapticproof.exact import evaluator
 
-__all__ = ["Sampler", "is_identically_zero", "canonical_rational", "canonical_fraction", "flint_fraction"]
+__all__ = ["Sampler", "is_identically_zero", "canonical_rational", "canonical_fraction", "flint_fraction", "generator_order", "sympy_fraction", "cancel"]
 
 
 _NICE = [sp.Integer(1), sp.Integer(2), sp.Rational(1, 2), sp.Integer(3), sp.Rational(1, 3), sp.Integer(5),
          sp.Rational(2, 3), sp.Integer(10), sp.Rational(1, 10), sp.Rational(7, 4), sp.Rational(3, 7)]
+_C_NICE = [sp.Rational(1, 2), sp.Integer(-1), sp.Integer(1), sp.Integer(0)]
+_ONE, _ZERO = sp.Integer(1), sp.Integer(0)
 
 
 class Sampler:
@@ -45,41 +50,104 @@ class Sampler:
         self.symbols = sorted(set(symbols), key=str)
         self.ranges = dict(ranges or {})
         self._rng = random.Random(seed)
+        # each symbol's kind, read once (assumption queries and range conversions cost more
+        # than the draws): ("range", lo, hi, integer), ("c",), ("integer", low) or
+        # ("real", positive, nonnegative)
+        self._kinds = [self._kind(s) for s in self.symbols]
 
-    def _value(self, symbol: sp.Symbol, position: int, index: int) -> sp.Rational:
-        rng = self._rng
+    def _kind(self, symbol: sp.Symbol) -> tuple:
         if symbol in self.ranges:
             lo, hi = (sp.Rational(v) for v in self.ranges[symbol])
-            if symbol.is_integer:
+            return ("range", lo, hi, bool(symbol.is_integer))
+        if symbol == C_SYM:
+            return ("c",)
+        if symbol.is_integer:
+            return ("integer", 0 if symbol.is_nonnegative else (1 if symbol.is_positive else -6))
+        return ("real", bool(symbol.is_positive), bool(symbol.is_nonnegative))
+
+    def _value(self, kind: tuple, position: int, index: int) -> sp.Rational:
+        rng = self._rng
+        tag = kind[0]
+        if tag == "range":
+            lo, hi, integer = kind[1], kind[2], kind[3]
+            if integer:
                 return sp.Integer(rng.randint(int(lo), int(hi)))
             if index == 0:
                 return (lo + hi) / 2
             return lo + (hi - lo) * sp.Rational(rng.randint(0, 1000), 1000)
-        if symbol == C_SYM:
+        if tag == "c":
             if index < len(_NICE):
-                return [sp.Rational(1, 2), sp.Integer(-1), sp.Integer(1), sp.Integer(0)][index % 4]
+                return _C_NICE[index % 4]
             return sp.Rational(rng.randint(-60, 60), 60)
-        if symbol.is_integer:
-            low = 0 if symbol.is_nonnegative else (1 if symbol.is_positive else -6)
-            return sp.Integer(1 + index % 3 if index < len(_NICE) else rng.randint(low, 12))
+        if tag == "integer":
+            return sp.Integer(1 + index % 3 if index < len(_NICE) else rng.randint(kind[1], 12))
         if index == 0:
-            value = sp.Integer(1)
+            value = _ONE
         elif index < 4 * len(_NICE):
             value = _NICE[(index + 3 * position) % len(_NICE)]
         else:
             value = sp.Rational(rng.randint(1, 400), rng.randint(1, 60))
-        if symbol.is_positive:
+        if kind[1]:
             return value
-        if symbol.is_nonnegative:
-            return sp.Integer(0) if index % 7 == 3 else value
+        if kind[2]:
+            return _ZERO if index % 7 == 3 else value
         return value if (index + position) % 2 == 0 else -value
 
     def __iter__(self) -> Iterator[dict[sp.Symbol, sp.Rational]]:
+        pairs = list(enumerate(zip(self.symbols, self._kinds)))
         for index in itertools.count():
-            yield {s: self._value(s, k, index) for k, s in enumerate(self.symbols)}
+            yield {s: self._value(kind, k, index) for k, (s, kind) in pairs}
 
-    def draw(self, count: int) -> list[dict[sp.Symbol, sp.Rational]]:
-        return list(itertools.islice(iter(self), count))
+    def draw(self, count: int) -> Sequence[dict[sp.Symbol, sp.Rational]]:
+        """The first ``count`` points, drawn as they are read: a search that stops at its
+        first witness draws (and builds) no more rationals than it looked at.
+
+        >>> x = sp.Symbol('x', positive=True)
+        >>> points = Sampler([x], seed=2).draw(300)
+        >>> len(points), points[1], points[1:3] == [{x: 2}, {x: sp.Rational(1, 2)}]
+        (300, {x: 2}, True)
+        """
+        return _Draws(iter(self), count)
+
+
+class _Draws(Sequence):
+    """The first ``count`` items of an iterator, read only as far as they are used; equal to
+    the list of them."""
+
+    def __init__(self, source: Iterator, count: int, start: int = 0, shared: list | None = None):
+        self._source, self._count, self._start = source, max(0, count), start
+        self._items = [] if shared is None else shared
+
+    def _fill(self, upto: int) -> None:
+        while len(self._items) < min(upto, self._start + self._count):
+            self._items.append(next(self._source))
+
+    def __len__(self) -> int:
+        return self._count
+
+    def __getitem__(self, index: Any) -> Any:
+        if isinstance(index, slice):
+            start, stop, step = index.indices(self._count)
+            if step == 1:
+                return _Draws(self._source, max(0, stop - start), self._start + start, self._items)
+            return [self[i] for i in range(start, stop, step)]
+        if index < 0:
+            index += self._count
+        if not 0 <= index < self._count:
+            raise IndexError("sample index out of range")
+        self._fill(self._start + index + 1)
+        return self._items[self._start + index]
+
+    def __iter__(self) -> Iterator:
+        for i in range(self._count):
+            self._fill(self._start + i + 1)
+            yield self._items[self._start + i]
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, Sequence) and list(self) == list(other)
+
+    def __repr__(self) -> str:
+        return repr(list(self))
 
 
 def is_identically_zero(expr: sp.Expr) -> bool:
@@ -100,9 +168,14 @@ def is_identically_zero(expr: sp.Expr) -> bool:
     expr = sp.sympify(expr)
     if expr == 0:
         return True
+    fast = evaluator.is_zero_rational(expr)     # a rational function over Q: its numerator in flint
+    if fast is not None:
+        return fast
     if expr.is_rational_function():
         return canonical_rational(expr) == 0  # a canonical form for rational functions over Q
-    if sp.cancel(sp.together(expr)) == 0:
+    # zero as a rational function of its atoms (cos(x), H(z), exp(sT) independent): zero (the
+    # test cancel(together(expr)) makes below, in flint)
+    if evaluator.is_zero_rational(expr, opaque=True) or sp.cancel(sp.together(expr)) == 0:
         return True
     if not expr.has(sp.Function, sp.exp):
         return sp.cancel(sp.together(expr), extension=True) == 0
@@ -132,8 +205,30 @@ def canonical_rational(expr: sp.Expr) -> sp.Expr:
     if not expr.free_symbols:
         # a float is read exactly, by its binary value (nsimplify could return radicals)
         return sp.Rational(expr) if expr.is_Float else sp.cancel(expr)
+    fast = _field_element(expr)
+    if fast is not None:
+        return fast[0] / fast[1]
     _, element = sfield(expr)
     return element.as_expr()
+
+
+def cancel(expr: Any) -> Any:
+    """``sp.cancel(expr)``, computed in flint for a rational expression over Q in its symbols.
+
+    SymPy's ``cancel`` of such an expression is ``p/q`` with SymPy's canonical pair (the
+    coprime integer polynomials of :func:`sympy_fraction`), the same pair ``sfield`` holds;
+    other expressions (functions, radicals, floats, numbers) go to ``sp.cancel``.
+
+    >>> x, y = sp.symbols('x y')
+    >>> cancel((x**2 - y**2)/(2*x - 2*y) + y/3), sp.cancel((x**2 - y**2)/(2*x - 2*y) + y/3)
+    (x/2 + 5*y/6, x/2 + 5*y/6)
+    """
+    expr = sp.sympify(expr)
+    if isinstance(expr, sp.Expr) and not expr.is_Number and expr.free_symbols:
+        fast = _field_element(expr)
+        if fast is not None:
+            return fast[0] / fast[1]
+    return sp.cancel(expr)
 
 
 def canonical_fraction(expr: sp.Expr) -> tuple[sp.Expr, sp.Expr]:
@@ -145,10 +240,81 @@ def canonical_fraction(expr: sp.Expr) -> tuple[sp.Expr, sp.Expr]:
     (x, x - 1)
     """
     expr = sp.sympify(expr)
+    fast = _field_element(expr) if expr.free_symbols else None
+    if fast is not None:
+        return fast
     if expr.free_symbols and expr.is_rational_function():
         _, element = sfield(expr)
         return element.numer.as_expr(), element.denom.as_expr()
     return sp.fraction(sp.cancel(sp.together(expr)))
+
+
+@functools.lru_cache(maxsize=1024)
+def generator_order(symbols: frozenset) -> tuple[sp.Symbol, ...]:
+    """SymPy's default order of polynomial generators for these symbols (with distinct names
+    there are no ties, so the order depends on the set alone).
+
+    >>> x, K, a = sp.symbols('x K a')
+    >>> generator_order(frozenset({x, K, a}))
+    (x, a, K)
+    """
+    return sp.Poly(sp.Add(*sorted(symbols, key=str))).gens
+
+
+def _field_element(expr: sp.Expr) -> tuple[sp.Expr, sp.Expr] | None:
+    """SymPy's canonical numerator and denominator of a rational expression over Q (what
+    ``sfield(expr)[1]`` holds), computed in flint (:func:`sympy_fraction`); ``None`` (SymPy
+    decides) for other expressions, or two symbols with one name (SymPy's order between them
+    is not fixed).
+
+    >>> x, y = sp.symbols('x y')
+    >>> _field_element((x**2 - y**2)/(2*y - 2*x) + sp.Rational(1, 3))
+    (-3*x - 3*y + 2, 6)
+    """
+    program = evaluator.rational_program(expr)
+    if program is None or not program.symbols:
+        return None
+    names = [s.name for s in program.symbols]
+    if len(set(names)) != len(names):
+        return None
+    gens = generator_order(frozenset(program.symbols))
+    found = evaluator.rational_quotient(expr, gens)
+    if found is None:
+        return None
+    return sympy_fraction(*found, gens)
+
+
+def sympy_fraction(num: Any, den: Any, gens: tuple[sp.Symbol, ...]) -> tuple[sp.Expr, sp.Expr]:
+    """The fraction ``num/den`` of flint polynomials in ``gens`` (SymPy's generator order, lex)
+    as SymPy's canonical pair: the coprime integer polynomials ``p``, ``q`` (no common factor,
+    contents included) with ``q``'s leading coefficient positive -- the unique pair SymPy's
+    cancellation (``cancel``, ``sfield``) leaves.
+
+    >>> import flint
+    >>> ctx = flint.fmpq_mpoly_ctx.get(('x0', 'x1'), 'lex')
+    >>> x0, x1 = ctx.gens()
+    >>> sympy_fraction(x0 / 2 - x1, -x1 / 3, sp.symbols('a b'))
+    (-3*a + 6*b, 2*b)
+    """
+    if num.is_zero():
+        return sp.Integer(0), sp.Integer(1)
+    coeffs = num.coeffs() + den.coeffs()
+    scale = math.lcm(*(int(a.q) for a in coeffs))
+    content = math.gcd(*(int(a.p) * (scale // int(a.q)) for a in coeffs))
+    factor = flint.fmpq(scale, content)
+    if den.leading_coefficient() < 0:
+        factor = -factor
+
+    def as_expr(poly: Any) -> sp.Expr:
+        terms = []
+        for monom, a in poly.terms():
+            a = a * factor
+            term = [sp.Integer(int(a.p))]
+            term += [sp.Pow(g, e) for g, e in zip(gens, monom) if e]
+            terms.append(sp.Mul(*term))
+        return sp.Add(*terms)
+
+    return as_expr(num), as_expr(den)
 
 
 def _probe_nonzero(expr: sp.Expr) -> bool:
@@ -203,7 +369,26 @@ def _single_angle_form(expr: sp.Expr) -> sp.Expr | None:
 
 def evaluate_at(expr: sp.Expr, values: Mapping[sp.Symbol, Any]) -> sp.Expr | None:
     """Exact value at a point (rational when the expression is rational; exact transcendental
-    numbers such as ``cos(1)`` otherwise, which compare correctly through evalf)."""
+    numbers such as ``cos(1)`` otherwise, which compare correctly through evalf).
+
+    A rational expression at a rational point is evaluated by its compiled program
+    (:mod:`hapticproof.exact.evaluator`, no SymPy tree rebuilt); at a pole of a sub-expression,
+    and for every other expression, SymPy's ``xreplace`` decides (its ``zoo``/``nan`` rules).
+
+    >>> x, y = sp.symbols('x y')
+    >>> evaluate_at((x**2 + 1)/(y - 1), {x: sp.Integer(2), y: sp.Rational(3, 2)})
+    10
+    >>> evaluate_at(1/(1 + 1/x), {x: sp.Integer(0)}), evaluate_at(x/y, {x: 1, y: 0}) is None
+    (0, True)
+    >>> evaluate_at(sp.cos(x), {x: sp.Integer(1)})
+    cos(1)
+    """
+    program = evaluator.rational_program(expr) if isinstance(expr, sp.Expr) else None
+    if program is not None:
+        try:
+            return program.at(values)
+        except (ZeroDivisionError, evaluator.NotAtRationalPoint):
+            pass
     try:
         value = sp.sympify(expr).xreplace(dict(values))
         if value.has(sp.zoo, sp.nan, sp.oo, -sp.oo):

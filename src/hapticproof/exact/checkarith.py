@@ -19,12 +19,15 @@ Im R(jw))``). Nothing here imports the decision kernel: :mod:`hapticproof.exact.
 from __future__ import annotations
 
 import os
+import re
 from fractions import Fraction
 from typing import Any
 
 import flint
 
-__all__ = ["MAX_DEGREE", "CheckFailed", "CheckSkipped", "max_degree", "exact_q", "json_poly", "as_fmpq", "value_at",
+__all__ = ["MAX_DEGREE", "MAX_WORK", "CheckFailed", "CheckSkipped", "is_kind", "max_degree", "max_work", "budget", "spend",
+           "size_of",
+           "exact_q", "json_poly", "as_fmpq", "value_at",
            "Gaussian", "horner", "eval_transfer", "normalise", "Sturm", "determinant", "bilinear", "axis_gcd",
            "count_with_multiplicity", "cauchy_bound", "routh_hurwitz", "charpoly_coefficients", "has_root_outside",
            "is_proper"]
@@ -42,8 +45,64 @@ class CheckSkipped(Exception):
     """Not re-verified (a degree above the limit): the reason is the message."""
 
 
+_KIND = re.compile(r"[a-z][a-z0-9]*(?:-[a-z0-9]+)*")
+
+
+def is_kind(value: Any) -> bool:
+    """Whether ``value`` names a kind (a certificate's or a judge's: lower-case words joined by
+    ``-``); a sentence under the same key is a note, not an object to check.
+
+    >>> is_kind("chebyshev-sign"), is_kind("slope matrix PSD: ...")
+    (True, False)
+    """
+    return isinstance(value, str) and _KIND.fullmatch(value) is not None
+
+
 def max_degree() -> int:
     return int(os.environ.get("HAPTICPROOF_CHECK_MAX_DEGREE", MAX_DEGREE))
+
+
+#: The work one certificate or judge object may cost, in units of (degree x coefficient bits)
+#: of the polynomials the Sturm sequences and Routh arrays build (about a second or two on one
+#: core): a degree-599 polynomial of random two-digit coefficients costs 1.7e9 (over a minute)
+#: and is "not re-verified" after the first 1e8, genuine certificates of delays up to ~250
+#: samples stay below it. ``HAPTICPROOF_CHECK_MAX_WORK`` overrides it.
+MAX_WORK = 10**8
+
+_BUDGET: list[int] = []
+
+
+def max_work() -> int:
+    return int(os.environ.get("HAPTICPROOF_CHECK_MAX_WORK", MAX_WORK))
+
+
+class budget:
+    """A work budget (:data:`MAX_WORK`) for the checks inside the ``with`` block; past it,
+    :func:`spend` raises :class:`CheckSkipped` (the certificate is not re-verified: never
+    success)."""
+
+    def __enter__(self) -> None:
+        _BUDGET.append(max_work())
+
+    def __exit__(self, *exc: object) -> None:
+        _BUDGET.pop()
+
+
+def spend(units: int) -> None:
+    """Count ``units`` of work against the budget in force (none outside :class:`budget`)."""
+    if _BUDGET:
+        _BUDGET[-1] -= units
+        if _BUDGET[-1] < 0:
+            raise CheckSkipped(f"the exact arithmetic grew above the checker's work limit of {max_work():.3g} "
+                               "(HAPTICPROOF_CHECK_MAX_WORK)")
+
+
+def size_of(p: flint.fmpq_poly) -> int:
+    """``degree x bits`` of a polynomial (its largest numerator or denominator)."""
+    coeffs = p.coeffs()
+    if not coeffs:
+        return 0
+    return max(1, p.degree()) * max(max(int(a.p).bit_length(), int(a.q).bit_length()) for a in coeffs)
 
 
 #: Rows of a constant matrix whose characteristic coefficients the checker recomputes
@@ -163,6 +222,7 @@ class Sturm:
         if self.q.degree() > 0:
             seq.append(normalise(self.q.derivative()))
             while seq[-1].degree() > 0:
+                spend(size_of(seq[-1]))
                 r = seq[-2] % seq[-1]
                 if r.is_zero():
                     break
@@ -287,6 +347,7 @@ def routh_hurwitz(p: flint.fmpq_poly) -> bool:
         a, b = rows[-2], rows[-1]
         if b[0] <= 0:
             return False
+        spend(width * max(max(v.numerator.bit_length(), v.denominator.bit_length()) for v in b))
         rows.append([(b[0] * a[k + 1] - a[0] * b[k + 1]) / b[0] for k in range(width - 1)] + [Fraction(0)])
     return all(row[0] > 0 for row in rows)
 

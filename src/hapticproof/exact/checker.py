@@ -48,15 +48,30 @@ from typing import Any
 
 import flint
 
-from hapticproof.exact.checkarith import MAX_DEGREE, CheckFailed as _Fail, CheckSkipped as _Skip, Gaussian as _G
-from hapticproof.exact.checkarith import as_fmpq as _fq, axis_gcd as _axis_gcd, bilinear as _bilinear
-from hapticproof.exact.checkarith import charpoly_coefficients as _charpoly_coefficients, count_with_multiplicity as _count_with_multiplicity
-from hapticproof.exact.checkarith import determinant as _det, eval_transfer as _eval_transfer, exact_q as _q
-from hapticproof.exact.checkarith import json_poly as _poly, max_degree as _max_degree, max_matrix as _max_matrix
-from hapticproof.exact.checkarith import routh_hurwitz as _routh_hurwitz, Sturm as _Sturm, value_at as _val
+from hapticproof.exact.checkarith import MAX_DEGREE, is_kind
+from hapticproof.exact.checkarith import CheckFailed as _Fail
+from hapticproof.exact.checkarith import CheckSkipped as _Skip
+from hapticproof.exact.checkarith import Gaussian as _G
+from hapticproof.exact.checkarith import Sturm as _Sturm
+from hapticproof.exact.checkarith import as_fmpq as _fq
+from hapticproof.exact.checkarith import axis_gcd as _axis_gcd
+from hapticproof.exact.checkarith import bilinear as _bilinear
+from hapticproof.exact.checkarith import budget as _budget
+from hapticproof.exact.checkarith import charpoly_coefficients as _charpoly_coefficients
+from hapticproof.exact.checkarith import (
+    count_with_multiplicity as _count_with_multiplicity,
+)
+from hapticproof.exact.checkarith import determinant as _det
+from hapticproof.exact.checkarith import eval_transfer as _eval_transfer
+from hapticproof.exact.checkarith import exact_q as _q
+from hapticproof.exact.checkarith import json_poly as _poly
+from hapticproof.exact.checkarith import max_degree as _max_degree
+from hapticproof.exact.checkarith import max_matrix as _max_matrix
+from hapticproof.exact.checkarith import routh_hurwitz as _routh_hurwitz
+from hapticproof.exact.checkarith import value_at as _val
 
 __all__ = ["CheckResult", "certificates", "check_certificate", "check_certificates", "check_report", "ReportCheck",
-           "judge_results", "MAX_DEGREE"]
+           "judge_results", "MAX_DEGREE", "is_kind", "WHOLE"]
 
 
 
@@ -139,16 +154,18 @@ def _check_transfer_sign(cert: dict, transfer: dict) -> list[str]:
     """The c-form (or x-form) ``num/den`` against ``Re F`` of the original transfer function."""
     notes = []
     variable = transfer.get("variable", "z")
-    if not cert["holds"]:
-        w = cert.get("witness_point")
-        if w is None:
-            return ["no exact point for the transfer-function re-check"]
+    if not cert["holds"] and cert.get("witness_point") is not None:
+        w = cert["witness_point"]
         if variable == "z":
             point = _G(_q(w[0]), _q(w[1]))
             if point.re * point.re + point.im * point.im != 1:
                 raise _Fail("the witness z0 is not on the unit circle")
+            if cert.get("variable") == "c" and "witness" in cert and _q(cert["witness"]) != point.re:
+                raise _Fail(f"the witness c = {cert['witness']} is not Re z0 = {point.re}")
         else:
             point = _G(Fraction(0), _q(w))
+            if cert.get("variable") == "x" and "witness" in cert and _q(cert["witness"]) != point.im * point.im:
+                raise _Fail(f"the witness x = {cert['witness']} is not omega^2 = {point.im * point.im}")
         value = _eval_transfer(transfer, point)
         if not value.re < 0:
             raise _Fail(f"Re F = {value.re} is not negative at the witness")
@@ -160,7 +177,9 @@ def _check_transfer_sign(cert: dict, transfer: dict) -> list[str]:
     # both sides are rational in t (z = (1 + jt)/(1 - jt)) or in w; their cross-multiplied
     # difference has degree <= 2 deg(form) + 2 deg(F): that many + 1 points prove the identity
     needed = 2 * max(num.degree(), den.degree(), 0) + 2 * (max(len(transfer["num"]), len(transfer["den"])) - 1) + 1
-    limit = 400
+    if needed > 4 * _max_degree() + 1:
+        raise _Skip(f"the form's identity with Re F needs {needed} exact points, above the checker's limit")
+    limit = 2 * needed + 8               # (poles of F among the points are skipped)
     checked = 0
     points = _circle_points(limit) if variable == "z" else _axis_points(limit)
     for c, z in points:
@@ -176,7 +195,9 @@ def _check_transfer_sign(cert: dict, transfer: dict) -> list[str]:
         if _val(num, c) / d != value.re:
             raise _Fail(f"the form in {cert['variable']} differs from Re F at {cert['variable']} = {c}")
         checked += 1
-    notes.append(f"form = Re F at {checked} exact points" + (" (identity proved by degree)" if checked >= needed else " (sampled)"))
+    if checked < needed:
+        raise _Skip(f"the form in {cert['variable']} equals Re F at {checked} exact points only, fewer than its degree needs")
+    notes.append(f"form = Re F at {checked} exact points (identity proved by degree)")
     return notes
 
 
@@ -501,23 +522,56 @@ def _check_determinant(cert: dict) -> list[str]:
     return notes
 
 
+def _check_residue_algebraic(cert: dict) -> list[str]:
+    """A residue at an algebraic unit-circle pole (a conjugate pair): its value lies in a number
+    field the checker has no arithmetic for -- a known kind, never re-verified (never success)."""
+    raise _Skip("a residue at an algebraic pole (the checker has no number-field arithmetic)")
+
+
 _CHECKS = {"sign": _check_sign, "psd": _check_psd, "roots": _check_roots, "residue": _check_residue,
+           "residue-algebraic": _check_residue_algebraic,
            "constant-psd": _check_constant_psd, "chebyshev-sign": _check_chebyshev, "determinant": _check_determinant,
            "infinity": _check_infinity}
 
 
+#: The whole interval a sign question over frequency covers: all ``c = cos(omega T)`` in
+#: [-1, 1], all ``x = omega^2`` in [0, oo). A certificate over less decides less than it claims.
+WHOLE = {"c": (Fraction(-1), Fraction(1)), "x": (Fraction(0), None)}
+
+
+def _whole_interval(cert: dict) -> None:
+    whole = WHOLE.get(cert.get("variable"))
+    if whole is None or cert.get("certificate") not in ("sign", "chebyshev-sign", "psd"):
+        return
+    interval = cert.get("interval")
+    if not isinstance(interval, list) or len(interval) != 2:
+        raise _Fail("the certificate has no interval [lo, hi]")
+    lo, hi = _q(interval[0]), None if interval[1] is None else _q(interval[1])
+    if (lo, hi) != whole:
+        shown = f"[{whole[0]}, {'oo)' if whole[1] is None else str(whole[1]) + ']'}"
+        raise _Fail(f"the interval [{interval[0]}, {interval[1]}] does not cover the whole range {shown} of "
+                    f"{cert['variable']}")
+
+
 def check_certificate(cert: dict) -> CheckResult:
-    """Re-verify one certificate (a JSON object with a ``"certificate"`` kind)."""
+    """Re-verify one certificate (a JSON object with a ``"certificate"`` kind); an unknown
+    kind, an interval that does not cover the whole range of ``c`` or ``x``, or a certificate
+    whose exact arithmetic grows past the checker's work limit is never success."""
     kind = cert.get("certificate")
     check = _CHECKS.get(kind)
     if check is None:
-        return CheckResult(True, f"unknown certificate kind {kind!r}", verified=False)
+        return CheckResult(False, f"FAILED: unknown certificate kind {str(kind)[:40]!r} "
+                                  f"(known: {', '.join(sorted(_CHECKS))})")
     try:
-        notes = check(cert)
-        if kind == "sign" and "transfer" in cert:
-            notes += _check_transfer_sign(cert, cert["transfer"])
-        if kind == "chebyshev-sign" and "transfer" in cert:
-            notes += _check_transfer_sign(_as_sign_certificate(cert), cert["transfer"])
+        with _budget():
+            _whole_interval(cert)
+            for sub in cert.get("coefficients") or () if kind == "psd" else ():
+                _whole_interval(sub)
+            notes = check(cert)
+            if kind == "sign" and "transfer" in cert:
+                notes += _check_transfer_sign(cert, cert["transfer"])
+            if kind == "chebyshev-sign" and "transfer" in cert:
+                notes += _check_transfer_sign(_as_sign_certificate(cert), cert["transfer"])
     except _Skip as skip:
         return CheckResult(True, f"not re-verified: {skip}", verified=False)
     except _Fail as fail:
@@ -546,16 +600,30 @@ class ReportCheck:
     def ok(self) -> bool:
         return not self.failed
 
+    @property
+    def not_verified(self) -> list[tuple[str, CheckResult]]:
+        """Results that could not be re-verified (a limit, a judge that could not evaluate)."""
+        return [(name, r) for name, results in self.entries for r in results if r.ok and not r.verified]
+
+    @property
+    def accepted(self) -> bool:
+        """Every verdict backed by evidence the checker re-verified and bound to it: nothing
+        failed, refused or unbacked, and nothing left unverified (an unverifiable ``proved`` is
+        never success)."""
+        return self.ok and not self.not_verified
+
     def summary(self) -> str:
         lines = []
         verified = unverifiable = 0
         for name, results in self.entries:
             certs = [r for r in results if r.source == "certificate"]
             judged = [r for r in results if r.source != "certificate"]
-            if not results:
-                lines.append(f"{name}: no certificate (not re-verifiable)")
+            if all(r.source == "unbacked" for r in results):
+                lines.append(f"{name}: no certificate (not re-verifiable)"
+                             + ("; NOT BACKED: " + results[0].reason if results else ""))
                 unverifiable += 1
                 continue
+            results = [r for r in results if r.source != "unbacked"]
             good = sum(r.ok and r.verified for r in certs)
             skipped = [r for r in certs if r.ok and not r.verified]
             bad = [r for r in results if not r.ok]
@@ -570,22 +638,36 @@ class ReportCheck:
             if skipped:
                 text += "; " + "; ".join(r.reason for r in skipped[:2])
             if bad:
-                text += "; " + "; ".join(("REFUSED (display): " if r.source == "display" else "") + r.reason for r in bad[:3])
+                text += "; " + "; ".join(_LABELS.get(r.source, "") + r.reason for r in bad[:3])
             lines.append(text)
-            verified += good == len(certs) and not bad and bool(certs or definition)
+            verified += good == len(certs) and not bad and bool(certs or definition) and \
+                all(r.verified for r in results)
         failed = self.failed
+        unbacked = sum(r.source == "unbacked" for _, r in self.not_verified)
+        skipped = len(self.not_verified) - unbacked
         lines.append(f"{len(self.entries)} entries: {verified} fully re-verified, "
                      f"{sum(r.source == 'certificate' for _, r in failed)} certificate(s) failed, "
                      f"{sum(r.source == 'judge' for _, r in failed)} definition check(s) failed, "
-                     f"{sum(r.source == 'display' for _, r in failed)} display(s) refused, "
-                     f"{unverifiable} without a certificate")
+                     f"{sum(r.source in ('display', 'binding') for _, r in failed)} display(s) refused, "
+                     f"{unverifiable} without a certificate; "
+                     + ("report accepted" if self.accepted else
+                        "report NOT accepted (" + ", ".join(part for part in (
+                            f"{len(failed)} failed or refused" if failed else "",
+                            f"{unbacked} verdict(s) without evidence" if unbacked else "",
+                            f"{skipped} not re-verified" if skipped else "") if part) + ")"))
         return "\n".join(lines)
 
 
+#: how a failure of each source is shown in the summary
+_LABELS = {"display": "REFUSED (display): ", "binding": "REFUSED (not bound to its object): ",
+           "unbacked": "NOT BACKED: "}
+
+
 def certificates(node: Any) -> Iterator[dict]:
-    """Every certificate object (a dict with a ``certificate`` kind) inside a JSON value."""
+    """Every certificate object (a dict with a ``certificate`` kind, :func:`is_kind`) inside a
+    JSON value."""
     if isinstance(node, dict):
-        if isinstance(node.get("certificate"), str):
+        if is_kind(node.get("certificate")):
             yield node
             return
         for value in node.values():
@@ -623,7 +705,12 @@ def judge_results(node: Any) -> list[CheckResult]:
         result = judge(obj)
         out.append(CheckResult(result.ok, result.reason, verified=result.judged, source="judge"))
     if isinstance(node, dict):
-        out += [CheckResult(False, problem, source="display") for problem in finding_display(node) + boundary_display(node)]
+        try:
+            problems = finding_display(node) + boundary_display(node)
+        except (KeyError, TypeError, ValueError, IndexError, AttributeError, ArithmeticError) as err:
+            reason = f"{type(err).__name__}: {str(err)[:120]}"
+            problems = [f"what the entry displays cannot be held against its evidence ({reason})"]
+        out += [CheckResult(False, problem, source="display") for problem in problems]
     return out
 
 
@@ -634,11 +721,19 @@ def check_report(report: Any) -> ReportCheck:
     its certificates and judge objects do not give is refused.
 
     >>> check_report({"conditions": [{"name": "x", "decision": "proved"}]}).summary().splitlines()[0]
-    'x: no certificate (not re-verifiable)'
+    "x: no certificate (not re-verifiable); NOT BACKED: the verdict 'proved' carries no certificate or judge object to re-verify"
+    >>> check_report({"conditions": [{"name": "x", "decision": "proved"}]}).accepted
+    False
     >>> shown = {"conditions": [{"name": "x", "decision": "proved"}], "verdict": "disproved"}
     >>> check_report(shown).failed[0][1].reason
     "the verdict shown is 'disproved', its conditions give 'proved'"
     """
+    from hapticproof.exact.acceptance import (
+        audit_binding,
+        claim_of,
+        derive_binding,
+        witness_problems,
+    )
     from hapticproof.exact.judge import judge, judges
     from hapticproof.exact.judgedisplay import derive_display
 
@@ -646,16 +741,52 @@ def check_report(report: Any) -> ReportCheck:
         report = json.loads(report)
     out = []
     for name, entry in _entries(report):
-        out.append((name, check_certificates(entry) + judge_results(entry)))
+        results = check_certificates(entry) + judge_results(entry)
+        results += _guarded(lambda e=entry: audit_binding(e) if isinstance(e, dict) and "verdict" in e else [], "binding")
+        results += _guarded(lambda e=entry: witness_problems(e), "display")
+        claim = claim_of(entry)
+        if claim is not None and not any(r.source in ("certificate", "judge") for r in results):
+            if _vacuous_residues(report, name, claim, out):
+                results.append(CheckResult(True, "no pole on the boundary (the verified roots certificate of this report): "
+                                                 "no residue to check", source="binding"))
+            else:
+                results.append(CheckResult(True, f"the verdict {claim!r} carries no certificate or judge object to "
+                                                 "re-verify", verified=False, source="unbacked"))
+        out.append((name, results))
     if isinstance(report, dict) and "conditions" in report and "verdict" in report:
         top = []
         definition = report.get("definition")
         for obj in judges(definition) if isinstance(definition, dict) else ():
             result = judge(obj)
             top.append(CheckResult(result.ok, result.reason, verified=result.judged, source="judge"))
-        problems = derive_display(report)
-        top += [CheckResult(False, problem, source="display") for problem in problems]
+        problems = [r for r in _guarded(lambda: derive_display(report), "display")]
+        problems += _guarded(lambda: derive_binding(report), "binding")
+        problems += _guarded(lambda: witness_problems({"witness": report.get("witness"),
+                                                        "definition": report.get("definition")}), "display")
+        top += problems
         if not problems:
             top.append(CheckResult(True, "verdict and witness re-derived from the conditions", source="display"))
         out.append(("verdict", top))
     return ReportCheck(out)
+
+
+def _vacuous_residues(report: Any, name: str, claim: str, done: list) -> bool:
+    """A residue condition proved without a certificate because there is no pole on the
+    boundary: backed by a roots certificate of the same report, re-verified above, that counts
+    no boundary root."""
+    if claim != "proved" or "esidue" not in name or not isinstance(report, dict) or "conditions" not in report:
+        return False
+    for _, results in done:
+        for result in results:
+            if result.source == "certificate" and result.ok and result.verified and result.reason.startswith("0 boundary roots"):
+                return True
+    return False
+
+
+def _guarded(problems: Any, source: str) -> list[CheckResult]:
+    """The refusals ``problems()`` finds; a part of the report it cannot read is a refusal too."""
+    try:
+        found = problems()
+    except (KeyError, TypeError, ValueError, IndexError, AttributeError, ArithmeticError, RecursionError) as err:
+        found = [f"a part of the report cannot be read ({type(err).__name__}: {str(err)[:120]})"]
+    return [CheckResult(False, problem, source=source) for problem in found]

@@ -50,14 +50,17 @@ import flint
 
 from hapticproof.exact.checkarith import (
     CheckFailed,
+    CheckSkipped,
     Gaussian,
     axis_gcd,
     bilinear,
+    budget,
     charpoly_coefficients,
     count_with_multiplicity,
     eval_transfer,
     exact_q,
     has_root_outside,
+    is_kind,
     is_proper,
     json_poly,
 )
@@ -472,10 +475,15 @@ def _within_limits(entries: list[list[dict]]) -> None:
 def _positive_real(obj: Mapping[str, Any]) -> str:
     domain = obj.get("domain", "disk")
     entries = _entries(obj["transfer"])
-    _within_limits(entries)
     decision = obj["decision"]
-    structural = _pole_violations(entries, domain)
     witness = _witness_point(obj.get("witness"), domain)
+    try:
+        _within_limits(entries)
+    except _NotJudged:
+        if decision != "disproved" or witness is None or len(entries) > MAX_JUDGED_SIZE:
+            raise
+        return _at_witness(entries, witness, domain, [])     # one exact value decides a disproof, whatever the degree
+    structural = _pole_violations(entries, domain)
     den = json_poly(entries[0][0]["den"]) if len(entries) == 1 else flint.fmpq_poly([1])
     if len(entries) > 1:
         for row in entries:
@@ -492,17 +500,7 @@ def _positive_real(obj: Mapping[str, Any]) -> str:
     if decision != "disproved":
         return "nothing to judge (the decision is neither proved nor disproved)"
     if witness is not None:
-        inside = witness.re * witness.re + witness.im * witness.im < 1 if domain == "disk" else witness.re < 0
-        if inside:
-            raise CheckFailed(f"the witness {_show(witness)} lies inside the {'unit disk' if domain == 'disk' else 'left half plane'}")
-        psd = _hermitian_psd(entries, witness)
-        if psd is None:
-            raise CheckFailed(f"the witness {_show(witness)} is a pole of the transfer function, not a point of the definition")
-        if not psd[0]:
-            return f"definition fails at the witness {_show(witness)}: the Hermitian part is not PSD ({psd[1]} < 0)"
-        if psd[0]:              # a point shown as a counterexample must be one, whatever else fails
-            raise CheckFailed(f"the witness {_show(witness)} is no counterexample: the Hermitian part is PSD there"
-                              + (f" ({structural[0]} elsewhere)" if structural else ""))
+        return _at_witness(entries, witness, domain, structural)
     if structural:
         return f"definition fails: {structural[0]}"
     near = _near_circle_poles(den) if domain == "disk" and len(entries) == 1 else ()
@@ -510,6 +508,20 @@ def _positive_real(obj: Mapping[str, Any]) -> str:
     if bad is not None:
         return f"definition fails at {_show(bad[1])} ({bad[0]})"
     raise CheckFailed("no violation of the definition found (no pole outside, proper, Hermitian part PSD at every point tried)")
+
+
+def _at_witness(entries: list[list[dict]], witness: Gaussian, domain: str, structural: list[str]) -> str:
+    """A disproof's witness: a point on or outside the boundary where the Hermitian part is not PSD."""
+    inside = witness.re * witness.re + witness.im * witness.im < 1 if domain == "disk" else witness.re < 0
+    if inside:
+        raise CheckFailed(f"the witness {_show(witness)} lies inside the {'unit disk' if domain == 'disk' else 'left half plane'}")
+    psd = _hermitian_psd(entries, witness)
+    if psd is None:
+        raise CheckFailed(f"the witness {_show(witness)} is a pole of the transfer function, not a point of the definition")
+    if psd[0]:              # a point shown as a counterexample must be one, whatever else fails
+        raise CheckFailed(f"the witness {_show(witness)} is no counterexample: the Hermitian part is PSD there"
+                          + (f" ({structural[0]} elsewhere)" if structural else ""))
+    return f"definition fails at the witness {_show(witness)}: the Hermitian part is not PSD ({psd[1]} < 0)"
 
 
 def _show(z: Gaussian) -> str:
@@ -677,6 +689,33 @@ def _arb_rows(rows: list[list[str]], shape: tuple[int, int]) -> flint.arb_mat:
     return flint.arb_mat(r, c, [flint.arb(flint.fmpq(q.numerator, q.denominator)) for row in rows for q in map(exact_q, row)])
 
 
+#: States of a loop the judge builds (plant plus controller, inputs, outputs): the sizes come
+#: from the report, so they are checked before any matrix is allocated (a negative size makes
+#: the native library abort the process, 10^8 asks it for gigabytes).
+MAX_LOOP_SIZE = 64
+
+
+def _check_loop(loop: Mapping[str, Any]) -> None:
+    """The loop's sizes are small non-negative integers and every matrix has them."""
+    shape = loop["shape"]
+    plant = shape["plant"]
+    sizes = {"plant": plant[0] if isinstance(plant, list) and len(plant) == 2 and plant[0] == plant[1] else None,
+             "inputs": shape["inputs"], "outputs": shape["outputs"], "controller": shape["controller"]}
+    for name, size in sizes.items():
+        if not isinstance(size, int) or isinstance(size, bool) or not 0 <= size <= MAX_LOOP_SIZE:
+            raise CheckFailed(f"the loop's {name} size {str(size)[:20]} is not a whole number from 0 to {MAX_LOOP_SIZE}")
+    n, m, p, k = sizes["plant"], sizes["inputs"], sizes["outputs"], sizes["controller"]
+    ctrl = loop["controller"]
+    for rows, (r, c), name in ((loop["a"], (n, n), "a"), (loop["bu"], (n, m), "bu"), (loop["c"], (p, n), "c"),
+                               (ctrl["a"], (k, k), "controller a"), (ctrl["b"], (k, p), "controller b"),
+                               (ctrl["c"], (m, k), "controller c"), (ctrl["d"], (m, p), "controller d")):
+        if r == 0 or c == 0:
+            continue
+        if not isinstance(rows, list) or len(rows) != r or any(not isinstance(row, list) or len(row) != c for row in rows):
+            raise CheckFailed(f"the loop's matrix {name} is not {r} x {c}")
+    exact_q(loop["T"])
+
+
 def _closed_loop(loop: Mapping[str, Any]) -> flint.arb_mat:
     """The sample-to-sample matrix of the loop from its definition: over one period the zero-order
     hold gives ``x+ = Phi x + Gamma u`` with ``[[Phi, Gamma], [0, I]] = exp([[a, bu], [0, 0]] T)``;
@@ -740,7 +779,12 @@ def _schur_cohn(coeffs: list[flint.arb]) -> bool | None:
 
 def _stability(obj: Mapping[str, Any]) -> str:
     outcomes = []
-    for side in obj["sides"]:
+    sides = obj["sides"]
+    if not isinstance(sides, list) or len(sides) != 2:
+        raise CheckFailed("a boundary is judged by its two sides")
+    for side in sides:
+        _check_loop(side["loop"])
+    for side in sides:
         decided = None
         for bits in (256, 1024, 4096):
             with _precision(bits):
@@ -845,10 +889,11 @@ def judge(obj: Mapping[str, Any]) -> Judgement:
     kind = obj.get("judge")
     run = _JUDGES.get(kind)
     if run is None:
-        return Judgement(True, f"unknown judge kind {kind!r}", judged=False)
+        return Judgement(False, f"FAILED: unknown judge kind {str(kind)[:40]!r} (known: {', '.join(sorted(_JUDGES))})")
     try:
-        return Judgement(True, run(obj))
-    except _NotJudged as err:
+        with budget():
+            return Judgement(True, run(obj))
+    except (_NotJudged, CheckSkipped) as err:
         return Judgement(True, f"not judged: {err}", judged=False)
     except CheckFailed as err:
         return Judgement(False, f"FAILED: {err}")
@@ -880,7 +925,7 @@ def judged_definition(domain: str, decision: str, transfer: Mapping[str, Any],
 def judges(node: Any) -> Iterator[dict]:
     """Every judge object inside a JSON value (a dict with a string ``judge`` kind)."""
     if isinstance(node, dict):
-        if isinstance(node.get("judge"), str):
+        if is_kind(node.get("judge")):
             yield node
             return
         for value in node.values():

@@ -53,7 +53,9 @@ import flint
 import numpy as np
 import sympy as sp
 
+from hapticproof.exact.canonical import cancel as exact_cancel
 from hapticproof.core.evidence import Decision, Evidence, Method, Outcome
+from hapticproof.exact.evaluator import rational_program
 from hapticproof.exact.realroots import as_fmpq, real_roots
 from hapticproof.core.symbols import c as C_SYM
 from hapticproof.core.symbols import z as Z_SYM
@@ -122,8 +124,20 @@ class PolyRing:
         return self.ctx.gens()[self.params.index(symbol)]
 
     def from_expr(self, expr: Any) -> Any:
-        """A polynomial SymPy expression in the ring's symbols (rational coefficients)."""
-        expr = sp.expand(sp.sympify(expr))
+        """A polynomial SymPy expression in the ring's symbols (rational coefficients).
+
+        The expression tree is evaluated in the ring itself (:mod:`hapticproof.exact.evaluator`:
+        flint products of sums, no SymPy ``expand``); other expressions (a denominator, a
+        float) go through ``expand`` and ``Poly``."""
+        expr = sp.sympify(expr)
+        program = rational_program(expr)
+        if program is not None and program.polynomial and set(program.symbols) <= set(self.symbols):
+            gens = {self.var: self.c}
+            if not self.numeric:
+                gens.update(zip(self.params, self.ctx.gens()))
+            value = program.run(gens)
+            return value if not isinstance(value, flint.fmpq) else self.constant(value)
+        expr = sp.expand(expr)
         stray = expr.free_symbols - set(self.symbols)
         if stray:
             raise ValueError(f"symbols {sorted(map(str, stray))} are not in the ring")
@@ -277,7 +291,7 @@ def _unit_circle_poles(G: sp.Matrix, z: sp.Symbol) -> list[tuple[sp.Expr, int]]:
     """Unit-circle poles of the entries and their largest multiplicity."""
     found: dict[sp.Expr, int] = {}
     for entry in G:
-        den = sp.fraction(sp.cancel(sp.together(entry)))[1]
+        den = sp.fraction(exact_cancel(sp.together(entry)))[1]
         for root, mult in sp.roots(sp.Poly(den, z)).items():
             gap = sp.simplify(sp.expand(root * sp.conjugate(root)) - 1)
             if gap == 0:
@@ -333,7 +347,7 @@ def residue_matrices(G: Any, z: sp.Symbol = Z_SYM) -> list[ResidueMatrix]:
                               f"the unit-circle pole z = {pole} is not simple")
             out.append(ResidueMatrix(pole, sp.ImmutableMatrix(G * sp.nan), sp.ImmutableMatrix(G * sp.nan), outcome))
             continue
-        R = G.applyfunc(lambda e: sp.factor(sp.cancel((z - pole) * e).subs(z, pole)))
+        R = G.applyfunc(lambda e: sp.factor(exact_cancel((z - pole) * e).subs(z, pole)))
         scaled = (R / pole).applyfunc(sp.simplify)
         out.append(ResidueMatrix(pole, sp.ImmutableMatrix(R), sp.ImmutableMatrix(scaled),
                                  psd_outcome(scaled, f"the residue matrix at z = {pole} (divided by z0)")))
@@ -470,8 +484,8 @@ def hermitian_part_matrix(G: Any, z: sp.Symbol = Z_SYM, var: sp.Symbol = C_SYM) 
         raise ValueError("G must be square")
     m = G.rows
     parts = [[_entry_parts(G[i, j], z, var) for j in range(m)] for i in range(m)]
-    A_expr = [[sp.cancel(sp.together(parts[i][j][0] + parts[j][i][0])) for j in range(m)] for i in range(m)]
-    S_expr = [[sp.cancel(sp.together(parts[i][j][1] - parts[j][i][1])) for j in range(m)] for i in range(m)]
+    A_expr = [[exact_cancel(sp.together(parts[i][j][0] + parts[j][i][0])) for j in range(m)] for i in range(m)]
+    S_expr = [[exact_cancel(sp.together(parts[i][j][1] - parts[j][i][1])) for j in range(m)] for i in range(m)]
     dens: list[sp.Expr] = []
     for e in itertools.chain.from_iterable(A_expr + S_expr):
         d = sp.fraction(e)[1]
@@ -483,7 +497,7 @@ def hermitian_part_matrix(G: Any, z: sp.Symbol = Z_SYM, var: sp.Symbol = C_SYM) 
     ring = PolyRing.over(params - {var}, var)
 
     def numer(e: sp.Expr) -> Any:
-        return ring.from_expr(sp.cancel(e * den))
+        return ring.from_expr(exact_cancel(e * den))
 
     A = tuple(tuple(numer(A_expr[i][j]) for j in range(m)) for i in range(m))
     S = tuple(tuple(numer(S_expr[i][j]) for j in range(m)) for i in range(m))

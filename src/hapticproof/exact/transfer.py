@@ -33,7 +33,7 @@ import flint
 import sympy as sp
 
 from hapticproof.exact.boundaryvalue import AXIS, C_NAME, CIRCLE, S_NAME, X_NAME, Z_NAME, BoundaryValue
-from hapticproof.exact.rational import NotRationalError, RationalFunction, as_fraction, to_fmpq
+from hapticproof.exact.rational import RationalFunction, as_fraction, to_fmpq
 
 __all__ = ["TransferMatrix", "BoundaryMatrix", "VARIABLES", "DISCRETE", "CONTINUOUS"]
 

@@ -479,6 +479,9 @@ def canonical_theta(
     """
     theta = sp.Dummy("theta", real=True)
     e = sp.sympify(expr).subs(t_d, n * T).subs(omega, theta / T)
+    fast = _canonical_theta_flint(e, theta, n, var)
+    if fast is not None:
+        return fast
     e = sp.expand(sp.expand_trig(sp.expand(e)))
     e = e.subs({sp.cos(n * theta): COS_N, sp.sin(n * theta): SIN_N}).subs(
         {sp.cos(theta): var, sp.sin(theta): SIN_T}
@@ -496,6 +499,102 @@ def canonical_theta(
         return sp.expand(out)
 
     return sp.expand(sp.cancel(reduce_sin(num) / reduce_sin(den)))
+
+
+def _chebyshev(kind: str, k: int, x: Any, one: Any) -> Any:
+    """``T_k(x)`` or ``U_k(x)`` with SymPy's extension to negative ``k``
+    (``T_-k = T_k``, ``U_-1 = 0``, ``U_-k = -U_(k-2)``)."""
+    if k < 0:
+        if kind == "T":
+            return _chebyshev("T", -k, x, one)
+        return 0 * one if k == -1 else -_chebyshev("U", -k - 2, x, one)
+    prev, cur = one, (x if kind == "T" else 2 * x)
+    if k == 0:
+        return one
+    for _ in range(k - 1):
+        prev, cur = cur, 2 * x * cur - prev
+    return cur
+
+
+def _multiple_angle(func: type, k: int, cos_x: Any, sin_x: Any, one: Any) -> Any:
+    """``cos(k x)``, ``sin(k x)`` as SymPy's ``expand_trig`` writes them: ``T_k(cos x)``;
+    ``(-1)^((k-1)/2) T_k(sin x)`` for odd ``k``, ``(-1)^(k/2-1) cos x U_(k-1)(sin x)`` for even."""
+    if func is sp.cos:
+        return _chebyshev("T", k, cos_x, one)
+    if k % 2:
+        return (-1) ** ((k - 1) // 2 % 2) * _chebyshev("T", k, sin_x, one)
+    return (-1) ** ((k // 2 - 1) % 2) * cos_x * _chebyshev("U", k - 1, sin_x, one)
+
+
+def _canonical_theta_flint(e: sp.Expr, theta: sp.Symbol, n: sp.Symbol, var: sp.Symbol) -> sp.Expr | None:
+    """:func:`canonical_theta` of ``e`` (``omega`` and ``t_d`` already in ``theta``, ``n``) in
+    flint, for a rational expression in parameters and ``cos``/``sin`` of whole-number
+    combinations ``(a n + b) theta`` whose denominators hold no ``sin(theta)``: each angle is
+    expanded as ``expand_trig`` does it (the multiple-angle forms in ``cos(n theta)``,
+    ``sin(n theta)`` are kept, as there), ``sin(theta)**2 = 1 - c**2`` in the numerator, and
+    the result is SymPy's cancelled fraction, expanded. ``None`` (SymPy's route) otherwise."""
+    from hapticproof.exact.canonical import generator_order, sympy_fraction
+    from hapticproof.exact.evaluator import rational_program, run_quotient
+
+    program = rational_program(e, opaque=True)
+    if program is None:
+        return None
+    plain, angles = [], {}
+    for atom in program.symbols:
+        if isinstance(atom, sp.Symbol):
+            if atom in (theta, n, var, SIN_T, COS_N, SIN_N):
+                return None
+            plain.append(atom)
+            continue
+        if not isinstance(atom, (sp.cos, sp.sin)):
+            return None
+        parts = sp.expand(atom.args[0]).as_coefficients_dict()
+        a, b = parts.pop(n * theta, sp.Integer(0)), parts.pop(theta, sp.Integer(0))
+        if parts or not (a.is_Integer and b.is_Integer):
+            return None
+        angles[atom] = (type(atom), int(a), int(b))
+    names = [s.name for s in plain] + [var.name, SIN_T.name, COS_N.name, SIN_N.name]
+    if len(set(names)) != len(names):
+        return None
+    gens = generator_order(frozenset([*plain, var, SIN_T, COS_N, SIN_N]))
+    ctx = flint.fmpq_mpoly_ctx.get(tuple(f"x{k}" for k in range(len(gens))), "lex")
+    g = dict(zip(gens, ctx.gens()))
+    one = ctx.constant(1)
+    c_, s_, cn, sn = g[var], g[SIN_T], g[COS_N], g[SIN_N]
+    values: dict[Any, Any] = {p: g[p] for p in plain}
+    for atom, (func, a, b) in angles.items():
+        parts = []
+        for k, cos_x, sin_x in ((a, cn, sn), (b, c_, s_)):
+            if k:
+                parts.append((_multiple_angle(sp.cos, k, cos_x, sin_x, one), _multiple_angle(sp.sin, k, cos_x, sin_x, one)))
+        if not parts:
+            parts.append((one, 0 * one))
+        cos_v, sin_v = parts[0]
+        for ck, sk in parts[1:]:
+            cos_v, sin_v = cos_v * ck - sin_v * sk, sin_v * ck + cos_v * sk
+        values[atom] = cos_v if func is sp.cos else sin_v
+    # a denominator with sin(theta) (after expand_trig) would be reduced by SymPy's route in a
+    # representation of its own: left to it
+    for base in (p.base for p in e.atoms(sp.Pow) if p.exp.is_negative):
+        if any(a in angles and values[a].degrees()[gens.index(SIN_T)] > 0 for a in base.atoms(sp.cos, sp.sin)):
+            return None
+    found = run_quotient(program, values, ctx)
+    if found is None:
+        return None
+    num, den = found
+    k_s = gens.index(SIN_T)
+    if den.degrees()[k_s] > 0:
+        return None
+    reduced = 0 * one
+    for monom, coeff in num.terms():
+        power = monom[k_s]
+        rest = ctx.from_dict({tuple(0 if i == k_s else m for i, m in enumerate(monom)): coeff})
+        reduced += rest * (1 - c_**2) ** (power // 2) * s_ ** (power % 2)
+    h = reduced.gcd(den)
+    if not reduced.is_zero() and not h.is_one():
+        reduced, den = reduced / h, den / h
+    p_expr, q_expr = sympy_fraction(reduced, den, gens)
+    return sp.expand(p_expr / q_expr)
 
 
 #: The exponential variables of :class:`CircleForm`: ``u = e^{j theta/L}``, ``w = e^{j n theta}``

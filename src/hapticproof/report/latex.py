@@ -85,7 +85,7 @@ def prose_with_math(text: str) -> str:
     for k, part in enumerate(parts):
         if k % 2 == 0:
             out.append(escape_text(part))
-        elif is_typesettable(part) and "\\\\" not in part:
+        elif is_typesettable(part) and "\\\\" not in part and _laid_out_safely("$" + part + "$"):
             out.append("$" + part + "$")
         else:
             out.append(escape_text("$" + part + "$"))
@@ -438,8 +438,18 @@ _LAYOUT = frozenset({"hpfit", "hpline", "hptag", "hpcell", "penalty", "allowbrea
                      "tau", "infty", "pm"})
 
 
+#: the environments whose cells ``&`` separates: anywhere else (``\text{a & b}``, a group, a
+#: line of a display once the layout has dropped its own marks) TeX stops the report
+#: with the most cells a row may have (amsmath: 10 matrix columns, 2 in cases and split); array
+#: and alignedat count their columns from an argument, so their ``&`` is shown verbatim
+_ALIGNMENTS = {"aligned": None, "align": None, "align*": None, "split": 2, "cases": 2,
+               **dict.fromkeys(("bmatrix", "pmatrix", "matrix", "vmatrix", "Vmatrix", "Bmatrix", "smallmatrix"), 10)}
+#: the environments whose rows ``\\`` ends
+_ROWS = set(_ALIGNMENTS) | {"gathered", "gather", "gather*", "multline", "multline*", "array", "alignedat"}
+
+
 def _laid_out_safely(out: str) -> bool:
-    return check_tex(out, _KNOWN | _LAYOUT, _ENVIRONMENTS | {"hpdisplay"}) is None
+    return check_tex(out, _KNOWN | _LAYOUT, _ENVIRONMENTS | {"hpdisplay"}, alignments=_ALIGNMENTS, rows=_ROWS) is None
 
 
 def labelled(label: str, body: str) -> str:

@@ -56,7 +56,7 @@ from hapticproof.core.symbols import n as N_SYM
 from hapticproof.core.symbols import z as Z_SYM
 from hapticproof.systems.singleuser import APPROXIMATIONS, SingleUserScene, delay_ratio, virtual_wall
 from hapticproof.systems.matrixfile import read_matrix
-from hapticproof.systems.values import check_declared, check_positive_roles, param_value, refuse_cycles
+from hapticproof.systems.values import check_declared, check_positive_roles, param_value, refuse_cycles, refuse_toolkit_names
 import json
 import re
 import sys
@@ -256,7 +256,7 @@ class Scene:
                 set_(name, self._normalise(value, name, params, assumptions))
         params = {k: (self._normalise(v, k, params, assumptions) if isinstance(v, sp.Basic) and not v.is_Rational else v)
                   for k, v in params.items()}
-        refuse_cycles(params)
+        refuse_cycles(params)                        # and chained definitions bounded before any substitution
         set_("params", tuple(sorted(params.items())))
         # delays, users, graph
         set_("delay", self._delay(self.delay))
@@ -289,6 +289,7 @@ class Scene:
                 if sum(ports) != len(rows) or any(p < 1 for p in ports):
                     raise SceneError(f"ports {list(ports)} must be positive sizes adding up to {len(rows)}")
                 set_("ports", ports)
+        refuse_toolkit_names(self)                   # n, c, ...: the toolkit's own quantities
 
     # -- helpers of construction --------------------------------------------------------------
     def _read_systems(self, params: dict[str, Any]) -> None:

@@ -56,25 +56,43 @@ def filtered_pd_controller(K: Any = TELE_SYMBOLS["K"], B: Any = TELE_SYMBOLS["B"
     return K + B * (1 - a) * (z - 1) / (T * (z - a))
 
 
+def _generalized_bilinear(num: sp.Expr, den: sp.Expr, s: sp.Symbol, T: Any, alpha: sp.Rational) -> tuple[list, list]:
+    """Coefficient lists (highest power first, denominator monic) of ``num(s)/den(s)`` under
+    ``s = (z - 1)/(T (alpha z + 1 - alpha))``, computed exactly as ``sympy.physics.control.gbt``
+    (``alpha = 0`` forward, ``1`` backward, ``1/2`` bilinear) -- importing that package costs
+    about a second (it loads matplotlib), longer than the whole audit of a display."""
+    num_coeffs, den_coeffs = sp.Poly(num, s).all_coeffs(), sp.Poly(den, s).all_coeffs()
+    z = s
+    order = max(len(num_coeffs), len(den_coeffs)) - 1
+
+    def substituted(coeffs: list) -> sp.Expr:
+        return sp.Add(*[T ** (order - i) * c * (z - 1) ** i * (alpha * z + 1 - alpha) ** (order - i)
+                        for c, i in zip(coeffs[::-1], range(len(coeffs)))])
+
+    top = substituted(num_coeffs).as_poly(z).all_coeffs()
+    bottom = substituted(den_coeffs).as_poly(z).all_coeffs()
+    lead = bottom[0]
+    return [c / lead for c in top], [c / lead for c in bottom]
+
+
 @lru_cache(maxsize=32)   # pure; the audit and the tests ask for the same few
 def discretize_pd(method: str, K: Any = TELE_SYMBOLS["K"], B: Any = TELE_SYMBOLS["B"],
                   T: Any = TELE_SYMBOLS["T"], z: sp.Symbol = Z_SYM) -> sp.Expr:
-    """Discretise ``K + Bs`` with :mod:`sympy.physics.control` (``'backward'``, ``'forward'`` or
-    ``'bilinear'``) and return ``C(z)``.
+    """Discretise ``K + Bs`` as :mod:`sympy.physics.control` does (``backward_diff``,
+    ``forward_diff`` or ``bilinear``: its generalized bilinear transform, written out in
+    :func:`_generalized_bilinear`) and return ``C(z)``.
 
     >>> sp.simplify(discretize_pd("backward") - pd_controller())
     0
     >>> sp.factor(discretize_pd("bilinear", 1, 1, 2))
     2*z/(z + 1)
     """
-    from sympy.physics.control import TransferFunction, backward_diff, bilinear, forward_diff
-
-    methods = {"backward": backward_diff, "forward": forward_diff, "bilinear": bilinear}
+    methods = {"backward": sp.Integer(1), "forward": sp.Integer(0), "bilinear": sp.Rational(1, 2)}
     if method not in methods:
         raise SceneError(f"unknown discretisation {method!r}; choose one of {', '.join(methods)}")
     s = sp.Symbol("s")
     K, B, T = (sp.sympify(v) for v in (K, B, T))
-    num, den = methods[method](TransferFunction(K + B * s, 1, s), T)
+    num, den = _generalized_bilinear(K + B * s, sp.Integer(1), s, T, methods[method])
     top = max(len(num), len(den)) - 1
     as_poly = lambda coeffs: sum(c * z ** (len(coeffs) - 1 - i) for i, c in enumerate(coeffs))  # noqa: E731
     return sp.cancel(as_poly(num) * z ** (top - len(num) + 1) / (as_poly(den) * z ** (top - len(den) + 1)))

@@ -39,7 +39,7 @@ import sympy as sp
 
 from hapticproof.core.errors import HapticproofError, SceneError
 
-__all__ = ["refuse_cycles", "check_declared", "check_positive_roles", "param_value"]
+__all__ = ["refuse_cycles", "check_declared", "check_positive_roles", "param_value", "check_substituted_size", "refuse_toolkit_names"]
 
 
 def param_value(name: str, value: Any, where: str) -> Any:
@@ -122,7 +122,8 @@ def check_positive_roles(scene: Any, mapping: Mapping[sp.Symbol, Any]) -> None:
 
 def refuse_cycles(params: Mapping[str, Any]) -> None:
     """Parameters defined in terms of each other (``K = "B*2"``, ``B = "K/2"``; ``K = "K/2"``)
-    define nothing: one line naming the cycle.
+    define nothing: one line naming the cycle. Without a cycle, the size of every value once
+    substituted is bounded (:func:`check_substituted_size`).
 
     >>> refuse_cycles({"K": sp.Symbol("B") * 2, "B": sp.Symbol("K") / 2})
     Traceback (most recent call last):
@@ -151,3 +152,109 @@ def refuse_cycles(params: Mapping[str, Any]) -> None:
                 state[following] = 1
                 path.append(following)
                 stack.append(iter(uses[following]))
+    check_substituted_size(params)
+
+
+def check_substituted_size(params: Mapping[str, Any], where: str = "") -> None:
+    """The size of every parameter's value once the values it uses are substituted, bounded
+    before anything is substituted: ``K_1 = K_0^10, K_2 = K_1^10, ...`` stays within the digit and
+    exponent limits of each line but would build ``10^(10^8)`` (or ``K_0^(10^8)``) after eight
+    steps. For each value, an upper bound on the digits of the rational number it becomes and on
+    the power of each free name it reaches is propagated through the definitions (a sum adds
+    digits, a product adds them, a power ``k`` multiplies them by ``|k|``), and checked against
+    :attr:`~hapticproof.core.limits.Limits.digits` and
+    :attr:`~hapticproof.core.limits.Limits.exponent`. (No cycle: :func:`refuse_cycles` first.)
+
+    >>> K = [sp.Symbol(f"K_{i}") for i in range(4)]
+    >>> check_substituted_size({"K_0": sp.Integer(10), "K_1": K[0]**10, "K_2": K[1]**10})
+    >>> check_substituted_size({"K_0": sp.Integer(10), "K_1": K[0]**10, "K_2": K[1]**10, "K_3": K[2]**10})
+    Traceback (most recent call last):
+    ...
+    hapticproof.core.limits.LimitError: parameter K_3: its value after the definitions it uses are substituted has about 1001 digits, above the limit of 1000 digits (raise it with --limit digits=N)
+    """
+    from hapticproof.core.limits import LimitError, current
+
+    limits = current()
+    sizes: dict[str, tuple[float, float]] = {}         # name -> (digits, largest power of a free name)
+
+    def size(expr: Any) -> tuple[float, float]:
+        if isinstance(expr, (int, Fraction)) or getattr(expr, "is_Rational", False):
+            q = sp.Rational(expr) if not isinstance(expr, sp.Basic) else expr
+            largest = max(abs(int(q.p)), abs(int(q.q)))
+            return (math.log10(largest) if largest > 1 else 0.0), 0.0
+        if isinstance(expr, sp.Symbol):
+            return sizes.get(expr.name, (0.0, 1.0))
+        if not isinstance(expr, sp.Basic) or not expr.args:
+            return 0.0, 0.0
+        if isinstance(expr, sp.Pow) and expr.args[1].is_Integer:
+            digits, power = size(expr.args[0])
+            k = abs(int(expr.args[1]))
+            return digits * k, power * k
+        parts = [size(arg) for arg in expr.args]
+        digits = sum(d for d, _ in parts) + (math.log10(len(parts)) if isinstance(expr, sp.Add) else 0.0)
+        power = sum(q for _, q in parts) if isinstance(expr, sp.Mul) else max(q for _, q in parts)
+        return digits, power
+
+    defined = {k: v for k, v in params.items() if isinstance(v, sp.Basic)}
+    uses = {k: sorted(sym.name for sym in v.free_symbols if sym.name in defined) for k, v in defined.items()}
+    done: set[str] = set()
+    for root in sorted(defined):                     # the definitions in dependency order (no recursion)
+        stack = [(root, iter(uses[root]))]
+        while stack:
+            name, following = stack[-1]
+            nxt = next(following, None)
+            if nxt is None:
+                stack.pop()
+                if name not in done:
+                    done.add(name)
+                    sizes[name] = size(defined[name])
+            elif nxt not in done and all(nxt != n for n, _ in stack):
+                stack.append((nxt, iter(uses[nxt])))
+
+    for name, value in params.items():
+        if not isinstance(value, sp.Basic) or value.is_Number:
+            continue
+        digits, power = sizes[name]
+        label = f"{where}parameter {name}"
+        if digits >= limits.digits:
+            raise LimitError(f"{label}: its value after the definitions it uses are substituted has about "
+                             f"{min(digits + 1, 1e18):.0f} digits, above the limit of {limits.digits} digits "
+                             "(raise it with --limit digits=N)")
+        if power > limits.exponent:
+            raise LimitError(f"{label}: its value after the definitions it uses are substituted raises a name to the "
+                             f"power {min(power, 1e18):.0f}, above the limit of {limits.exponent} "
+                             "(raise it with --limit exponent=N)")
+
+
+def refuse_toolkit_names(scene: Any) -> None:
+    """No parameter, role or name in an expression of ``scene`` is one of the toolkit's own
+    quantities (``n`` the delay, ``c`` = cos(omega T), ...:
+    :data:`hapticproof.core.symbols.TOOLKIT_NAMES`): such a name would silently mean both.
+
+    >>> from hapticproof.systems.scene import Scene
+    >>> Scene("single-user", roles={"device_damping": "n"})
+    Traceback (most recent call last):
+    ...
+    hapticproof.core.errors.SceneError: 'n' is the toolkit's own name for the delay n = t_d/T in samples; give your parameter another name (e.g. n_1 or n_v)
+    """
+    from hapticproof.core.symbols import TOOLKIT_NAMES
+    from hapticproof.systems.roles import ROLES, member_names
+
+    used: set[str] = set()
+    groups: set[str] = set()    # a non-uniform m-user scene's group names: shorthands for c_1, ..., never symbols
+    for field, value in scene.roles:
+        if scene.system == "multi-user" and ROLES["multi-user"][field].per_user and not scene.uniform:
+            groups |= {value} if isinstance(value, str) else set()
+            value = member_names("multi-user", scene.roles, field, scene.users or 1)
+        used |= set(value) if isinstance(value, tuple) else {value}
+    used |= set(dict(scene.params)) - groups
+    values = [scene.environment, scene.controller, scene.operator, *dict(scene.params).values()]
+    values += [e for row in scene.matrix or () for e in row] if scene.system == "network" else []
+    for value in values:
+        if isinstance(value, sp.Basic):
+            used |= {sym.name for sym in value.free_symbols}
+    clash = sorted(used & set(TOOLKIT_NAMES))
+    if clash:
+        name = clash[0]
+        raise SceneError(f"{name!r} is the toolkit's own name for {TOOLKIT_NAMES[name]}; give your parameter "
+                         f"another name (e.g. {name}_1 or {name}_v)")

@@ -115,8 +115,10 @@ def _claim_of(display: Any, reading: Reading, paper: PaperReading, resolve: Any)
     if reading.kind == MODEL:
         return ReadClaim(claim="identity", why=f"{reading.note} (it defines how they are related)", **base)
     if reading.kind == IDENTITY:
+        # values the sentence gives a parameter for this display ("$B_p = 0$"), and its inequalities
+        assumption = ", ".join(reading.claim.assumptions) if reading.claim is not None else ""
         return ReadClaim(claim="identity", why="an equation between expressions the paper's definitions give",
-                         unbound=_uses_unbound(reading), **base)
+                         unbound=_uses_unbound(reading), assumption=assumption, **base)
     if reading.kind == MALFORMED and reading.claim is not None and reading.claim.property:
         return ReadClaim(claim="condition", why=f"the sentence states a condition ('{said}') but the display has no relation",
                          property=reading.claim.property, strength=reading.claim.strength, **base)
@@ -129,7 +131,7 @@ def _claim_of(display: Any, reading: Reading, paper: PaperReading, resolve: Any)
         about, prop, strength, how = resolved
         assumption = ", ".join(reading.claim.assumptions) if reading.claim is not None else ""
         return ReadClaim(claim="condition", about=about, property=prop, strength=strength, assumption=assumption,
-                         why=f"{strength} for {about} {prop.replace('-', ' ')}: {how}" + (f" ('{said}')" if said else ""), **base)
+                         why=f"{strength} for {about or 'a general two-port'} {prop.replace('-', ' ')}: {how}" + (f" ('{said}')" if said else ""), **base)
     if reading.kind == MALFORMED:
         return ReadClaim(claim=None, why=f"the reader cannot read it: {reading.error or reading.note}", **base)
     return ReadClaim(claim=None, why=f"not a definition, an identity or a condition{': ' + reading.note if reading.note else ''}",

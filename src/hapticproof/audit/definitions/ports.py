@@ -28,13 +28,25 @@ asked quantity answers ``None`` (never a guess).
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
-from typing import Any
 
 from hapticproof.exact.rational import RationalFunction
 
-__all__ = ["PortRelation", "SignalSystem", "entry_name"]
+__all__ = ["PortRelation", "SignalSystem", "entry_name", "two_port_entry", "TWO_PORT_LETTERS"]
+
+
+#: the letters of the immittance and hybrid parameters of a two-port (``z_{11}``, ``y_{21}``, ``h_{12}``, ``g_{22}``)
+TWO_PORT_LETTERS = frozenset("zyhg")
+
+
+def two_port_entry(name: str, letters: Iterable[str] = TWO_PORT_LETTERS) -> tuple[str, int, int] | None:
+    """``(letter, i, j)`` (from 0) of a generic entry's SymPy name (``z_12`` -> ``('z', 0, 1)``)."""
+    m = re.fullmatch(r"([a-z])_\{?([1-9])([1-9])\}?", name)
+    if not m or m.group(1) not in set(letters):
+        return None
+    return m.group(1), int(m.group(2)) - 1, int(m.group(3)) - 1
 
 
 def entry_name(letter: str, i: int, j: int) -> str:

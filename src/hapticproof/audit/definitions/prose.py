@@ -40,6 +40,8 @@ _STRENGTH = (
 _ANY = re.compile(r"\bfor\s+(?:any|every|all|an\s+arbitrary|arbitrary)\s+(?:causal\s+|stable\s+|passive\s+|proper\s+)*"
                   r"(?:environments?\s+|controllers?\s+)?\$([^$]{1,60})\$")
 _INLINE = re.compile(r"\$([^$]{1,400})\$")
+#: an inline value given to a parameter for the display ("with a proportional controller ($B_p = 0$)")
+_SETTING = re.compile(r"\s*\\?[A-Za-z][A-Za-z0-9_{}\\]*\s*=\s*-?\d+(?:\.\d+)?\s*")
 _RELATION = re.compile(r"(?:\\ge|\\geq|\\le|\\leq|\\geqslant|\\leqslant|>|<|\\gt|\\lt)")
 _NOUNS = (
     ("two-port", r"two[\s~-]*port|coupled\s+device|teleoperator|bilateral|network"),
@@ -58,7 +60,8 @@ class ProseClaim:
     noun: str | None = None
     #: the words the property and the strength were read from
     evidence: str = ""
-    #: inline inequalities of the sentence read as assumptions (``K_c > 0``)
+    #: inline inequalities of the sentence read as assumptions (``K_c > 0``), and values given to a
+    #: parameter (``B_p = 0``)
     assumptions: tuple[str, ...] = ()
     #: "for any causal $H(z)$": the claim is about every such object
     for_any: str | None = None
@@ -113,7 +116,7 @@ def claim_of(before: str, after: str = "") -> ProseClaim:
         evidence = re.sub(r"\s+", " ", evidence.replace("MATH", "").strip())
     obj = _named_object(sentence, prop[1].start() if prop else None)
     noun = next((name for name, pattern in _NOUNS if re.search(pattern, words, re.I)), None)
-    assumptions = tuple(m for m in inline_math(sentence) if _RELATION.search(m) and _is_assumption(m))
+    assumptions = tuple(m for m in inline_math(sentence) if (_RELATION.search(m) or _SETTING.fullmatch(m)) and _is_assumption(m))
     if after:
         assumptions += tuple(m for m in inline_math(after.split(".")[0]) if _RELATION.search(m) and _is_assumption(m))
     if prop is None and following:

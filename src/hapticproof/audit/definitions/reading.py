@@ -28,10 +28,11 @@ from typing import Any
 import sympy as sp
 from sympy.core.function import AppliedUndef
 
-from hapticproof.audit.definitions.ports import SignalSystem
+from hapticproof.audit.definitions.ports import TWO_PORT_LETTERS, SignalSystem, two_port_entry
+from hapticproof.audit.definitions.signals import letter_of
 from hapticproof.audit.definitions.prose import ProseClaim, claim_of, inline_math, last_sentence
-from hapticproof.audit.definitions.values import (BOUNDARY, PARAM, TRANSFER, Binding, Environment, Unbound, Unsupported,
-                                                  Value, evaluate)
+from hapticproof.audit.definitions.values import (TRANSFER, Binding, Environment, Unbound, Unsupported,
+                                                  evaluate)
 from hapticproof.core.errors import HapticproofError, LatexParseError
 from hapticproof.core.symbols import omega as OMEGA
 from hapticproof.core.symbols import s as S_SYM
@@ -54,6 +55,8 @@ _DERIVATION = re.compile(r"\b(?:gives?|giving|yields?|we\s+obtain|one\s+obtains|
                          r"follows\s+from|hence|thus|therefore|so\s+that|eliminating|solving|substituting|reduces?\s+to|"
                          r"we\s+find|leads?\s+to|results?\s+in|is\s+found|we\s+have)\b", re.I)
 
+#: a real part, imaginary part, modulus or conjugate in a display's text
+_COMPLEX_CONTEXT = re.compile(r"\\(?:Re|Im|Real|Imag|lvert|overline)\b|(?:operatorname|mathrm|text|mathfrak)\{(?:Re|Im)\}|\|")
 _INDEX_SET = re.compile(r",?\s*(?:\\q?quad|\\[,;: ]|~)*\s*\\?(\\[A-Za-z]+|[A-Za-z])\s*\\in\s*\\\{([^{}]{1,80})\\\}\s*[.,;]?\s*$")
 _ANGLES = ("theta", "vartheta")
 #: words before an inline inequality that make it a result, not an assumption
@@ -204,10 +207,16 @@ class PaperReading:
         from hapticproof.audit.reader.names import normalise_name, sympy_name
         from hapticproof.audit.reader.printed import parse_printed
 
+        complex_entries = True
         for _ in range(60):
-            table = self._make_table(text)
+            table = self._make_table(text, complex_entries)
             try:
                 return table, parse_printed(text, table)
+            except TypeError:
+                if not complex_entries:
+                    raise
+                complex_entries = False         # "|z_11| > z_22" compares the entries: read them real
+                continue
             except LatexParseError as err:
                 match = re.search(r"unknown name (.+?) at position (\d+)", str(err))
                 if not match:
@@ -231,13 +240,19 @@ class PaperReading:
                 self.symbols.setdefault(canonical, sp.Symbol(sympy_name(canonical), real=True))
         raise LatexParseError("too many unknown names", text, 0)
 
-    def _make_table(self, text: str = "") -> Any:
+    def _make_table(self, text: str = "", complex_entries: bool = True) -> Any:
         from hapticproof.audit.reader.names import sympy_name
 
         symbols = {"z": Z_SYM, "s": S_SYM, "\\omega": OMEGA}
         symbols.update(self.symbols)
         if re.search(r"(?<![A-Za-z\\])e(?![A-Za-z^])", text) and not re.search(r"(?<![A-Za-z\\])e\s*\^", text):
             symbols["e"] = sp.Symbol("e", real=True)      # "e = x_m - x_s": a name, not Euler's number
+        if complex_entries and _COMPLEX_CONTEXT.search(text):
+            # \Re z_{11}, |z_{12} z_{21}|: a general two-port's entries are complex numbers here
+            letters = TWO_PORT_LETTERS | {letter_of(m) for m in self.system.ports}
+            for key, value in symbols.items():
+                if isinstance(value, sp.Symbol) and two_port_entry(value.name, letters):
+                    symbols[key] = sp.Symbol(value.name)
         functions = {name: sp.Function(sympy_name(name)) for name in self.functions}
         return self._table_type(symbols=symbols, functions=functions)
 
@@ -303,7 +318,6 @@ class PaperReading:
         main, qualifiers = _split(relations)
         self._qualify(reading, qualifiers)
         reading.main = tuple(main)
-        first = main[0]
         lhs = _lhs_text(text)
         if lhs and not definitions_only:
             self._last_lhs = lhs
@@ -347,7 +361,9 @@ class PaperReading:
                     except (LatexParseError, HapticproofError, ValueError):
                         continue
                     for r in st.relations():
-                        if r.ops and all(op in _RELATION_OPS for op in r.ops):
+                        if r.ops == ("=",) and isinstance(r.terms[0], sp.Symbol) and sp.sympify(r.terms[1]).is_number:
+                            reading.substitutions = {**reading.substitutions, r.terms[0].name: r.terms[1]}
+                        elif r.ops and all(op in _RELATION_OPS for op in r.ops):
                             reading.assumptions += (r.as_sympy(),)
 
     def _equations(self, reading: Reading, main: list[Any], definitions_only: bool) -> None:

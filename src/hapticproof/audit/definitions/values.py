@@ -45,7 +45,8 @@ from hapticproof.exact.boundaryvalue import AXIS, C_NAME, CIRCLE, X_NAME, Bounda
 from hapticproof.exact.rational import NotRationalError, RationalFunction
 from hapticproof.exact.transfer import CONTINUOUS, DISCRETE, VARIABLES, TransferMatrix
 
-__all__ = ["Value", "Binding", "Environment", "Unbound", "Unsupported", "evaluate", "PARAM", "TRANSFER", "BOUNDARY"]
+__all__ = ["Value", "Binding", "Environment", "Unbound", "Unsupported", "evaluate", "radicand", "RADICAL_PREFIX", "PARAM", "TRANSFER",
+           "BOUNDARY"]
 
 PARAM, TRANSFER, BOUNDARY = "param", "transfer", "boundary"
 _BOUNDARY_OF = {DISCRETE: CIRCLE, CONTINUOUS: AXIS}
@@ -240,7 +241,8 @@ class Value:
 
     @property
     def names(self) -> frozenset[str]:
-        """The parameter names the value depends on (transfer and boundary variables excluded)."""
+        """The parameter names the value depends on (transfer and boundary variables excluded;
+        named square roots included)."""
         out: set[str] = set()
         for row in self.rows:
             for e in row:
@@ -249,7 +251,7 @@ class Value:
                         out |= part.names
                 else:
                     out |= e.names
-        return frozenset(n for n in out if not n.startswith("$"))
+        return frozenset(n for n in out if not n.startswith("$") or n.startswith(RADICAL_PREFIX))
 
     def to_sympy(self, symbols: Mapping[str, sp.Symbol] | None = None) -> Any:
         """A SymPy expression (scalar) or matrix (``c``, ``x``, ``r`` for the boundary variables)."""
@@ -289,6 +291,11 @@ class Environment:
     substitutions: Mapping[str, Any] = field(default_factory=dict)
     #: the bound names an evaluation used (filled by :func:`evaluate`)
     used: set = field(default_factory=set)
+    #: names that stand for complex values of a general two-port (``z_{11}`` under ``\Re``): each
+    #: is ``a + j b`` with real unknowns ``a``, ``b``
+    complex_names: frozenset = frozenset()
+    #: where those complex values live (``discrete``: read on the unit circle)
+    complex_domain: str = DISCRETE
 
     def lookup(self, name: str) -> Binding | None:
         found = self.bindings.get(name)
@@ -302,8 +309,12 @@ class Environment:
 # ---------------------------------------------------------------------------------------------
 
 
-def evaluate(expr: Any, env: Environment) -> Value:
+def evaluate(expr: Any, env: Environment, *, roots: bool = False) -> Value:
     """The exact :class:`Value` of a printed SymPy expression under ``env`` (see the module doc).
+
+    Square roots (``|z_{12} z_{21}|``, ``\\sqrt{...}``) become named radicals (:func:`radicand`)
+    only when ``roots`` is true: a caller that does not reduce them would read one as a free
+    parameter.
 
     Raises :class:`Unbound` for names no definition gives, :class:`Unsupported` for constructs
     outside the exact algebra.
@@ -311,7 +322,30 @@ def evaluate(expr: Any, env: Environment) -> Value:
     unbound = _unbound(expr, env)
     if unbound:
         raise Unbound(unbound)
-    return _Evaluator(env).value(sp.sympify(expr))
+    value = _Evaluator(env).value(sp.sympify(expr))
+    if not roots and any(n.startswith(RADICAL_PREFIX) for n in value.names):
+        raise Unsupported("a square root or the modulus of a complex value (exact only in an identity)")
+    return value
+
+
+#: the internal names of square roots: ``$rad<k>`` stands for ``sqrt(radicand(k))``, the same name
+#: for the same radicand in every evaluation
+RADICAL_PREFIX = "$rad"
+_RADICANDS: dict[RationalFunction, str] = {}
+_NAMES: dict[str, RationalFunction] = {}
+
+
+def radicand(name: str) -> RationalFunction:
+    """The non-negative rational function whose square root the radical ``name`` is."""
+    return _NAMES[name]
+
+
+def _radical_name(radicand: RationalFunction) -> str:
+    name = _RADICANDS.get(radicand)
+    if name is None:
+        name = f"{RADICAL_PREFIX}{len(_RADICANDS) + 1}"
+        _RADICANDS[radicand], _NAMES[name] = name, radicand
+    return name
 
 
 def _unbound(expr: Any, env: Environment) -> set[str]:
@@ -364,7 +398,7 @@ class _Evaluator:
         if isinstance(e, sp.conjugate):
             return self.value(e.args[0]).map_boundary(lambda v: v.conjugate(), self._domain_of(e.args[0]))
         if isinstance(e, sp.Abs):
-            raise Unsupported("a modulus |.| (its square is exact: write |.|^2)")
+            return self._modulus(e.args[0], 1)
         if isinstance(e, sp.Determinant) or getattr(e.func, "__name__", "") == "det":
             return self.value(e.args[0]).determinant()
         if isinstance(e, sp.Transpose):
@@ -392,8 +426,15 @@ class _Evaluator:
             return Value.boundary(BoundaryValue.r(AXIS), CONTINUOUS)
         if e.name in self.env.substitutions:
             return self.value(sp.sympify(self.env.substitutions[e.name]))
+        if e.name in self.env.complex_names:
+            re_part, im_part = (RationalFunction.variable(f"{e.name}'{p}") for p in ("re", "im"))
+            domain = self.env.complex_domain
+            return Value.boundary(BoundaryValue(re_part, _zero(), im_part, _zero(), _BOUNDARY_OF[domain]), domain)
         binding = self.env.lookup(e.name)
         if binding is not None:
+            if binding.value.names & self.env.complex_names:
+                # a value written in a general two-port's entries, read with them complex
+                return self.value(binding.value.to_sympy({n: sp.Symbol(n, real=True) for n in binding.value.names}))
             return binding.value
         if e.name in self.env.angles:
             raise Unsupported(f"the angle {e.name} outside cos, sin or an exponential")
@@ -428,6 +469,10 @@ class _Evaluator:
 
     def _power(self, e: sp.Pow) -> Value:
         base, exp = e.args
+        if exp.is_Rational and exp.q == 2:
+            inner = self.value(base)
+            root = self._radical(_real_rational(inner))
+            return root ** int(exp.p)
         if not exp.is_Integer:
             raise Unsupported(f"a non-integer power {exp}")
         if isinstance(base, sp.Abs) and int(exp) % 2 == 0:
@@ -444,7 +489,34 @@ class _Evaluator:
         return self.value(base) ** int(exp)
 
     def _power_abs(self, base: Any, k: int) -> Value:
-        raise Unsupported("an odd power of a modulus |.|")
+        return self._modulus(base.args[0], k)
+
+    def _modulus(self, arg: Any, k: int) -> Value:
+        """``|arg|^k`` for an odd ``k``: ``|arg|^2`` is exact, its square root a radical."""
+        inner = self.value(arg)
+        if not inner.is_scalar:
+            raise Unsupported("|.| of a matrix")
+        if inner.kind == PARAM:
+            square = inner.rows[0][0] * inner.rows[0][0]
+        else:
+            v = inner.on_boundary(inner.domain).rows[0][0].abs2()
+            if not v.re1.is_zero:
+                raise Unsupported("a modulus that is not a rational function of the frequency")
+            square = v.re0
+        out = self._radical(square) * Value.param(square) ** ((abs(k) - 1) // 2)
+        return out if k > 0 else out.inverse()
+
+    def _radical(self, radicand: RationalFunction) -> Value:
+        """``sqrt(radicand)`` (a non-negative rational function): exact when it is a constant square,
+        else one named radical per distinct radicand (``$rad1``), ``$rad1^2 = radicand``."""
+        if radicand.is_constant:
+            q = radicand.constant_value()
+            if q < 0:
+                raise Unsupported("the square root of a negative number")
+            num, den = sp.sqrt(sp.Integer(q.numerator)), sp.sqrt(sp.Integer(q.denominator))
+            if num.is_Integer and den.is_Integer:
+                return Value.param(RationalFunction.constant(Fraction(int(num), int(den))))
+        return Value.param(RationalFunction.variable(_radical_name(radicand)))
 
     def _at(self, value: Value, variables: Any, targets: Any, limit: bool) -> Value:
         """``value|_{x = a}`` and ``lim_{x -> a} value`` for a parameter ``x`` (a rational function of
@@ -549,6 +621,22 @@ class _Evaluator:
             image = a.rows[0][0]
             return Value(PARAM, tuple(tuple(f.subs({internal: image}) for f in row) for row in value.rows))
         raise Unsupported(f"{e.func.__name__} applied to {arg}")
+
+
+def _zero() -> RationalFunction:
+    return RationalFunction.constant(0)
+
+
+def _real_rational(value: Value) -> RationalFunction:
+    """A real value that is a rational function (of the parameters and the boundary variable)."""
+    if not value.is_scalar:
+        raise Unsupported("the square root of a matrix")
+    e = value.rows[0][0]
+    if isinstance(e, RationalFunction):
+        return e
+    if e.re1.is_zero and e.im0.is_zero and e.im1.is_zero:
+        return e.re0
+    raise Unsupported("the square root of a complex or odd-in-sin value")
 
 
 def _substituted(e: Any, name: str, image: RationalFunction) -> Any:

@@ -27,10 +27,14 @@ import sympy as sp
 
 from hapticproof.audit.definitions.reading import (CONDITION, DEFINITION, DERIVED, IDENTITY, MALFORMED, MODEL, REDEFINED,
                                                    PaperReading, Reading)
+from hapticproof.audit.definitions.radicals import has_roots
 from hapticproof.audit.definitions.values import BOUNDARY, PARAM, Environment, Unbound, Unsupported, Value, evaluate
+from hapticproof.exact.transfer import CONTINUOUS, DISCRETE
 from hapticproof.core.errors import HapticproofError
 from hapticproof.core.evidence import Decision, Evidence, Finding, Method, Verdict
 from hapticproof.core.symbols import omega as OMEGA
+from hapticproof.core.symbols import s as S_SYM
+from hapticproof.core.symbols import z as Z_SYM
 from sympy.core.function import AppliedUndef
 from hapticproof.exact.boundaryvalue import C_NAME, X_NAME
 from hapticproof.exact.rational import RationalFunction
@@ -119,10 +123,11 @@ def identity_finding(reading: Reading, paper: PaperReading) -> Finding:
     cases = _sign_cases([t for r in reading.main for t in r.terms])
     if cases:
         return _identity_by_cases(reading, paper, cases)
+    relations, env, how = _complex_entries(reading, paper, env)
     values = []
     try:
-        for relation in reading.main:
-            values.append([evaluate(t, env) for t in relation.terms])
+        for relation in relations:
+            values.append([evaluate(t, env, roots=True) for t in relation.terms])
     except Unbound as err:
         return Finding(Verdict.UNDECIDED, f"{err} (names: {', '.join(sorted(err.names))})",
                        Evidence(Method.PARSE, facts={"unbound": sorted(err.names)}))
@@ -135,6 +140,8 @@ def identity_finding(reading: Reading, paper: PaperReading) -> Finding:
                 diff = first - other
             except Unsupported as err:
                 return Finding(Verdict.UNDECIDED, f"the sides are not comparable: {err}", Evidence(Method.PARSE))
+            if not diff.is_zero and has_roots(diff):
+                return _with_roots(reading, paper, first, diff, how)
             if not diff.is_zero:
                 general = _instantiated(first, other, paper)
                 if general is not None:
@@ -146,8 +153,103 @@ def identity_finding(reading: Reading, paper: PaperReading) -> Finding:
     earlier = _earlier_definition(reading)
     if earlier:
         return Finding(Verdict.CONFIRMED, f"the display restates {earlier}: equal identically", Evidence(Method.CANONICAL_FORM))
+    if how:
+        return Finding(Verdict.CONFIRMED, f"both sides are equal identically {how}",
+                       Evidence(Method.CANONICAL_FORM, facts={"kind": values[0][0].kind}))
     return Finding(Verdict.CONFIRMED, "both sides are equal identically (the difference cancels exactly)",
                    Evidence(Method.CANONICAL_FORM, facts={"kind": values[0][0].kind}))
+
+
+def _complex_entries(reading: Reading, paper: PaperReading, env: Environment) -> tuple[list[Any], Environment, str]:
+    r"""A display taking real parts or moduli of a general two-port's entries (``\Re z_{11}``,
+    ``|h_{12} h_{21}|``): where one side is the section's model, the entries are those its port
+    matrix has; otherwise each other matrix's entries are converted to one matrix's
+    (``h_{11} = \det Z / z_{22}`` from the port relations) and these read as complex unknowns.
+    Returns the relations to evaluate, the environment and how the entries were read."""
+    import dataclasses
+
+    from hapticproof.audit.definitions.ports import TWO_PORT_LETTERS, two_port_entry
+    from hapticproof.audit.definitions.signals import letter_of
+
+    system = paper.system
+    matrices = {letter_of(m): m for m in system.ports}
+    letters = TWO_PORT_LETTERS | set(matrices)
+    terms = [t for r in reading.main for t in r.terms if not isinstance(t, sp.MatrixBase)]
+    # an entry the paper binds by a conversion (h_11 in z_ij) is read from the port relations
+    # instead, so a slip in that definition, flagged where it is printed, does not propagate
+    entries = {s for t in terms for s in sp.sympify(t).free_symbols if two_port_entry(s.name, letters)
+               and (env.bindings.get(s.name) is None or two_port_entry(s.name, letters)[0] in matrices)}
+    bound = {two_port_entry(s.name, letters)[0] for s in entries if env.bindings.get(s.name) is not None}
+    if not entries or not any(sp.sympify(t).has(sp.re, sp.im, sp.Abs, sp.conjugate) for t in terms):
+        return list(reading.main), env, ""
+    per_term = [{two_port_entry(s.name, letters)[0] for s in sp.sympify(t).free_symbols if s in entries} for t in terms]
+    used = set().union(*per_term)
+    image: dict[sp.Symbol, Any] = {}
+    how = ""
+    if any(not p for p in per_term) and all(letter in matrices for letter in used):
+        # one side is the model: its port matrices' entries, as the relations give them
+        for letter in used:
+            rows = system.matrix(matrices[letter])
+            if rows is None:
+                return list(reading.main), env, ""
+            for s in entries:
+                found = two_port_entry(s.name, {letter})
+                if found:
+                    image[s] = rows[found[1]][found[2]].to_sympy(_TRANSFER_SYMBOLS)
+        how = "once the general two-port's entries are those the model gives"
+    else:
+        source = sorted(used, key=lambda letter: (letter in bound, -sum(letter in p for p in per_term), letter))[0]
+        complex_names = set()
+        for letter in used - {source}:
+            if letter not in matrices or source not in matrices:
+                return list(reading.main), env, ""
+            rows = system.conversion(matrices[letter], matrices[source], {matrices[source]: source})
+            if rows is None:
+                return list(reading.main), env, ""
+            for s in entries:
+                found = two_port_entry(s.name, {letter})
+                if found:
+                    converted = rows[found[1]][found[2]]
+                    image[s] = converted.to_sympy({n: sp.Symbol(n) for n in converted.names})
+                    complex_names |= converted.names
+        complex_names |= {s.name for s in entries if two_port_entry(s.name, {source})}
+        continuous = any(sp.sympify(t).has(S_SYM, OMEGA) for t in terms) or not paper.periods
+        env = dataclasses.replace(env, complex_names=frozenset(complex_names),
+                                  complex_domain=CONTINUOUS if continuous else DISCRETE)
+        how = (f"for complex {', '.join(sorted(complex_names))}"
+               + (f" (the other entries converted by the port relations of {matrices[source]})" if image else ""))
+    if not image:
+        return list(reading.main), env, how
+    relations = [dataclasses.replace(r, terms=tuple(t if isinstance(t, sp.MatrixBase) else sp.sympify(t).xreplace(image)
+                                                    for t in r.terms)) for r in reading.main]
+    return relations, env, how
+
+
+def _with_roots(reading: Reading, paper: PaperReading, first: Value, diff: Value, how: str) -> Finding:
+    """An identity with square roots (moduli of complex values): reduced exactly, or a point."""
+    from hapticproof.audit.definitions.radicals import value_zero
+
+    signs, _relations = _signs(reading, paper)
+    found = value_zero(diff, signs)
+    facts = {"kind": first.kind, "roots": True}
+    if found.zero is True:
+        return Finding(Verdict.CONFIRMED, "both sides are equal identically: the square roots reduce exactly (each radicand "
+                       "factored, the roots of distinct factors independent)" + (f", {how}" if how else ""),
+                       Evidence(Method.CANONICAL_FORM, facts=facts))
+    if found.zero is False and found.assumed:
+        difference = found.witness.pop("difference")
+        return Finding(Verdict.NEEDS_ASSUMPTION, f"the sides are equal only where {' and '.join(found.assumed)}, which the "
+                       f"paper does not state: at {_point_text(found.witness)} they differ by {difference}",
+                       Evidence(Method.COUNTEREXAMPLE, witness=found.witness, facts={**facts, "assumption": found.assumed}))
+    if found.zero is False:
+        earlier = _earlier_definition(reading)
+        difference = found.witness.pop("difference")
+        verdict = Verdict.INCONSISTENT if earlier else Verdict.WRONG
+        what = f"the display contradicts {earlier}" if earlier else "the sides differ"
+        return Finding(verdict, f"{what}: at {_point_text(found.witness)} the difference is {difference}",
+                       Evidence(Method.COUNTEREXAMPLE, witness=found.witness, facts=facts))
+    return Finding(Verdict.UNDECIDED, f"the sides are written with square roots: {found.reason}",
+                   Evidence(Method.CANONICAL_FORM, facts=facts))
 
 
 def _instantiated(first: Value, other: Value, paper: PaperReading) -> tuple[Value, Value, Value] | None:
@@ -267,6 +369,9 @@ def _identity_by_cases(reading: Reading, paper: PaperReading, cases: list[dict[s
     return Finding(Verdict.CONFIRMED, f"both sides are equal identically in each sign case of "
                    f"{', '.join(sorted({x.name for c in cases for x in c}))}", Evidence(Method.CANONICAL_FORM))
 
+
+#: the transfer variables' internal names in a port matrix's entries, as the printed symbols
+_TRANSFER_SYMBOLS = {"$s": S_SYM, "$z": Z_SYM}
 
 _SIGNAL_BASES = ("f", "v", "x", "F", "V", "X", "u", "y", "q", "p", "tau", "e", "E")
 _DECORATED = ("dot", "ddot", "tilde", "hat")
@@ -525,6 +630,8 @@ def resolved_condition(reading: Reading, paper: PaperReading, any_object: bool =
         return None
     if reading.claim is not None and reading.claim.for_any:
         return None
+    if prop == "absolutely-stable" and general_entries(reading, paper, printed) is not None:
+        return None if any_object else (None, prop, strength, "a general two-port's entries (Llewellyn's criterion)" + guessed)
     wanted = {s.name for s in printed.free_symbols} - set(reading.substitutions) - _FREQUENCY
     found = _object(reading, paper, [named] if named else [], prop, wanted)
     if found is None:
@@ -575,6 +682,9 @@ def condition_finding(reading: Reading, paper: PaperReading, *, about: str | Non
     if strength is None:
         return Finding(Verdict.UNDECIDED, "the sentence does not say whether the condition is necessary, sufficient or both",
                        Evidence(Method.PARSE))
+    general = _general_two_port(reading, paper, printed, prop, strength)
+    if general is not None:
+        return general
     wanted = {s.name for s in printed.free_symbols} - set(reading.substitutions) - _FREQUENCY
     found = _object(reading, paper, [n for n in (about, named) if n], prop, wanted)
     if found is None:
@@ -611,6 +721,43 @@ def condition_finding(reading: Reading, paper: PaperReading, *, about: str | Non
                        Evidence(f.evidence.method, witness=f.evidence.witness, facts={**facts, "region": inside}),
                        corrected=None)
     return f
+
+
+def general_entries(reading: Reading, paper: PaperReading, printed: Any) -> tuple[Any, str] | None:
+    r"""The printed condition with the paper's formulas written out (``\eta(\omega)``), and the
+    letter of the general two-port's entries it is written in, when every name is such an entry."""
+    from hapticproof.audit.definitions.ports import TWO_PORT_LETTERS, two_port_entry
+    from hapticproof.audit.definitions.signals import letter_of
+
+    expanded = printed
+    for f in printed.atoms(AppliedUndef):
+        formula = paper.formulas.get(f.func.__name__)
+        if formula is None:
+            continue
+        expr, variable = formula
+        if variable is not None and len(f.args) == 1:
+            expr = sp.sympify(expr).xreplace({s: f.args[0] for s in sp.sympify(expr).free_symbols if s.name == variable})
+        expanded = expanded.xreplace({f: expr})
+    if expanded.atoms(AppliedUndef):
+        return None
+    letters = TWO_PORT_LETTERS | {letter_of(m) for m in paper.system.ports}
+    names = {s.name for s in expanded.free_symbols} - _FREQUENCY - set(reading.substitutions)
+    found = {two_port_entry(n, letters) for n in names}
+    if not names or None in found or any(n in paper.bindings for n in names):
+        return None
+    used = {entry[0] for entry in found}
+    return (expanded, used.pop()) if len(used) == 1 else None
+
+
+def _general_two_port(reading: Reading, paper: PaperReading, printed: Any, prop: str, strength: str) -> Finding | None:
+    """A condition on a general two-port's entries (Llewellyn's criterion restated), not on an
+    object the paper defines."""
+    from hapticproof.audit.definitions.twoport import llewellyn_finding
+
+    general = general_entries(reading, paper, printed)
+    if general is None or prop != "absolutely-stable":
+        return None
+    return llewellyn_finding(general[0], general[1], strength)
 
 
 def _condition_by_cases(printed: Any, matrix: Any, prop: str, strength: str, what: str, signs: dict[str, dict[str, bool]],
@@ -741,7 +888,7 @@ def _decided(printed: Any, exact: Any, strength: str, what: str, relations: list
     if strength == "necessary" and stronger is not None:
         return Finding(Verdict.WRONG, f"{what} fails at the witness where the property holds: it is not necessary",
                        Evidence(Method.COUNTEREXAMPLE, witness=stronger[0], facts=facts))
-    from hapticproof.audit.definitions.proofs import chart, implies, intervals
+    from hapticproof.audit.definitions.proofs import chart, intervals
 
     ranges = intervals(relations)
     change = chart({x: r for x, r in ranges.items() if x in printed.free_symbols or x.name in exact.matrix.parameters})

@@ -96,7 +96,7 @@ from typing import Any
 
 
 from hapticproof.core.errors import LatexParseError
-from hapticproof.core.limits import LimitError, check_depth
+from hapticproof.core.limits import LimitError, check_depth, current
 from hapticproof.audit.reader.grammar import Parser
 from hapticproof.audit.reader.lexer import ALIGN_ENVS, LABEL, Token, closer_key, demote_separators, is_binary, is_relation, matching_close, opener_key, tokenize
 from hapticproof.audit.reader.names import SymbolTable
@@ -290,10 +290,30 @@ def parse_printed(text: str, table: SymbolTable) -> Statement:
     >>> parse_printed(r'b > KT - 2B \cos \omega T \quad (34)', t2).rhs
     -2*B*cos(T*omega) + K*T
     """
+    key = (text, current())
+    held = _PARSED.get(id(table))
+    if held is not None and held[0] is table and key in held[1]:
+        return held[1][key]
     try:
-        return _parse_printed(text, table)
+        statement = _parse_printed(text, table)
     except RecursionError:    # a construct nested in a way the depth check does not count
         raise LimitError("printed display: nested too deeply") from None
+    if held is None or held[0] is not table:
+        if len(_PARSED) >= _PARSED_TABLES:
+            _PARSED.pop(next(iter(_PARSED)))
+        held = _PARSED[id(table)] = (table, {})
+    if len(held[1]) >= _PARSED_TEXTS:
+        held[1].pop(next(iter(held[1])))
+    held[1][key] = statement
+    return statement
+
+
+#: Parsed displays by symbol table (held, so that its id is not reused) and by (text, limits in
+#: force): a statement is an immutable value, and the audit parses many displays several times
+#: (a display, the claims quoting it, the cross-paper checks). Failures are not kept.
+_PARSED: dict[int, tuple[SymbolTable, dict[tuple[str, Any], Statement]]] = {}
+_PARSED_TABLES = 32
+_PARSED_TEXTS = 4096
 
 
 _ROW_SPACING = re.compile(r"(?<=\\\\)\s*\[\s*-?[\d.]+\s*(?:pt|em|ex|mm|cm|in|bp|mu|pc|sp|dd)\s*\]")

@@ -163,7 +163,47 @@ class Source:
 # one display body -> displays
 # ---------------------------------------------------------------------------------------------
 
-_TRAILING_NUMBER = re.compile(r"(?:^|(?:\s|\\q?quad(?![A-Za-z])|\\[,;:! ]|~)+)\(\s*(\d{1,3}[a-z]?)\s*\)[\s.,]*$")
+_NUMBER_INSIDE = re.compile(r"\s*(\d{1,3}[a-z]?)\s*")
+_SEPARATORS = ("\\qquad", "\\quad", "\\,", "\\;", "\\:", "\\!", "\\ ", "~")
+
+
+def trailing_number(text: str, commands: bool = True) -> tuple[int, str] | None:
+    r"""A display's own number written at its end, ``... \quad (12).``: where the number and the
+    space before it start, and the number; ``None`` when the text does not end so. Linear in
+    the text (string operations, no back-tracking regular expression: a display may hold a
+    40 KB run of spaces). ``commands=False`` accepts only spaces and ``\quad`` before it.
+
+    >>> trailing_number(r"b > 0 \quad (12).")
+    (5, '12')
+    >>> trailing_number("b > 0 " + " " * 40000 + "x") is None
+    True
+    """
+    end = len(text)
+    while end and (text[end - 1].isspace() or text[end - 1] in ".,"):
+        end -= 1
+    if not end or text[end - 1] != ")":
+        return None
+    opening = text.rfind("(", 0, end - 1)
+    if opening < 0:
+        return None
+    inside = _NUMBER_INSIDE.fullmatch(text, opening + 1, end - 1)
+    if inside is None:
+        return None
+    start = opening
+    separators = _SEPARATORS if commands else ("\\qquad", "\\quad")
+    while start:
+        if text[start - 1].isspace():
+            start -= 1
+            continue
+        for separator in separators:
+            if text.endswith(separator, 0, start):
+                start -= len(separator)
+                break
+        else:
+            break
+    if start == opening and start != 0:
+        return None                          # no space before the number: part of the display
+    return start, inside.group(1)
 
 
 @dataclass
@@ -383,10 +423,10 @@ class Reader:
                 content = serialize(_strip_spaces(group[0].tokens))
             number = tag
             if number is None and self.mode == "text":
-                m = _TRAILING_NUMBER.search(content)
-                if m:
-                    number = m.group(1)
-                    content = content[:m.start()].rstrip()
+                found = trailing_number(content)
+                if found:
+                    number = found[1]
+                    content = content[:found[0]].rstrip()
             if number is None and numbered_env and not unnumbered:
                 number = self.next_number()
             if not content.strip():
@@ -588,7 +628,7 @@ class LatexReader(Reader):
         if command == "\\numberwithin":
             if first == "equation" and "\\" + second in _SECTION_LEVELS:
                 self.within = _SECTION_LEVELS["\\" + second]
-        elif second.lstrip("-").isdigit():
+        elif re.fullmatch(r"-?[0-9]{1,9}", second):       # ASCII digits only ('²' is isdigit(), not int())
             if first == "equation":
                 self.equation = int(second)
             elif "\\" + first in _SECTION_LEVELS:

@@ -126,11 +126,15 @@ def _toml_string(text: str) -> str:
 
 
 def _toml_key(key: str) -> str:
-    return key if re.fullmatch(r"[A-Za-z0-9_-]+", key) else json.dumps(key, ensure_ascii=False)
+    return key if re.fullmatch(r"[A-Za-z0-9_-]+", key) else json.dumps(key, ensure_ascii=False).replace("\x7f", "\\u007f")
 
 
 def _comment(text: str) -> str:
-    return " ".join(str(text).split())
+    """Text for a TOML comment: one line, every control character written as a visible escape
+    (TOML allows none in a comment: a draft must load as written)."""
+    from hapticproof.core.escape import for_terminal
+
+    return for_terminal(" ".join(str(text).split()))
 
 
 def _users(names: set[str]) -> tuple[int, bool] | None:
@@ -150,7 +154,7 @@ def _users(names: set[str]) -> tuple[int, bool] | None:
             continue
         if group in ("b", "z_a", "m") and len(index) != 1:
             continue
-        digits = [int(d) for d in index if d.isdigit()]
+        digits = [int(d) for d in index if d in "0123456789"]
         count = max(count or 2, 2, *digits)
     return None if count is None else (count, uniform)
 
@@ -446,6 +450,7 @@ def _render(source: Source, entries: list[Entry], paper_id: str, title: str, dro
     lines += ["", "[paper]", f"id = {_toml_string(paper_id)}", f"title = {_toml_string(title)}",
               f"source = {_toml_string(str(source.path))}", ""]
     active = [e for e in entries if e.claim is not None and e.id not in dropped]
+    is_active = {id(e) for e in active}                 # (membership by identity: linear in the displays)
     symbols: dict[str, tuple[str, str]] = {}
     seen_names: dict[str, str] = {}
     for entry in active:
@@ -458,7 +463,7 @@ def _render(source: Source, entries: list[Entry], paper_id: str, title: str, dro
     lines.append("[symbols]                            # every name the active displays use, with its assumption")
     for name, (word, why) in symbols.items():
         lines.append(f"{_toml_key(name) + ' = ' + _toml_string(word):36s} # guessed: {_comment(why)}")
-    others = sorted({n for e in entries if e not in active for n in e.symbols} - set(symbols))
+    others = sorted({n for e in entries if id(e) not in is_active for n in e.symbols} - set(symbols))
     if others:
         lines.append("# names only the commented-out displays use: " + ", ".join(others))
     lines.append("# inequalities and relations are assumptions too: a = \"0 <= a < 1\", b_m = \"b_m >= b_s\"")
@@ -466,7 +471,7 @@ def _render(source: Source, entries: list[Entry], paper_id: str, title: str, dro
         lines += ["", f"[scenes.{scene}]"] + _scene_lines(scene, designs)
     lines.append("")
     for entry in entries:
-        lines += _entry_lines(entry, entry in active, dropped.get(entry.id), str(source.path))
+        lines += _entry_lines(entry, id(entry) in is_active, dropped.get(entry.id), str(source.path))
     return "\n".join(lines).rstrip() + "\n"
 
 

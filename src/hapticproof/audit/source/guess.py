@@ -41,6 +41,8 @@ from __future__ import annotations
 
 import re
 
+from hapticproof.audit.source.displays import trailing_number
+
 __all__ = ["guess_claim", "guess_form", "has_inequality", "symbols_of", "symbol_guesses", "relations"]
 
 _TOKEN = re.compile(r"\\(?:[A-Za-z]+|.)|\s+|.", re.S)
@@ -81,7 +83,9 @@ def _unbox(text: str) -> str:
 def _clean(text: str) -> str:
     r"""The display without number, label, ``\boxed``, alignment wrappers, ``&``, ``\left``/``\right``."""
     s = re.sub(r"\\(?:tag\*?|label)\s*\{[^{}]*\}", " ", text)
-    s = re.sub(r"(?:\s|\\q?quad(?![A-Za-z]))+\(\s*\d{1,3}[a-z]?\s*\)[\s.,]*$", "", s)
+    found = trailing_number(s, commands=False)     # (linear: no back-tracking on long runs of spaces)
+    if found and found[0] > 0:
+        s = s[:found[0]]
     s = re.sub(r"\\begin\{(?:aligned|split|gathered|alignedat)\}(?:\{\d+\})?|\\end\{(?:aligned|split|gathered|alignedat)\}",
                " ", s)
     s = _unbox(s)
@@ -232,7 +236,7 @@ def guess_claim(display_text: str, *, context: str = "") -> tuple[str | None, st
     if _FREQUENCY.search(text):
         return "hermitian-part", "a condition that depends on the frequency \\omega: Re G^{-1}(e^{j\\omega T}) >= 0 at each frequency"
     clauses = [c for c in re.split(r",\s*\\q?quad(?![A-Za-z])", text) if c.strip()]
-    if all(re.fullmatch(r"\s*[A-Za-z](?:_\{?[A-Za-z0-9]+\}?)?\s*(?:>|\\geq?|\\ge)\s*0\s*[.,]?\s*", c) for c in clauses):
+    if all(re.fullmatch(r"\s*[A-Za-z](?:_\{?[A-Za-z0-9]+\}?)?\s*(?:>|\\geq?|\\ge)\s*0\s*(?:[.,]\s*)?", c) for c in clauses):
         return None, "sign conditions on single parameters: state them as assumptions in [symbols]"
     if (members[-1][1] == "0" and ops[-1] in (">", "\\geq", "\\ge") and _only_positive(members[-2][1])
             and not _DAMPING.search(members[-2][1])):

@@ -368,7 +368,7 @@ class Expander:
                     out.append(tok)
                     k += 2
                     continue
-                if nxt[0] == TX and nxt[1][0].isdigit():
+                if nxt[0] == TX and nxt[1][0] in "0123456789":
                     number = int(nxt[1][0])
                     if not 1 <= number <= max(params, 0):
                         raise SourceError(f"{self.where(owner)}: #{number} but the definition takes {params} parameters")
@@ -388,7 +388,7 @@ class Expander:
         params = 0
         if count is not None:
             digits = serialize(count).strip()
-            if not digits.isdigit() or not 0 <= int(digits) <= 9:
+            if digits not in tuple("0123456789"):         # (str.isdigit takes '²', which int() does not)
                 raise SourceError(f"{self.where(owner)}: {owner[1]}{{{name}}}: [{shown(digits)}] is not a parameter count 0-9")
             params = int(digits)
         default = self.optional() if params else None
@@ -449,7 +449,7 @@ class Expander:
             raise SourceError(f"{self.where(owner)}: {owner[1]} expects {{name}}")
         env = serialize(self.group(first)).strip()
         count = self.optional()
-        params = int(serialize(count).strip()) if count and serialize(count).strip().isdigit() else 0
+        params = int(serialize(count).strip()) if count and serialize(count).strip() in tuple("0123456789") else 0
         default = self.optional() if params else None
         begin, end = self.argument(owner), self.argument(owner)
         self.envs[env] = (Macro(params, self.body(begin, params, owner), default), self.body(end, 0, owner))

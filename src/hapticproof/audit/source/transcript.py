@@ -224,7 +224,7 @@ class TextReader(Reader):
         self.displays = _join_continued(self.displays)
 
 
-_WHERE = re.compile(r"\bwhere\s+((?:\$[^$\n]+\$(?:\s*,?\s*(?:and\s+)?)){2,})")
+_WHERE = re.compile(r"\bwhere\s+((?:\$[^$\n]+\$(?:\s*(?:,\s*)?(?:and\s+)?)){2,})")
 _DEFINES = re.compile(r"^\s*\\?[A-Za-z]+(?:_\{?[A-Za-z0-9]+\}?)?(?:\([^()]*\))?\s*=[^=<>]+$")
 
 

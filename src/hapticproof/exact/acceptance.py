@@ -1,0 +1,446 @@
+r"""What ``hapticproof check`` accepts: a verdict backed by evidence that the checker re-verified
+**and** that is about the object the verdict is about (part of the checker: imports only
+``core`` and the checker's own modules).
+
+Re-verifying a certificate shows that it is true; it does not show that it is the certificate
+of *this* report. A hostile author keeps genuine certificates and changes what they are
+attached to: a sign certificate whose interval was shrunk to where the polynomial is
+positive, a certificate of another transfer function, a definition object that was dropped, a
+witness whose ``omega_T`` is another angle than its ``c`` and ``z``. This module holds what a
+report shows against what its evidence is about:
+
+* :func:`claim_of` -- what an entry claims (its verdict or decision; ``undecided`` and
+  ``symbolic`` claim nothing): a claim without a certificate or judge object is **unbacked**;
+* :func:`derive_binding` -- a ``derive`` report that shows ``G_inverse`` and a ``proved`` or
+  ``disproved`` verdict carries its ``positive-real`` definition object; every certificate that
+  names a transfer function names the report's ``G^{-1}`` (exactly), every pole certificate is
+  about its denominator, the sign certificate of a scalar ``G^{-1}`` is tied to ``Re G^{-1}``
+  (its ``c``-form is proved equal to it), and the ``G_inverse`` shown is that ``G^{-1}``,
+  exactly as a rational function;
+* :func:`audit_binding` -- an audit entry's judge object fits its verdict: a confirmed condition
+  judged at sample points shows no counterexample, a counterexample is shown where the judge
+  holds one, and no confirmed entry carries its own exact recheck's disproof;
+* :func:`witness_problems` -- every displayed point of the circle is one point: ``|z| = 1``,
+  ``c = Re z`` and ``omega_T`` the angle of ``z``.
+
+(The whole range of ``c`` or ``x`` and the known kinds are checked with each certificate:
+:func:`hapticproof.exact.checker.check_certificate`.)
+
+>>> witness_problems({"witness": {"c": "-1", "z": ["-1", "0"], "omega_T": "pi"}})
+[]
+>>> witness_problems({"witness": {"c": "-1", "z": ["-1", "0"], "omega_T": "pi/2"}})
+['the displayed omega_T = pi/2 is not the angle of z = -1 + 0j (cos 0, sin 1)']
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Iterator, Mapping
+from fractions import Fraction
+from typing import Any
+
+import flint
+
+from hapticproof.exact.checkarith import exact_q, is_kind, json_poly
+
+__all__ = ["CLAIMLESS", "angle", "audit_binding", "claim_of", "derive_binding", "same_transfer", "witness_problems"]
+
+#: Verdicts and decisions that claim nothing (no evidence needed to show them).
+CLAIMLESS = frozenset({"undecided", "symbolic"})
+
+#: The condition of a scalar derive report that a sign certificate decides.
+_SIGN_CONDITION = "Re G^-1 >= 0 for all w"
+
+
+def claim_of(entry: Any) -> str | None:
+    """The verdict or decision an entry shows, ``None`` when it claims nothing.
+
+    >>> claim_of({"verdict": "confirmed"}), claim_of({"decision": "undecided"}), claim_of({"name": "x"})
+    ('confirmed', None, None)
+    """
+    if not isinstance(entry, Mapping):
+        return None
+    for key in ("verdict", "decision"):
+        value = entry.get(key)
+        if isinstance(value, str):
+            return None if value in CLAIMLESS else value
+    return None
+
+
+def _walk(node: Any, key: str) -> Iterator[Any]:
+    """Every value under ``key`` inside a JSON value."""
+    if isinstance(node, Mapping):
+        for k, value in node.items():
+            if k == key:
+                yield value
+            yield from _walk(value, key)
+    elif isinstance(node, list):
+        for value in node:
+            yield from _walk(value, key)
+
+
+def _certificates(node: Any) -> Iterator[Mapping[str, Any]]:
+    """Every certificate object (a dict whose ``certificate`` names a kind) inside a JSON value."""
+    if isinstance(node, Mapping):
+        if is_kind(node.get("certificate")):
+            yield node
+            return
+        for value in node.values():
+            yield from _certificates(value)
+    elif isinstance(node, list):
+        for value in node:
+            yield from _certificates(value)
+
+
+def _exact_list(coeffs: Any) -> list[Fraction]:
+    values = [exact_q(v) for v in coeffs]
+    while values and values[-1] == 0:
+        values.pop()
+    return values
+
+
+def same_transfer(a: Any, b: Any) -> bool:
+    """The same transfer function or matrix (exact coefficients; trailing zeros ignored).
+
+    >>> same_transfer({"variable": "z", "num": ["1", "0"], "den": ["-1", "1"]}, {"num": ["1"], "den": ["-1", "1"]})
+    True
+    """
+    if not isinstance(a, Mapping) or not isinstance(b, Mapping):
+        return False
+    if a.get("variable", "z") != b.get("variable", "z"):
+        return False
+    if "entries" in a or "entries" in b:
+        ra, rb = a.get("entries"), b.get("entries")
+        if not isinstance(ra, list) or not isinstance(rb, list) or len(ra) != len(rb):
+            return False
+        return all(isinstance(x, list) and isinstance(y, list) and len(x) == len(y) and
+                   all(same_transfer(e, f) for e, f in zip(x, y)) for x, y in zip(ra, rb))
+    return _exact_list(a["num"]) == _exact_list(b["num"]) and _exact_list(a["den"]) == _exact_list(b["den"]) \
+        and a.get("factor") == b.get("factor")
+
+
+def _poles(transfer: Mapping[str, Any]) -> flint.fmpq_poly:
+    """The denominator of ``G^{-1}`` in lowest terms (a matrix: the lcm of its entries')."""
+    cells = [e for row in transfer["entries"] for e in row] if "entries" in transfer else [transfer]
+    out = flint.fmpq_poly([1])
+    for cell in cells:
+        num, den = json_poly(cell["num"]), json_poly(cell["den"])
+        reduced = den / num.gcd(den) if not num.is_zero() else flint.fmpq_poly([1])
+        out = out * reduced / out.gcd(reduced)
+    return out
+
+
+def _proportional(p: flint.fmpq_poly, q: flint.fmpq_poly) -> bool:
+    if p.is_zero() or q.is_zero():
+        return p.is_zero() and q.is_zero()
+    quotient, remainder = divmod(p, q)
+    return remainder.is_zero() and quotient.degree() == 0
+
+
+def derive_binding(report: Mapping[str, Any]) -> list[str]:
+    """What a ``derive`` report's certificates and displays are about, against its ``G^{-1}``."""
+    problems: list[str] = []
+    verdict = report.get("verdict")
+    definition = report.get("definition")
+    if "G_inverse" in report and verdict in ("proved", "disproved") and _numeric(report) and \
+            not (isinstance(definition, Mapping) and definition.get("judge") == "positive-real"):
+        return [(f"the verdict {verdict!r} carries no positive-real definition object: nothing ties it to G^-1 "
+                 "(a report whose definition was removed)")]
+    if not isinstance(definition, Mapping) or not isinstance(definition.get("transfer"), Mapping):
+        return problems
+    transfer = definition["transfer"]
+    scalar = "num" in transfer
+    poles = _poles(transfer)
+    for cond in report.get("conditions") or []:
+        if not isinstance(cond, Mapping):
+            continue
+        name = str(cond.get("name"))
+        for cert in _certificates(cond):
+            kind = cert["certificate"]
+            named = "transfer" in cert and kind != "infinity" or kind == "infinity" and scalar
+            if named and not same_transfer(cert.get("transfer"), transfer):
+                problems.append(f"{name}: the {kind} certificate is about another transfer function than the report's G^-1")
+            if kind == "roots" and cert.get("domain") == "disk" and not _proportional(json_poly(cert["polynomial"]), poles):
+                problems.append(f"{name}: the roots certificate is not about the denominator of the report's G^-1")
+        if scalar and name == _SIGN_CONDITION and cond.get("decision") in ("proved", "disproved"):
+            signs = [c for c in _certificates(cond) if c["certificate"] in ("sign", "chebyshev-sign")]
+            if not signs:
+                problems.append(f"{name}: no sign certificate decides it")
+            for cert in signs:
+                if not ("transfer" in cert and "numerator" in cert and "denominator" in cert):
+                    problems.append(f"{name}: the sign certificate is not tied to Re G^-1 (no transfer function and "
+                                    "c-form to compare): its polynomial may be any polynomial")
+            problems += _shown_minimum(report, cond)
+    if scalar:
+        problems += _shown_inverse(report, transfer)
+    return problems
+
+
+def _shown_minimum(report: Mapping[str, Any], cond: Mapping[str, Any]) -> list[str]:
+    """The worst case shown agrees with the sign decision: not negative when ``Re G^-1 >= 0`` is
+    proved, at most the value at the disproof's witness when it is disproved."""
+    out = []
+    try:
+        value = exact_q(((cond.get("evidence") or {}).get("facts") or {}).get("value"))
+    except (TypeError, ValueError, ZeroDivisionError):
+        value = None
+    for where in (report, cond):
+        shown = where.get("minimum")
+        try:
+            low = exact_q(shown)
+        except (TypeError, ValueError, ZeroDivisionError):     # none, or a ball of a long delay's worst case
+            continue
+        if cond.get("decision") == "proved" and low < 0:
+            out.append(f"the minimum shown {shown} is negative, but Re G^-1 >= 0 is proved")
+        if cond.get("decision") == "disproved" and value is not None and low > value:
+            out.append(f"the minimum shown {shown} is above Re G^-1 = {value} at the disproof's witness")
+    return out
+
+
+def _numeric(report: Mapping[str, Any]) -> bool:
+    """A report about a numeric ``G^{-1}`` (which then has its definition object): a certificate
+    names a transfer function with numbers, or the ``G_inverse`` shown has no parameter. (A
+    symbolic ``G^{-1}`` has no definition object; its decisions rest on their certificates.)"""
+    if any("transfer" in cert for cert in _certificates(report.get("conditions"))):
+        return True
+    shown = report.get("G_inverse")
+    if isinstance(shown, list):
+        return False                    # a matrix shown entry by entry: its certificates say whether it is numeric
+    try:
+        _rational_of(shown, 10**6)
+    except (ValueError, TypeError, ArithmeticError, RecursionError):
+        return False
+    return True
+
+
+def _shown_inverse(report: Mapping[str, Any], transfer: Mapping[str, Any]) -> list[str]:
+    """The ``G_inverse`` shown, read as a rational function of ``z``, is the definition's ``G^{-1}``
+    (an identity of polynomials, exact)."""
+    if "G_inverse" not in report:
+        return []
+    shown = report["G_inverse"]
+    try:
+        num, den = _rational_of(shown, max(len(transfer["num"]), len(transfer["den"])))
+    except (ValueError, TypeError, ArithmeticError, RecursionError) as err:
+        return [f"the G^-1 shown cannot be read as a rational function of z ({str(err)[:120]})"]
+    tn, td = json_poly(transfer["num"]), json_poly(transfer["den"])
+    if num * td != tn * den:
+        return ["the G^-1 shown is not the report's G^-1(z) (it differs as a rational function of z)"]
+    return []
+
+
+def _rational_of(text: Any, degree: int) -> tuple[flint.fmpq_poly, flint.fmpq_poly]:
+    """``text`` read (never evaluated) by the toolkit's expression reader as ``num/den`` in ``z``
+    with rational coefficients, its degree bounded by that of the transfer function."""
+    import sympy as sp
+
+    from hapticproof.core.errors import HapticproofError
+    from hapticproof.core.expr import read_expression
+    from hapticproof.core.limits import current, raised
+
+    if not isinstance(text, str) or len(text) > 20_000:
+        raise ValueError("not a short expression")
+    try:
+        with raised(degree=max(current().degree, degree + 8)):
+            expr = read_expression(text, "z")
+    except HapticproofError as err:
+        raise ValueError(str(err)) from None
+    z = sp.Symbol("z")
+    if expr.free_symbols - {z}:
+        raise ValueError("it has parameters")
+    num, den = sp.fraction(sp.together(expr))
+
+    def poly(e: Any) -> flint.fmpq_poly:
+        p = sp.Poly(e, z)
+        if p.degree() > degree + 8:
+            raise ValueError("its degree is above that of G^-1")
+        coeffs = [sp.Rational(c) for c in reversed(p.all_coeffs())]
+        return flint.fmpq_poly([flint.fmpq(int(c.p), int(c.q)) for c in coeffs])
+
+    return poly(num), poly(den)
+
+
+def audit_binding(entry: Mapping[str, Any]) -> list[str]:
+    """An audit entry's judge object against its verdict and its displayed witness: a condition
+    judged ``holds-passive`` (a confirmed display, judged at sample points) needs its samples
+    and shows no counterexample; a judged counterexample (``holds-not-passive``,
+    ``fails-passive``, ``differ``) is shown; a claim the judge does not know is refused."""
+    evidence = entry.get("evidence") if isinstance(entry.get("evidence"), Mapping) else {}
+    facts = evidence.get("facts") if isinstance(evidence.get("facts"), Mapping) else {}
+    recheck = facts.get("recheck")
+    if entry.get("verdict") in ("confirmed", "conservative") and isinstance(recheck, Mapping) and \
+            recheck.get("decision") == "disproved":
+        return [(f"the verdict {entry['verdict']!r} is shown with the entry's own exact recheck disproving passivity "
+                 "at its witness (a counterexample relabelled)")]
+    obj = facts.get("judge")
+    if not isinstance(obj, Mapping):
+        return []
+    kind, claim = obj.get("judge"), obj.get("claim")
+    claims = {"condition": ("holds-passive", "holds-not-passive", "fails-passive"), "circle-identity": ("equal", "differ")}
+    if kind not in claims:
+        return []
+    if claim not in claims[kind]:
+        return [f"the judge object's claim {str(claim)[:40]!r} is not one the {kind} judge knows"]
+    shown = evidence.get("witness")
+    counterexample = claim in ("holds-not-passive", "fails-passive", "differ")
+    if counterexample and not shown:
+        return [f"the judge holds a counterexample ({claim}) but the entry shows no witness"]
+    if not counterexample and shown:
+        return [f"a confirmed claim ({claim}) is shown with a counterexample witness"]
+    if claim == "holds-passive" and not (isinstance(obj.get("samples"), list) and obj["samples"]):
+        return ["a confirmed condition is judged at no sample point"]
+    return []
+
+
+# ---------------------------------------------------------------------------------------------
+# displayed points of the circle
+# ---------------------------------------------------------------------------------------------
+
+
+def witness_problems(node: Any) -> list[str]:
+    """Every displayed witness inside ``node`` that names a point of the circle twice: ``z``
+    (``[re, im]``) on the unit circle, ``c = Re z``, ``omega_T`` the angle of ``z`` (or, without
+    ``z``, ``cos(omega_T) = c``)."""
+    problems: list[str] = []
+    for witness in _walk(node, "witness"):
+        if not isinstance(witness, Mapping):
+            continue
+        try:
+            problems += _one_point(witness)
+        except (ValueError, TypeError, ZeroDivisionError, ArithmeticError) as err:
+            problems.append(f"a displayed witness cannot be read ({type(err).__name__}: {str(err)[:80]})")
+    return problems
+
+
+def _one_point(witness: Mapping[str, Any]) -> list[str]:
+    z = witness.get("z")
+    point = [exact_q(v) for v in z] if isinstance(z, list) and len(z) == 2 else None
+    c = exact_q(witness["c"]) if "c" in witness and isinstance(witness["c"], str) and (point or "omega_T" in witness) \
+        else None
+    out = []
+    if point is not None and (c is not None or "omega_T" in witness):
+        if point[0] ** 2 + point[1] ** 2 != 1:
+            out.append(f"the displayed z = {z[0]} + {z[1]}j is not on the unit circle")
+        if c is not None and c != point[0]:
+            out.append(f"the displayed c = {witness['c']} is not Re z = {z[0]}")
+    if "omega_T" in witness and (point is not None or c is not None):
+        import mpmath
+
+        shown = witness["omega_T"]
+        with mpmath.workdps(60):
+            if isinstance(shown, Mapping) and "exact" not in shown:       # only a decimal: to its digits
+                theta, tolerance = angle(str(shown.get("approx"))), mpmath.mpf(10) ** -12
+            else:
+                theta = angle(shown["exact"] if isinstance(shown, Mapping) else shown)
+                tolerance = mpmath.mpf(10) ** -40
+            cos, sin = mpmath.cos(theta), mpmath.sin(theta)
+            re = point[0] if point is not None else c
+            bad = abs(cos - mpmath.mpf(re.numerator) / re.denominator) > tolerance
+            if point is not None:
+                bad = bad or abs(sin - mpmath.mpf(point[1].numerator) / point[1].denominator) > tolerance
+            if bad:
+                where = f"z = {z[0]} + {z[1]}j" if point is not None else f"c = {witness['c']}"
+                out.append(f"the displayed omega_T = {str(shown)[:40]} is not the angle of {where} "
+                           f"(cos {_short(cos)}, sin {_short(sin)})")
+    return out
+
+
+def _short(value: Any) -> str:
+    text = f"{float(value):.6f}".rstrip("0").rstrip(".")
+    return "0" if text in ("-0", "") else text
+
+
+_ANGLE_TOKEN = re.compile(r"\s*(?:(\d+(?:\.\d*)?(?:[eE][+-]?\d+)?)|(pi|atan|acos|asin|sqrt|cos|sin)|(\*\*|[-+*/()]))")
+
+
+def angle(text: Any) -> Any:
+    """An angle as a report writes it (``pi``, ``pi/2``, ``2*atan(1/12)``): numbers, ``pi``,
+    ``+ - * / **``, parentheses and ``atan``, ``acos``, ``asin``, ``sqrt``, ``cos``, ``sin`` --
+    read by a small parser of its own and evaluated with mpmath (never by ``eval``).
+
+    >>> import mpmath
+    >>> float(angle("2*atan(1/2)")) == float(2 * mpmath.atan(mpmath.mpf(1) / 2))
+    True
+    """
+    import mpmath
+
+    from hapticproof.core.limits import check_number_text
+
+    if isinstance(text, (int, float)) and not isinstance(text, bool):
+        return mpmath.mpf(text)
+    if not isinstance(text, str) or len(text) > 200:
+        raise ValueError("an angle is a short text")
+    tokens, k = [], 0
+    while k < len(text.rstrip()):
+        m = _ANGLE_TOKEN.match(text, k)
+        if m is None or m.end() == k:
+            raise ValueError(f"unexpected {text[k:k + 10]!r} in the angle")
+        if m.group(1):
+            check_number_text(m.group(1), "omega_T")
+        tokens.append(m.group(1) or m.group(2) or m.group(3))
+        k = m.end()
+    position = [0]
+
+    def peek() -> str | None:
+        return tokens[position[0]] if position[0] < len(tokens) else None
+
+    def take(expected: str | None = None) -> str:
+        token = peek()
+        if token is None or (expected is not None and token != expected):
+            raise ValueError("the angle is not an expression")
+        position[0] += 1
+        return token
+
+    functions = {"atan": mpmath.atan, "acos": mpmath.acos, "asin": mpmath.asin, "sqrt": mpmath.sqrt,
+                 "cos": mpmath.cos, "sin": mpmath.sin}
+
+    def atom() -> Any:
+        token = take()
+        if token == "(":
+            value = expression()
+            take(")")
+            return value
+        if token == "pi":
+            return +mpmath.pi
+        if token in functions:
+            take("(")
+            value = expression()
+            take(")")
+            return functions[token](value)
+        if token in ("-", "+"):
+            value = factor()
+            return -value if token == "-" else value
+        if token[0].isdigit():
+            return mpmath.mpf(token)
+        raise ValueError("the angle is not an expression")
+
+    def factor() -> Any:
+        base = atom()
+        if peek() == "**":
+            take()
+            exponent = factor()
+            if abs(exponent) > 64:
+                raise ValueError("an exponent above 64 in an angle")
+            return base ** exponent
+        return base
+
+    def term() -> Any:
+        value = factor()
+        while peek() in ("*", "/"):
+            op = take()
+            other = factor()
+            value = value * other if op == "*" else value / other
+        return value
+
+    def expression() -> Any:
+        value = term()
+        while peek() in ("+", "-"):
+            op = take()
+            other = term()
+            value = value + other if op == "+" else value - other
+        return value
+
+    value = expression()
+    if peek() is not None:
+        raise ValueError("the angle is not an expression")
+    return value
