@@ -58,10 +58,12 @@ def scenes(draw) -> dict:
     edges = [e for e in pairs if draw(st.integers(0, 3)) > 0]
     # stiffness scale ~ 1/T keeps K T of order one (the interesting regime) but varies widely
     kexp = draw(st.integers(-2, 3))
-    K0 = [draw(magnitude(kexp - 2, kexp + 1)) / T for _ in range(m)]
-    B0 = [draw(magnitude(-4, 0)) for _ in range(m)]
-    K = {e: draw(magnitude(kexp - 2, kexp + 1)) / T for e in edges}
-    B = {e: draw(magnitude(-4, 0)) for e in edges}
+    # the definition needs no sign: a negative ground or coupling (one draw in eight) is decided too
+    sign = lambda: draw(st.sampled_from([1, 1, 1, 1, 1, 1, 1, -1]))  # noqa: E731
+    K0 = [sign() * draw(magnitude(kexp - 2, kexp + 1)) / T for _ in range(m)]
+    B0 = [sign() * draw(magnitude(-4, 0)) for _ in range(m)]
+    K = {e: sign() * draw(magnitude(kexp - 2, kexp + 1)) / T for e in edges}
+    B = {e: sign() * draw(magnitude(-4, 0)) for e in edges}
     delays = [draw(st.integers(0, 5)) for _ in range(m)]
     approximation = draw(st.sampled_from(APPROXIMATIONS))
     spread = [draw(magnitude(-4, 0)) for _ in range(m)]  # b_i - z_ai before the common shift

@@ -342,3 +342,29 @@ def test_scene_witnesses_against_numpy(section_32, eq):
     else:
         assert low < 0                                                   # the printed condition held, PR fails
 
+
+
+def test_negative_couplings_and_dampers_are_decided_not_refused():
+    """The definition needs no sign: a negative coupling spring, a negative coupling damper and a
+    negative ground damper are decided (the HVE condition b > T K/2 + B is a damping budget; a
+    negative coupling stiffness makes the residue matrix T Kmat indefinite)."""
+    from hapticproof.analysis.multiuser import positive_real
+    from hapticproof.systems.multiuser import MultiUserScene
+
+    R = sp.Rational
+    spring = MultiUserScene.from_values(b=[R(1, 100)] * 2, T=R(1, 1000), K0=[1, 1], B0=[0, 0], K=-2, B=0)
+    assert positive_real(spring).decision.value == "disproved"     # T Kmat has the eigenvalue T (1 - 4) < 0
+    damper = MultiUserScene.from_values(b=[R(1, 100)] * 2, T=R(1, 1000), K0=[1, 1], B0=[0, 0], K=1, B=R(-1, 1000))
+    ground = MultiUserScene.from_values(b=[R(1, 100)] * 2, T=R(1, 1000), K0=[1, 1], B0=[R(-1, 1000)] * 2, K=1, B=0)
+    import sys
+    from pathlib import Path
+
+    sys.path.insert(0, str(Path(__file__).resolve().parent))
+    from oracles.discrete import multi_user_positive_real
+
+    for scene, K0, B0, K, B in ((damper, [1, 1], [0, 0], {(0, 1): 1}, {(0, 1): R(-1, 1000)}),
+                                (ground, [1, 1], [R(-1, 1000)] * 2, {(0, 1): 1}, {(0, 1): 0})):
+        oracle = multi_user_positive_real(b=[R(1, 100)] * 2, T=R(1, 1000), K0=K0, B0=B0, K=K, B=B, delays=[0, 0],
+                                          z_a=[0, 0], approximation="forward")
+        assert oracle.verdict in ("yes", "no")
+        assert positive_real(scene).decision.value == {"yes": "proved", "no": "disproved"}[oracle.verdict]

@@ -310,6 +310,22 @@ def test_sizes_are_refused_before_the_work(capsys, argv, expected):
     refused(capsys, argv, expected, "--limit")
 
 
+def test_twenty_symbolic_users_are_refused_before_any_algebra(capsys, monkeypatch):
+    """2^20 - 1 principal minors: refused on the input, before G^-1 or a condition is built (it
+    took 26 s of algebra before the refusal)."""
+    import hapticproof.analysis.multiuser as analysis
+    import hapticproof.systems.multiuser as systems
+
+    def started(*args, **kwargs):
+        raise AssertionError("the algebra started before the limits were checked")
+
+    monkeypatch.setattr(systems, "inverse_transfer_matrix", started)
+    monkeypatch.setattr(analysis, "conditions", started)
+    refused(capsys, ["derive", "multi-user", "--users", "20"], "2^20 - 1 principal minors", "--limit minors=N")
+    with pytest.raises(limits.LimitError, match="principal minors"):
+        analysis.positive_real(systems.MultiUserScene.symbolic(20))
+
+
 @pytest.mark.parametrize("printed, expected", [
     (r"b > K^{99999999}", "exponent of 99999999"),
     (r"b > 2^{2^{2^{2^{2^{2^{2}}}}}}", "exponent of 65536"),

@@ -652,21 +652,39 @@ def certified_spectral_radius(m: Any, b: Any, T: Any, K: Any, B: Any = 0, n: int
 
 def certified_stable(m: Any, b: Any, T: Any, K: Any, B: Any = 0, n: int = 0,
                      operator: Operator | None = None) -> Outcome:
-    """``proved`` (spectral radius certified < 1), ``disproved`` (> 1) or ``undecided``.
+    """``proved`` (every eigenvalue of the loop strictly inside the unit circle), ``disproved``
+    (one outside, or one exactly on it: ``rho = 1`` is not stable) or ``undecided``: the one
+    decision of :func:`hapticproof.analysis.sampled.decide_stability`, with the certified spectral
+    radius (:func:`certified_spectral_radius`, an independent route) as evidence.
 
     >>> certified_stable(m=1, b=1, T="0.01", K=1, B=300).decision.value     # delta = 3
     'disproved'
+    >>> certified_stable(m=1, b=1, T="0.01", K=0, B=1).reason[:40]           # no position feedback: rho = 1
+    'z = 1 is an exact eigenvalue of the clos'
     """
-    rho = certified_spectral_radius(m, b, T, K, B, n, operator)
+    from hapticproof.analysis.sampled import decide_stability
+    from hapticproof.systems.loops import SingleUser
+
     witness = {"m": exact(m), "b": exact(b), "T": exact(T), "K": exact(K), "B": exact(B), "n": int(n)}
     if operator is not None:
         witness.update({"m_h": operator.mass, "b_h": operator.damping, "k_h": operator.stiffness})
-    facts = {"spectral_radius": rho.str(20)}
-    if rho < 1:
+    scene = SingleUser(m=witness["m"], b=witness["b"], T=witness["T"], K=witness["K"], B=witness["B"], delay=int(n),
+                       operator=None if operator is None else operator.impedance())
+    decision = decide_stability(scene)
+    facts: dict[str, Any] = {}
+    try:
+        rho = certified_spectral_radius(m, b, T, K, B, n, operator)
+        facts["spectral_radius"] = rho.str(20)
+    except ArithmeticError:
+        rho = None                               # eigenvalues clustered on the circle: no isolating balls
+    if decision.stable is True:
         return Outcome(Decision.PROVED, Evidence(Method.INTERVAL_ARITHMETIC, facts=facts | {"parameters": witness}),
-                       f"certified spectral radius {rho.str(10)} < 1")
-    if rho > 1:
-        return Outcome(Decision.DISPROVED, Evidence(Method.INTERVAL_ARITHMETIC, witness=witness, facts=facts),
-                       f"certified spectral radius {rho.str(10)} > 1")
-    return Outcome(Decision.UNDECIDED, Evidence(Method.INTERVAL_ARITHMETIC, facts=facts),
-                   "the spectral radius ball contains 1")
+                       f"certified spectral radius {rho.str(10)} < 1" if rho is not None else decision.reason)
+    if decision.stable is False:
+        if decision.fixed_points or decision.verdict != "unstable":       # rho = 1 exactly: say how
+            facts["stability"] = decision.verdict
+            facts["fixed_points"] = [[str(v) for v in vec] for vec in decision.fixed_points]
+        reason = (f"certified spectral radius {rho.str(10)} > 1" if rho is not None and rho > 1 and decision.verdict == "unstable"
+                  and not decision.fixed_points else decision.reason)
+        return Outcome(Decision.DISPROVED, Evidence(Method.INTERVAL_ARITHMETIC, witness=witness, facts=facts), reason)
+    return Outcome(Decision.UNDECIDED, Evidence(Method.INTERVAL_ARITHMETIC, facts=facts), decision.reason)

@@ -27,9 +27,9 @@ Gil et al. 2004):
 
 Any other line is decided point by point: single-user passivity by the numeric fast path
 (:func:`hapticproof.analysis.fastpath.decide`), m users and teleoperators by their exact
-decisions, stability by the spectral radius of the exact ZOH loop
-(:class:`hapticproof.analysis.stability.SceneLoops`; 40 digits, a margin of ``1e-25`` either
-side of 1, else undecided). The virtual damping ``B`` (``B_0``) is 0 unless given, as in
+decisions, stability by the one decision of the exact ZOH loop
+(:class:`hapticproof.analysis.stability.SceneLoops`, :func:`hapticproof.analysis.sampled.decide_stability`:
+an exact eigenvalue ``z = 1`` -- no position feedback on a mode -- is ``rho = 1``, not stable). The virtual damping ``B`` (``B_0``) is 0 unless given, as in
 ``boundary``. Lines are grouped into chunks; one chunk function (:func:`map_chunk`) runs
 serially, in local processes or on Dask (:mod:`hapticproof.analysis.scaleout`), and the map
 streams to CSV or Parquet in grid order, identical in every mode.
@@ -216,6 +216,23 @@ class MapSpec:
             scene = scene.replace(**fields)
         params = {k: sp.Rational(v.numerator, v.denominator) for k, v in values.items() if k not in FIELD_AXES}
         return scene.with_params(params) if params else scene
+
+    @property
+    def free_translation(self) -> bool:
+        """Whether the loops keep a free translation (an exact eigenvalue ``z = 1`` that no gain
+        moves: a free teleoperator), judged at the grid's corners (at every one of them): then no
+        point of a stability map is asymptotically stable (``rho = 1``).
+
+        >>> from hapticproof.systems.scene import Scene
+        >>> MapSpec.build("stability", "K=1:2:2", "T=0.001:0.002:2", {"m": "0.02", "b": "0.01"}).free_translation
+        False
+        """
+        from hapticproof.analysis.stability import SceneLoops
+
+        if self.quantity != "stability":
+            return False
+        return all(SceneLoops(self.at(corner)).scene().loop("exact").rigid is not None
+                   for corner in _corners(self.x, self.y))
 
     def _check_point(self, values: Mapping[str, Fraction]) -> None:
         scene = self.at(values)
@@ -564,14 +581,13 @@ def _passivity_line(spec: MapSpec, along: str, values: tuple[Fraction, ...], acr
 
 
 def _stability_point(params: Mapping[str, Fraction]) -> int:
-    """The certified spectral radius of the exact ZOH loop at one point (ball arithmetic at a
-    precision that grows with the scale of the parameters, :func:`hapticproof.analysis.sampled.certified_stability`)."""
-    from hapticproof.analysis.sampled import certified_stability
+    """The stability of the exact ZOH loop at one point (:func:`hapticproof.analysis.sampled.decide_stability`:
+    ``rho = 1`` exactly -- ``K = 0``, say -- is not stable)."""
+    from hapticproof.analysis.sampled import decide_stability
     from hapticproof.systems.loops import SingleUser
 
-    stable = certified_stability(SingleUser(m=params["m"], b=params["b"], T=params["T"], K=params["K"], B=params["B"],
-                                            delay=int(params["delay"])))
-    return -1 if stable is None else int(stable)
+    return decide_stability(SingleUser(m=params["m"], b=params["b"], T=params["T"], K=params["K"], B=params["B"],
+                                       delay=int(params["delay"]))).value
 
 
 def _stability_gaps(params: Mapping[str, Fraction], bits: int) -> tuple[list, list[bool]]:
@@ -596,7 +612,9 @@ def _stability_gaps(params: Mapping[str, Fraction], bits: int) -> tuple[list, li
 
 
 def _stability_line(name: str, values: tuple[Fraction, ...], params: dict) -> np.ndarray:
-    if name != "K" or params["B"] < 0:        # the crossing analysis takes a virtual damping B >= 0
+    if name != "K" or params["B"] < 0 or params["b"] <= 0:
+        # the crossing analysis takes a device damping b > 0 and a virtual damping B >= 0: the
+        # other lines are decided point by point, as every point is (b = 0 exactly)
         return np.array([_stability_point(dict(params, **{name: v})) for v in values], dtype=np.int8)
     import flint
 
@@ -610,7 +628,7 @@ def _stability_line(name: str, values: tuple[Fraction, ...], params: dict) -> np
     out = np.zeros(len(values), dtype=np.int8)
     scale = params["T"] ** 2 / params["m"]
     for i, K in enumerate(values):
-        if edges is None:
+        if edges is None or K <= 0:        # the gaps start at beta = 0+: K = 0 (rho = 1) and K < 0 by points
             out[i] = _stability_point(dict(params, K=K))
             continue
         beta = flint.arb(flint.fmpq((K * scale).numerator, (K * scale).denominator))
@@ -627,15 +645,11 @@ def _stability_line(name: str, values: tuple[Fraction, ...], params: dict) -> np
 
 
 def _radius_verdict(loop: Any) -> int:
-    """The spectral radius of the exact ZOH loop at 40 digits: ``1`` below ``1 - 1e-25``, ``0``
-    above ``1 + 1e-25``, else undecided."""
-    from hapticproof.analysis.sampled import spectral_radius
+    """The stability of the exact ZOH loop (:func:`hapticproof.analysis.sampled.decide_stability`):
+    ``1`` stable, ``0`` not (``rho = 1`` exactly included), ``-1`` undecided."""
+    from hapticproof.analysis.sampled import decide_stability
 
-    try:
-        rho = spectral_radius(loop, precision="mp", dps=40)
-    except (ArithmeticError, ValueError):
-        return -1
-    return 1 if rho < 1 - sp.Float("1e-25") else 0 if rho > 1 + sp.Float("1e-25") else -1
+    return decide_stability(loop).value
 
 
 def _wall_parameters(scene: Any, skip: str) -> dict[str, Fraction] | None:

@@ -305,6 +305,10 @@ class Boundary:
     method: str
     evaluations: int
     note: str = ""
+    #: the family's loops keep a free translation (an exact eigenvalue ``z = 1`` no gain moves: a
+    #: free teleoperator, m users without ground): the boundary is that of the motion relative to
+    #: it, and no point is asymptotically stable (``map stability`` says 0, ``rho = 1``)
+    translation: bool = False
 
     @property
     def multiple(self) -> bool:
@@ -346,6 +350,8 @@ class Boundary:
             "method": self.method,
             "evaluations": self.evaluations,
             "note": self.note,
+            **({"translation": "the free translation (z = 1) is set aside: the boundary of the relative motion"}
+               if self.translation else {}),
         }
 
 
@@ -368,8 +374,11 @@ class _Criterion:
 
     def certified(self, value: float) -> float:
         """The certified sign of ``rho - 1`` (:func:`hapticproof.analysis.sampled.certified_stability`)
-        as ``-/+ 5e-324``; ``0.0`` when undecided (the value is recorded in ``undecided``)."""
-        stable = certified_stability(self.scene(value), max_bits=DECIDE_BITS)
+        as ``-/+ 5e-324``; ``0.0`` when undecided (the value is recorded in ``undecided``). A loop
+        with a free translation (its exact eigenvalue ``z = 1`` no gain moves: a free teleoperator,
+        m users without ground) is judged by the motion apart from it, as the float radius
+        (:func:`hapticproof.analysis.sampled.trusted_radius`) is: the boundary of the relative motion."""
+        stable = certified_stability(self.scene(value), max_bits=DECIDE_BITS, relative=True)
         if stable is None:
             self.undecided.append(float(value))
             return 0.0
@@ -494,6 +503,7 @@ def find_boundary(
     crit = _Criterion(family, vary, at, method, steps)
     if search is None:
         found, rungs, stable = _auto_search(crit)
+        translation = crit.scene(1.0).loop("float").rigid is not None
         if found is None:
             state = "stable" if stable else "unstable"
             note = (f"no change of stability at the {rungs} values of {vary} from 1e-300 to 1e300 scanned "
@@ -502,7 +512,7 @@ def find_boundary(
                 note = (f"not decided: the spectral radius at {vary} = {crit.undecided[0]:.6g} could not be separated "
                         f"from 1 at {DECIDE_BITS} bits")
             return Boundary(vary, None, None, None, rtol, (), (1e-300, 1e300), rungs, stable, method,
-                            crit.evaluations, note)
+                            crit.evaluations, note, translation)
         search = found
     lo, hi = float(search[0]), float(search[1])
     if not hi > lo:
@@ -512,6 +522,7 @@ def find_boundary(
     else:
         points = np.linspace(lo, hi, scan)
     signs = crit.many(points)
+    translation = crit.scene(points[-1]).loop("float").rigid is not None
     unstable = signs >= 0
     crossings = []
     for i in range(len(points) - 1):
@@ -540,6 +551,7 @@ def find_boundary(
         method,
         crit.evaluations,
         note,
+        translation,
     )
 
 

@@ -82,7 +82,7 @@ from hapticproof.core.symbols import z as Z_SYM
 from hapticproof.exact.unitcircle import hermitian_part_rational, imaginary_part_rational
 from hapticproof.systems.multiuser import MultiUserScene, UNIFORM_SYMBOLS, damping_matrix, inverse_transfer_matrix, laplacian, stiffness_matrix
 
-__all__ = ["MODE_USERS", "by_modes", "extreme_modes", "Mode", "MatrixWorstCase", "PSD", "residues", "hermitian", "principal_minors", "worst_case", "positive_real", "conditions", "transfer_entries", "kernel_bounds", "worst_case_matrix", "uniform_modes", "uniform_condition", "sufficient_condition", "hve_leading_minor_counterexample"]
+__all__ = ["MODE_USERS", "check_work", "by_modes", "extreme_modes", "Mode", "MatrixWorstCase", "PSD", "residues", "hermitian", "principal_minors", "worst_case", "positive_real", "conditions", "transfer_entries", "kernel_bounds", "worst_case_matrix", "uniform_modes", "uniform_condition", "sufficient_condition", "hve_leading_minor_counterexample"]
 
 
 @stage("residues")
@@ -664,9 +664,30 @@ def _matrix_residue(scene: MultiUserScene) -> Outcome:
     return decide_constant_psd(R, what)
 
 
+def check_work(scene: MultiUserScene) -> None:
+    """Refuse, before any algebra, what the decision would refuse after it: a scene not decided
+    by modes whose residue matrix ``T Kmat`` has parameters is decided by its ``2^m - 1``
+    principal minors (:func:`hapticproof.core.limits.check_minors`).
+
+    >>> from hapticproof.systems.multiuser import MultiUserScene
+    >>> check_work(MultiUserScene.symbolic(3))
+    >>> check_work(MultiUserScene.symbolic(20))
+    Traceback (most recent call last):
+    ...
+    hapticproof.core.limits.LimitError: the residue matrix T Kmat at z = 1: 2^20 - 1 principal minors (of a 20 x 20 matrix) is above the limit of 4096 (raise it with --limit minors=N)
+    """
+    from hapticproof.core.limits import check_minors
+
+    if by_modes(scene):
+        return
+    if any(sp.sympify(v).free_symbols for v in (scene.T, *scene.K0, *scene.K)):
+        check_minors(scene.users, "the residue matrix T Kmat at z = 1")
+
+
 @stage("positive_real")
 def positive_real(scene: MultiUserScene) -> Outcome:
     """All three conditions of Definition 2 for ``G^{-1}``, combined (:func:`conditions`)."""
+    check_work(scene)
     return combine(conditions(scene))
 
 

@@ -49,7 +49,8 @@ False
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
 from typing import Any
 
 import math
@@ -60,12 +61,13 @@ import mpmath
 import numpy as np
 import scipy.linalg
 
+from hapticproof.core.evidence import Decision, Evidence, Method, Outcome
 from hapticproof.exact.realroots import ball_spectral_radius, flint_precision
 from hapticproof.systems.impedance import Precision, as_float, as_mp
 from hapticproof.systems.loops import Loop, Scene
 
 __all__ = ["TRUSTED_MARGIN", "discretize", "closed_loop_matrix", "closed_loop_matrices", "spectral_radius", "spectral_radii", "is_stable",
-           "free_device_boundary", "certified_radius", "certified_stability", "trusted_radius", "trusted_radii", "loop_json", "MAX_BITS", "DECIDE_BITS"]
+           "free_device_boundary", "certified_radius", "certified_stability", "decide_stability", "LoopStability", "trusted_radius", "trusted_radii", "loop_json", "MAX_BITS", "DECIDE_BITS"]
 
 #: The certified route doubles its working precision up to this many bits (an ``expm`` of a
 #: generator of norm 1e300 squares some 1000 times and needs about as many bits).
@@ -249,7 +251,10 @@ def spectral_radii(scenes: Sequence[Scene]) -> np.ndarray:
 
 
 def is_stable(scene: Scene) -> bool:
-    """Whether every (non-rigid) closed-loop eigenvalue is strictly inside the unit circle."""
+    """Whether every (non-rigid) closed-loop eigenvalue is strictly inside the unit circle, in
+    float64: a simulation's guard, the motion relative to a free translation (a free
+    teleoperator's). Not a verdict: the decision is :func:`decide_stability` (``rho = 1``, a free
+    translation included, is not stable there)."""
     return spectral_radius(scene) < 1
 
 
@@ -301,9 +306,9 @@ def _arb_matrix(rows: np.ndarray) -> flint.arb_mat:
     return flint.arb_mat(r, c, [_arb_q(rows[i, j]) for i in range(r) for j in range(c)])
 
 
-def _closed_loop_arb(loop: Loop) -> flint.arb_mat:
-    """The ZOH closed loop of an exact loop as an arb matrix at the current precision (the rigid
-    translation mode deflated by the exact similarity of :func:`_deflate`)."""
+def _closed_loop_arb(loop: Loop, deflate: bool = True) -> flint.arb_mat:
+    """The ZOH closed loop of an exact loop as an arb matrix at the current precision (with
+    ``deflate``, the rigid translation mode deflated by the exact similarity of :func:`_deflate`)."""
     n, m = loop.bu.shape
     T = Fraction(loop.T)
     gen = np.zeros((n + m, n + m), dtype=object)
@@ -328,7 +333,7 @@ def _closed_loop_arb(loop: Loop) -> flint.arb_mat:
             rows[n + i][j] = bottom_left[i, j]
         for j in range(nc):
             rows[n + i][n + j] = _arb_q(ctrl.a[i, j])
-    if loop.rigid is not None:
+    if deflate and loop.rigid is not None:
         rigid = [Fraction(v) for v in loop.rigid]
         idx = max(range(size), key=lambda i: abs(rigid[i]))
         w = [v / rigid[idx] for v in rigid]
@@ -431,14 +436,14 @@ def _disk_routh(charpoly: flint.arb_poly) -> bool | None:
     return changes == 0
 
 
-def certified_stability(scene: Scene, max_bits: int = 0) -> bool | None:
-    """``True`` (every closed-loop eigenvalue certainly inside the unit circle), ``False`` (one
-    certainly outside) or ``None`` (undecided at ``max_bits``, default :data:`DECIDE_BITS`).
+def certified_stability(scene: Scene, max_bits: int = 0, relative: bool = False) -> bool | None:
+    """``True`` (every closed-loop eigenvalue strictly inside the unit circle), ``False`` (not:
+    one outside, or one exactly on the circle) or ``None`` (undecided at ``max_bits``, default
+    :data:`DECIDE_BITS`): :attr:`LoopStability.stable` of :func:`decide_stability`.
 
-    The exact loop's ZOH matrix in ball arithmetic (as :func:`certified_radius`), its
-    characteristic polynomial, and a Routh array after the bilinear map (:func:`_disk_routh`):
-    no eigenvalue isolation, so the crowd of eigenvalues a tiny period leaves near 0 and near
-    1 costs only the precision the margin to the circle needs.
+    ``relative=True`` asks about the motion apart from a free translation (the exact eigenvalue
+    ``z = 1`` of a free device or teleoperator that no gain moves, :attr:`LoopStability.relative`):
+    what a stability *boundary* of such a family separates.
 
     >>> from hapticproof.systems.loops import SingleUser
     >>> certified_stability(SingleUser(m="0.015", b="0.02", T="0.001", K=30)), certified_stability(
@@ -446,20 +451,311 @@ def certified_stability(scene: Scene, max_bits: int = 0) -> bool | None:
     (True, False)
     >>> certified_stability(SingleUser(m="0.015", b="0.02", T="1e-300", K=30, delay=5))    # every eigenvalue near 0 or 1
     True
+    >>> certified_stability(SingleUser(m="0.02", b="0.01", T="0.001", K=0, B="0.001"))     # rho = 1 exactly
+    False
     """
-    scale_bits = _scale_bits(loop := scene.loop("exact"))
+    decision = decide_stability(scene, max_bits=max_bits)
+    return decision.relative if relative else decision.stable
+
+
+# --------------------------------------------------------------------------------------------
+# the one stability decision: strictly inside, exactly on the circle, outside
+# --------------------------------------------------------------------------------------------
+#: The verdicts of :class:`LoopStability`.
+STABLE, MARGINAL, UNSTABLE, ON_CIRCLE, UNDECIDED = "stable", "marginal", "unstable", "on-circle", "undecided"
+
+
+@dataclass(frozen=True, slots=True)
+class LoopStability:
+    """The stability of an exact sampled-data loop, decided once (:func:`decide_stability`).
+
+    ``verdict``:
+
+    * ``"stable"`` -- every eigenvalue of the closed loop strictly inside the unit circle
+      (``rho < 1``: asymptotically stable);
+    * ``"marginal"`` -- none outside, some exactly on the circle and semisimple (``rho = 1``:
+      bounded, not asymptotically stable; ``z = 1`` is the usual one -- a mode whose position
+      nothing feeds back, ``K = 0`` or a singular stiffness matrix without ground);
+    * ``"unstable"`` -- an eigenvalue outside, or one on the circle in a Jordan block;
+    * ``"on-circle"`` -- ``z = 1`` is an exact eigenvalue (so not stable), the others undecided;
+    * ``"undecided"`` -- an eigenvalue within ``2^-bits`` of the circle, not decided.
+
+    ``fixed_points`` is an exact basis of the eigenvectors of ``z = 1`` (loop states, plant
+    first), ``translation`` whether the loop has a free translation (a rigid motion the
+    controller cannot see) and ``relative`` the stability of the motion apart from it (``True``
+    only when every other eigenvalue is strictly inside; equal to :attr:`stable` without one).
+    ``method`` is ``"exact-charpoly"`` (a plant without dissipation or springs: the ZOH matrix
+    and the characteristic polynomial are exact over Q, roots located exactly) or ``"ball-routh"``
+    (the characteristic polynomial in ball arithmetic after the exact eigenvalues ``z = 1`` are
+    deflated, a Routh array after the bilinear map).
+    """
+
+    verdict: str
+    relative: bool | None
+    fixed_points: tuple[tuple[Fraction, ...], ...]
+    translation: bool
+    method: str
+    bits: int
+    reason: str
+    facts: Mapping[str, Any] = field(default_factory=dict)
+
+    @property
+    def stable(self) -> bool | None:
+        """``True`` only for ``rho < 1``; ``None`` when undecided."""
+        return True if self.verdict == STABLE else None if self.verdict == UNDECIDED else False
+
+    @property
+    def value(self) -> int:
+        """The map's number: ``1`` stable, ``0`` not (marginal included), ``-1`` undecided."""
+        return {True: 1, False: 0, None: -1}[self.stable]
+
+    def outcome(self, witness: Mapping[str, Any] | None = None) -> Outcome:
+        """As a decision of "the loop is asymptotically stable" (``witness``: the parameters)."""
+        facts = {"verdict": self.verdict, "method": self.method, **dict(self.facts)}
+        if self.fixed_points:
+            facts["fixed_points"] = [[str(v) for v in vec] for vec in self.fixed_points]
+        if self.stable is True:
+            return Outcome(Decision.PROVED, Evidence(Method.INTERVAL_ARITHMETIC, facts=facts | {"parameters": dict(witness or {})}),
+                           self.reason)
+        if self.stable is False:
+            return Outcome(Decision.DISPROVED, Evidence(Method.INTERVAL_ARITHMETIC, witness=dict(witness or {}), facts=facts),
+                           self.reason)
+        return Outcome(Decision.UNDECIDED, Evidence(Method.INTERVAL_ARITHMETIC, facts=facts), self.reason)
+
+
+def _fmpq(value: Any) -> flint.fmpq:
+    q = Fraction(value)
+    return flint.fmpq(q.numerator, q.denominator)
+
+
+def _fmpq_mat(rows: np.ndarray) -> flint.fmpq_mat:
+    r, c = rows.shape
+    return flint.fmpq_mat(r, c, [_fmpq(rows[i, j]) for i in range(r) for j in range(c)])
+
+
+def _fixed_point_system(loop: Loop) -> flint.fmpq_mat:
+    """The exact linear conditions on a loop state ``[x; eta]`` fixed by the sample map.
+
+    ``M [x; eta] = [x; eta]`` says ``e^{F T} [x; u] = [x; u]`` for the held force
+    ``u = Cc eta + Dc C x`` (``F = [[A, Bu], [0, 0]]``) and ``(I - Ac) eta = Bc C x``. Now
+    ``e^{FT} - I = FT phi(FT)`` with ``phi(w) = (e^w - 1)/w``, invertible unless an eigenvalue of
+    ``FT`` is a non-zero multiple of ``2 pi j``; the eigenvalues of a rational ``F`` are
+    algebraic and ``T`` is rational, so none is (pi is transcendental). Hence the first condition
+    is ``A x + Bu u = 0``: an equilibrium, a rational linear system.
+    """
+    n, m = loop.bu.shape
+    ctrl = loop.ctrl
+    nc = ctrl.a.shape[0]
+    zero = Fraction(0)
+    # u = Dc C x + Cc eta over [x; eta]
+    u_x = ctrl.d @ loop.c if m else np.zeros((0, n), dtype=object)
+    top = np.zeros((n, n + nc), dtype=object)
+    top[...] = zero
+    top[:, :n] = loop.a + (loop.bu @ u_x if m else zero)
+    if nc:
+        top[:, n:] = loop.bu @ ctrl.c
+        bottom = np.zeros((nc, n + nc), dtype=object)
+        bottom[...] = zero
+        bottom[:, :n] = -(ctrl.b @ loop.c)
+        bottom[:, n:] = np.eye(nc, dtype=object) * Fraction(1) - ctrl.a
+        rows = np.vstack([top, bottom])
+    else:
+        rows = top
+    return _fmpq_mat(rows)
+
+
+def _kernel(system: flint.fmpq_mat) -> tuple[list[list[flint.fmpq]], list[int]]:
+    """An exact basis of the null space (each vector 1 at its free column, 0 at the others) and
+    the pivot columns."""
+    size = system.ncols()
+    if system.nrows() == 0:
+        return [[flint.fmpq(1 if i == j else 0) for i in range(size)] for j in range(size)], []
+    reduced, rank = system.rref()
+    pivots = []
+    for r in range(rank):
+        pivots.append(next(c for c in range(size) if reduced[r, c] != 0))
+    free = [c for c in range(size) if c not in pivots]
+    basis = []
+    for f in free:
+        vec = [flint.fmpq(0)] * size
+        vec[f] = flint.fmpq(1)
+        for r, p in enumerate(pivots):
+            vec[p] = -reduced[r, f]
+        basis.append(vec)
+    return basis, pivots
+
+
+def _nilpotent(a: np.ndarray) -> bool:
+    """``A`` nilpotent (exactly): the ZOH exponential is then a finite sum, rational."""
+    n = a.shape[0]
+    return n == 0 or _fmpq_mat(a).charpoly() == flint.fmpq_poly([0] * n + [1])
+
+
+def _exact_closed_loop(loop: Loop) -> flint.fmpq_mat:
+    """The closed-loop matrix over Q when ``A`` is nilpotent: ``exp(F T)`` summed exactly."""
+    n, m = loop.bu.shape
+    size = n + m
+    T = _fmpq(loop.T)
+    gen = flint.fmpq_mat(size, size)
+    for i in range(n):
+        for j in range(n):
+            gen[i, j] = _fmpq(loop.a[i, j]) * T
+        for j in range(m):
+            gen[i, n + j] = _fmpq(loop.bu[i, j]) * T
+    E = flint.fmpq_mat(size, size, [1 if i == j else 0 for i in range(size) for j in range(size)])
+    term = E
+    for k in range(1, size + 1):
+        term = term * gen * flint.fmpq(1, k)
+        if all(term[i, j] == 0 for i in range(size) for j in range(size)):
+            break
+        E = E + term
+    ctrl = loop.ctrl
+    nc = ctrl.a.shape[0]
+    phi = flint.fmpq_mat(n, n, [E[i, j] for i in range(n) for j in range(n)])
+    gamma = flint.fmpq_mat(n, m, [E[i, n + j] for i in range(n) for j in range(m)])
+    top_left = phi + (gamma * _fmpq_mat(ctrl.d @ loop.c) if m else 0)
+    out = flint.fmpq_mat(n + nc, n + nc)
+    for i in range(n):
+        for j in range(n):
+            out[i, j] = top_left[i, j]
+    if nc:
+        top_right, bottom_left, ac = gamma * _fmpq_mat(ctrl.c), _fmpq_mat(ctrl.b @ loop.c), _fmpq_mat(ctrl.a)
+        for i in range(n):
+            for j in range(nc):
+                out[i, n + j] = top_right[i, j]
+        for i in range(nc):
+            for j in range(n):
+                out[n + i, j] = bottom_left[i, j]
+            for j in range(nc):
+                out[n + i, n + j] = ac[i, j]
+    return out
+
+
+def _fraction_vectors(basis: list[list[flint.fmpq]]) -> tuple[tuple[Fraction, ...], ...]:
+    return tuple(tuple(Fraction(int(v.p), int(v.q)) for v in vec) for vec in basis)
+
+
+def _on_circle_text(count: int) -> str:
+    return (f"z = 1 is an exact eigenvalue of the closed loop ({count} independent fixed state"
+            f"{'s' if count > 1 else ''}: a mode whose position nothing feeds back), so rho >= 1")
+
+
+def _decide_exact(loop: Loop, basis: list, translation: bool) -> LoopStability:
+    """A loop whose plant matrix ``A`` is nilpotent: exact characteristic and minimal polynomials,
+    roots located exactly relative to the circle (:func:`hapticproof.exact.kernel.locate_roots`)."""
+    from hapticproof.exact.kernel import locate_roots, poly_json
+
+    matrix = _exact_closed_loop(loop)
+    fixed = _fraction_vectors(basis)
+    if matrix.nrows() == 0:
+        return LoopStability(STABLE, True, fixed, translation, "exact-charpoly", 0, "the loop has no state")
+    chi = matrix.charpoly()
+    cert = locate_roots(chi, "disk")
+    on = sum(r.multiplicity * (1 if r.value is not None else 2) for r in cert.boundary)
+    facts = {"characteristic_polynomial": poly_json(chi), "outside": cert.outside, "on_circle": on,
+             "on_circle_roots": [r.label() for r in cert.boundary]}
+    if cert.outside:
+        verdict, reason = UNSTABLE, f"{cert.outside} root(s) of the exact characteristic polynomial outside the unit circle"
+    elif not cert.boundary:
+        verdict, reason = STABLE, "every root of the exact characteristic polynomial strictly inside the unit circle"
+    else:
+        mu = matrix.minpoly()
+        repeated = mu.gcd(mu.derivative())
+        jordan = repeated.degree() > 0 and bool(locate_roots(repeated, "disk").boundary)
+        roots = ", ".join(r.label() for r in cert.boundary)
+        if jordan:
+            verdict, reason = UNSTABLE, (f"rho = 1 exactly with a Jordan block on the circle (roots {roots} repeated in the "
+                                         "minimal polynomial): the response grows polynomially")
+        else:
+            verdict, reason = MARGINAL, (f"rho = 1 exactly: roots {roots} on the unit circle, semisimple, none outside "
+                                         "(bounded, not asymptotically stable)")
+    relative: bool | None = verdict == STABLE
+    if translation:
+        rest = chi // flint.fmpq_poly([-1, 1])
+        rest_cert = locate_roots(rest, "disk") if rest.degree() > 0 else None
+        relative = rest_cert is None or (rest_cert.outside == 0 and not rest_cert.boundary)
+    return LoopStability(verdict, relative, fixed, translation, "exact-charpoly", 0, reason, facts)
+
+
+def _deflated_arb(matrix: flint.arb_mat, basis: list, pivots: list[int]) -> flint.arb_mat:
+    """``M22`` of ``P^-1 M P = [[I, X], [0, M22]]``: ``P`` holds the exact fixed vectors of ``M``
+    and the unit vectors of the pivot columns (invertible), so the eigenvalues of ``M`` are
+    ``1`` (once per fixed vector) and those of ``M22``."""
+    size, d = matrix.nrows(), len(basis)
+    P = flint.fmpq_mat(size, size)
+    for k, vec in enumerate(basis):
+        for i in range(size):
+            P[i, k] = vec[i]
+    for k, p in enumerate(pivots):
+        P[p, d + k] = 1
+    Pinv = P.inv()
+    moved = flint.arb_mat(Pinv) * matrix * flint.arb_mat(P)
+    rest = size - d
+    return flint.arb_mat(rest, rest, [moved[d + i, d + j] for i in range(rest) for j in range(rest)])
+
+
+def decide_stability(scene: Scene, max_bits: int = 0) -> LoopStability:
+    """The one stability decision of a sampled-data loop (single user, m users, teleoperator).
+
+    1. The eigenvalue ``z = 1`` is decided exactly: the loop's fixed states are the rational
+       solutions of the equilibrium equations (see :func:`_fixed_point_system`). Any of them
+       makes ``rho >= 1``: never ``stable``.
+    2. A plant without dissipation or springs (``A`` nilpotent, e.g. a mass with ``b = 0``)
+       has an exact rational ZOH matrix: its characteristic polynomial is located exactly
+       (marginal cases included; a Jordan block on the circle is unstable).
+    3. Otherwise the exact eigenvalues ``z = 1`` are deflated by an exact similarity and the
+       rest decided in ball arithmetic (characteristic polynomial, Routh array after the
+       bilinear map), the precision doubling up to ``max_bits`` (default :data:`DECIDE_BITS`).
+
+    >>> from hapticproof.systems.loops import SingleUser, MultiUser
+    >>> decide_stability(SingleUser(m="0.015", b="0.02", T="0.001", K=30)).verdict
+    'stable'
+    >>> d = decide_stability(SingleUser(m="0.02", b="0.01", T="0.001", K=0, B="0.001"))
+    >>> d.verdict, d.value, d.fixed_points
+    ('marginal', 0, ((Fraction(1, 1), Fraction(0, 1), Fraction(1, 1)),))
+    >>> decide_stability(SingleUser(m=1, b=0, T="0.1", K=0)).verdict         # a free mass: a Jordan block at z = 1
+    'unstable'
+    >>> decide_stability(MultiUser.uniform(3, m="0.02", b="0.01", T="0.001", K=0, B="0.002")).verdict
+    'marginal'
+    """
+    loop = scene.loop("exact")
+    translation = loop.rigid is not None
+    basis, pivots = _kernel(_fixed_point_system(loop))
+    fixed = _fraction_vectors(basis)
+    if _nilpotent(loop.a):
+        return _decide_exact(loop, basis, translation)
+    d = len(basis)
+    scale_bits = _scale_bits(loop)
     precision, top = max(128, 64 + 2 * scale_bits), max(max_bits or DECIDE_BITS, 128 + 2 * scale_bits)
+    rest: bool | None = None
+    bits = precision
     while precision <= top:
+        bits = precision
         with flint_precision(precision):
-            matrix = _closed_loop_arb(loop)
-            if matrix.nrows() == 0:
-                return True
+            matrix = _closed_loop_arb(loop, deflate=False)
             if all(matrix[i, j].is_finite() for i in range(matrix.nrows()) for j in range(matrix.ncols())):
-                verdict = _disk_routh(matrix.charpoly())
-                if verdict is not None:
-                    return verdict
+                if matrix.nrows() == d:
+                    rest = True
+                    break
+                reduced = _deflated_arb(matrix, basis, pivots) if d else matrix
+                rest = _disk_routh(reduced.charpoly())
+                if rest is not None:
+                    break
         precision *= 2
-    return None
+    facts = {"bits": bits, "fixed_states": d}
+    if d == 0:
+        verdict = {True: STABLE, False: UNSTABLE, None: UNDECIDED}[rest]
+        reason = {True: "every eigenvalue of the exact ZOH loop strictly inside the unit circle (certified)",
+                  False: "an eigenvalue of the exact ZOH loop outside the unit circle (certified)",
+                  None: f"an eigenvalue of the exact ZOH loop within 2^-{bits} of the unit circle: not decided"}[rest]
+        return LoopStability(verdict, rest if verdict != UNDECIDED else None, fixed, translation, "ball-routh", bits, reason, facts)
+    verdict = {True: MARGINAL, False: UNSTABLE, None: ON_CIRCLE}[rest]
+    reason = _on_circle_text(d) + {
+        True: "; every other eigenvalue strictly inside (certified): marginal, rho = 1 exactly",
+        False: "; another eigenvalue outside the unit circle (certified): unstable",
+        None: f"; the others not separated from the circle at {bits} bits"}[rest]
+    relative = (rest if d == 1 else False) if translation else False
+    return LoopStability(verdict, relative, fixed, translation, "ball-routh", bits, reason, facts)
 
 
 #: A float64 spectral radius is trusted only this far from 1, and only for a closed-loop

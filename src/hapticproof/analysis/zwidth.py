@@ -352,7 +352,7 @@ def loop_notes(scene: Any, decision: Any = None, ranges: Any = ()) -> list[str]:
     note: the tustin model is passive for every K > 0, but the exact sampled-data loop (ZOH, m = 0.015) is unstable
       above K* = 42.0065 (certified to 4.2e-09)
     """
-    from hapticproof.analysis.sampled import certified_stability
+    from hapticproof.analysis.sampled import decide_stability
     from hapticproof.analysis.stability import SceneLoops
 
     if scene.system != "single-user":
@@ -367,11 +367,12 @@ def loop_notes(scene: Any, decision: Any = None, ranges: Any = ()) -> list[str]:
     verdict = getattr(decision, "value", decision)
     if verdict == "proved":
         try:
-            stable = certified_stability(SceneLoops(scene).scene())
+            decided = decide_stability(SceneLoops(scene).scene())
         except (SceneError, ValueError, ArithmeticError):
-            stable = None
-        if stable is False:
-            notes.append(f"note: the {model} is passive here, but {loop} is unstable (certified)")
+            decided = None
+        if decided is not None and decided.stable is False:
+            how = "unstable" if decided.verdict == "unstable" else "not asymptotically stable (rho = 1 exactly)"
+            notes.append(f"note: the {model} is passive here, but {loop} is {how} (certified)")
     for rng in ranges:
         name = rng.parameter
         if not rng.intervals:

@@ -516,21 +516,25 @@ def _stable(state: State, values: Mapping[str, Any]) -> Outcome:
 
         return bnd.certified_stable(values[state.scene.role("mass")], at(model.b), at(model.T), at(parts[0]), at(parts[1]),
                                     int(delay))
-    from hapticproof.analysis.sampled import spectral_radius
+    from hapticproof.analysis.sampled import decide_stability, spectral_radius
     from hapticproof.analysis.stability import SceneLoops
 
     scene = state.scene
     if scene.delay == "n":
         scene = scene.replace(delay=int(delay))
     loop = SceneLoops(scene).scene(**{k: v for k, v in values.items() if k != "n"})
+    decision = decide_stability(loop)          # the one decision (rho = 1 exactly is not stable)
     rho = spectral_radius(loop, precision="mp", dps=40)
     facts = {"spectral_radius": str(rho)[:30], "parameters": dict(values)}
-    if rho < 1 - sp.Float("1e-25"):
+    if decision.stable is True:
         return Outcome(Decision.PROVED, Evidence(Method.SPECTRAL, facts=facts), f"spectral radius {float(rho):.10g} < 1")
-    if rho > 1 + sp.Float("1e-25"):
+    if decision.stable is False:
+        if decision.fixed_points or decision.verdict != "unstable":
+            facts |= {"stability": decision.verdict, "fixed_points": [[str(v) for v in vec] for vec in decision.fixed_points]}
+            return Outcome(Decision.DISPROVED, Evidence(Method.SPECTRAL, witness=dict(values), facts=facts), decision.reason)
         return Outcome(Decision.DISPROVED, Evidence(Method.SPECTRAL, witness=dict(values), facts=facts),
                        f"spectral radius {float(rho):.10g} > 1")
-    return Outcome(Decision.UNDECIDED, Evidence(Method.SPECTRAL, facts=facts), "the spectral radius is 1 to 25 digits")
+    return Outcome(Decision.UNDECIDED, Evidence(Method.SPECTRAL, facts=facts), decision.reason)
 
 
 def _stability_instances(state: State, printed: Any, count: int = 8) -> Finding:

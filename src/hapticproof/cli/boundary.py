@@ -117,8 +117,10 @@ def handler(args: argparse.Namespace) -> int:
             more = f"; {len(bnd.crossings)} crossings: " + ", ".join(f"{c.value:.10g} ({c.direction})" for c in bnd.crossings) \
                 if bnd.multiple else ""
             certified = "" if bnd.certified else f"; NOT certified: {bnd.note}"
+            relative = ("; the free translation (z = 1, which no gain moves) is set aside: the boundary of the relative "
+                        "motion, no point is asymptotically stable") if bnd.translation else ""
             print(f"{args.vary}* = {bnd.value:.10g} +- {bnd.tolerance:.2g} ({bnd.direction}: spectral radius of the exact "
-                  f"ZOH loop crosses 1){more}{certified}", file=out)
+                  f"ZOH loop crosses 1){more}{certified}{relative}", file=out)
         if args.json:
             write_text(args.json, json.dumps(bnd.to_json(), indent=1))
         return 0

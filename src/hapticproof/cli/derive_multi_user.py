@@ -89,10 +89,11 @@ def build_scene(users: int, delay: str = "0", uniform: bool = False, active: boo
 def derive(scene: Any, minors: str = "auto", full: bool = False) -> dict[str, Any]:
     """Everything the command prints, as SymPy objects (by modes for uniform scenes of five users
     or more unless ``full``: :func:`derive_by_modes`)."""
-    from hapticproof.analysis.multiuser import (by_modes, conditions, hermitian, positive_real, principal_minors,
-                                                residues, sufficient_condition, worst_case)
+    from hapticproof.analysis.multiuser import (by_modes, check_work, conditions, hermitian, positive_real,
+                                                principal_minors, residues, sufficient_condition, worst_case)
     from hapticproof.systems.multiuser import inverse_transfer_matrix
 
+    check_work(scene)                    # the limits, before any algebra
     if by_modes(scene) and not full:
         return derive_by_modes(scene, minors)
     names = scene.naming()

@@ -95,6 +95,10 @@ def run(args: argparse.Namespace) -> int:
     counts = ", ".join(f"{k}: {v}" for k, v in result.counts.items())
     print(f"{spec.points} points ({spec.lines} lines along {spec.x.name if spec.line_axis == 'x' else spec.y.name}) "
           f"in {result.seconds:.2f} s [{result.settings['mode']}]; {counts}", file=sys.stderr)
+    if spec.free_translation:
+        print("note: the loops keep a free translation (an exact eigenvalue z = 1 that no gain moves), so no point is "
+              "asymptotically stable (rho = 1); 'hapticproof boundary' gives the boundary of the relative motion",
+              file=sys.stderr)
     if to_file:
         print(f"wrote {args.output}", file=sys.stderr)
     else:

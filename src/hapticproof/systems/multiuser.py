@@ -232,9 +232,6 @@ class MultiUserScene:
             raise SceneError(f"unknown approximation {self.approximation!r}; choose one of {', '.join(APPROXIMATIONS)}")
         if self.T.is_number and not self.T > 0:
             raise SceneError(f"the sampling period T must be positive, got {self.T}")
-        numbers = _distinct(self.b, self.K0, self.B0, self.z_a, self.K, self.B)
-        if any(v.is_number and v < 0 for v in numbers):
-            raise SceneError("dampings, stiffnesses and shortages of passivity must be non-negative")
 
     # -- constructors ---------------------------------------------------------------------------
     @classmethod
