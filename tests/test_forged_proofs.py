@@ -151,3 +151,77 @@ def test_a_matrix_proof_without_its_psd_certificate_is_refused(capsys, tmp_path,
     forged = _proved(reports["multi_bad"])
     forged["conditions"] = forged["conditions"][:3]
     _refused(capsys, tmp_path, forged, "no psd certificate of G^-1 + G^-H")
+
+
+# ---------------------------------------------------------------------------------------------
+# audit entries: the judge chooses its own points
+# ---------------------------------------------------------------------------------------------
+
+ROOT = __import__("pathlib").Path(__file__).resolve().parents[1]
+
+
+@pytest.fixture(scope="module")
+def walls(tmp_path_factory):
+    """The tutorial's walls paper with display 3 printed right (``b >= KT/2 + B``, confirmed)."""
+    text = (ROOT / "examples" / "walls.toml").read_text(encoding="utf-8")
+    assert "printed = 'b > KT + B'" in text
+    path = tmp_path_factory.mktemp("walls") / "walls.toml"
+    path.write_text(text.replace("printed = 'b > KT + B'", "printed = 'b \\geq \\frac{KT}{2} + B'"), encoding="utf-8")
+    report = _derive(["audit", "--paper", str(path), "--format", "json"])
+    return {e["id"]: e for e in report["equations"]}, {k: v for k, v in report.items() if k != "equations"}
+
+
+def _one(walls, entry) -> dict:
+    return dict(walls[1], equations=[entry])
+
+
+def _judge(entry) -> dict:
+    return entry["evidence"]["facts"]["judge"]
+
+
+def test_genuine_judged_entries_are_accepted(capsys, tmp_path, walls):
+    entries, _ = walls
+    assert entries["2"]["verdict"] == "confirmed" and _judge(entries["2"])["judge"] == "circle-identity"
+    assert entries["3"]["verdict"] == "confirmed" and _judge(entries["3"])["claim"] == "holds-passive"
+    for key in ("2", "3", "4"):
+        status, out, err = _check(capsys, tmp_path, _one(walls, entries[key]))
+        assert status == 0 and out.rstrip().endswith("report accepted"), (key, out[-800:], err)
+    assert "points of the checker's choosing" in json.dumps(entries["2"]["evidence"]["facts"]["checker"])
+
+
+#: Re G^-1 of the wall is b - KT/2 + B cos(omega T); the forgery prints 2b + KT + B cos(omega T).
+FALSE_IDENTITY = ["+", ["*", ["q", "2"], ["s", "b"]], ["*", ["s", "B"], ["cos", ["*", ["s", "omega"], ["s", "T"]]]],
+                  ["*", ["s", "K"], ["s", "T"]]]
+
+
+def test_an_identity_judged_at_no_point_or_the_authors_points_is_refused(capsys, tmp_path, walls):
+    entries, _ = walls
+    forged = copy.deepcopy(entries["2"])
+    printed = "\\Re\\{G^{-1}(e^{j\\omega T})\\} = 2b + KT + B\\cos(\\omega T)"
+    forged["printed"] = _judge(forged)["printed"] = printed
+    _judge(forged)["display"] = FALSE_IDENTITY
+    _judge(forged)["points"] = []
+    _refused(capsys, tmp_path, _one(walls, forged), "no point is no evidence")
+    # one point the author chose where the false display happens to equal Re G^-1 (b = K = 0, B = 1)
+    _judge(forged)["points"] = [{"values": {"B": "1", "K": "0", "T": "1", "b": "0"}, "t": "1/2", "L": 1,
+                                 "transfer": {"variable": "z", "num": ["-1", "1", "0"], "den": ["0", "-1", "1"]}}]
+    _refused(capsys, tmp_path, _one(walls, forged), "at a point the checker chose")
+    # without the scene's G^-1 the checker cannot choose points: never success
+    del _judge(forged)["inverse"]
+    status, out, err = _check(capsys, tmp_path, _one(walls, forged))
+    assert status == 1 and "cannot test it at points of its own choosing" in out + err, out[-600:]
+
+
+def test_a_condition_relabelled_with_its_display_tree_is_refused(capsys, tmp_path, walls):
+    """``b > KT/8 + B`` printed, judged and displayed consistently, at sample points the author
+    chose far from the boundary: the checker's own points at the printed boundary refute it."""
+    entries, _ = walls
+    forged = copy.deepcopy(entries["3"])
+    forged["printed"] = _judge(forged)["printed"] = "b > \\frac{KT}{8} + B"
+    _judge(forged)["display"] = [">", ["s", "b"], ["+", ["s", "B"], ["*", ["q", "1/8"], ["s", "K"], ["s", "T"]]]]
+    _refused(capsys, tmp_path, _one(walls, forged), "it is not sufficient")
+    _judge(forged)["samples"] = [{"B": "1", "K": "1", "T": "1", "b": "10"}, {"B": "0", "K": "1", "T": "1", "b": "5"}]
+    _judge(forged)["values"] = _judge(forged)["samples"][0]
+    _refused(capsys, tmp_path, _one(walls, forged), "it is not sufficient")
+    _judge(forged)["samples"] = []
+    _refused(capsys, tmp_path, _one(walls, forged), "no sample point")
