@@ -225,3 +225,16 @@ def test_a_condition_relabelled_with_its_display_tree_is_refused(capsys, tmp_pat
     _refused(capsys, tmp_path, _one(walls, forged), "it is not sufficient")
     _judge(forged)["samples"] = []
     _refused(capsys, tmp_path, _one(walls, forged), "no sample point")
+
+
+@pytest.mark.parametrize("edit,expected", [
+    (lambda r: r["poles"][-1].update(location="outside"), "is on the unit circle, not outside"),
+    (lambda r: r["poles"][-1].update(multiplicity=2), "has multiplicity 1, not 2"),
+    (lambda r: r["poles"].pop(), "of G^-1 is not shown"),
+    (lambda r: r["residues"][0].update(residue="-1"), "the residue shown at z0 = 1 is -1"),
+    (lambda r: r.update(minimiser="7"), "is not a point of the circle"),
+])
+def test_displayed_poles_residues_and_minimiser_are_bound(capsys, tmp_path, reports, edit, expected):
+    forged = copy.deepcopy(reports["passive"])
+    edit(forged)
+    _refused(capsys, tmp_path, forged, expected)

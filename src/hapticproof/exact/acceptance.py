@@ -201,9 +201,90 @@ def derive_binding(report: Mapping[str, Any]) -> list[str]:
             problems += _shown_minimum(report, cond)
     if scalar:
         problems += _shown_inverse(report, transfer)
+        if definition.get("domain") == "disk":
+            problems += shown_poles(report, transfer)
     if verdict == "proved" or definition.get("decision") == "proved":
         problems += definition_proof(report)
     return problems
+
+
+def shown_poles(report: Mapping[str, Any], transfer: Mapping[str, Any]) -> list[str]:
+    """The ``poles``, ``residues`` and ``minimiser`` a scalar report shows, re-derived from its
+    ``G^{-1}``: a rational pole is a root of its denominator in lowest terms of the multiplicity
+    and location shown, every rational root is shown, a residue shown at ``z0 = +-1`` is
+    ``Res`` (or ``Res/z0``) of ``G^{-1}`` there, and the minimiser is a ``c`` in ``[-1, 1]``.
+
+    >>> wall = {"variable": "z", "num": ["-1", "3", "1"], "den": ["0", "-1", "1"]}
+    >>> shown_poles({"poles": [{"z": "1", "multiplicity": 1, "location": "outside"}]}, wall)
+    ['the pole shown at z = 1 is on the unit circle, not outside', 'the pole z = 0 of G^-1 is not shown']
+    """
+    problems: list[str] = []
+    num, den = json_poly(transfer["num"]), json_poly(transfer["den"])
+    if not num.is_zero():
+        g = num.gcd(den)
+        num, den = num / g, den / g
+    shown = report.get("poles")
+    if isinstance(shown, list):
+        seen = set()
+        for pole in shown:
+            if not isinstance(pole, Mapping):
+                continue
+            try:
+                z0 = exact_q(pole.get("z"))
+            except (TypeError, ValueError, ZeroDivisionError):
+                continue                                  # an algebraic pole: shown by its radicals
+            seen.add(z0)
+            factor = flint.fmpq_poly([-flint.fmpq(z0.numerator, z0.denominator), 1])
+            order, rest = 0, den
+            while rest.degree() > 0:
+                quotient, remainder = divmod(rest, factor)
+                if not remainder.is_zero():
+                    break
+                order, rest = order + 1, quotient
+            if order == 0:
+                problems.append(f"the pole shown at z = {pole.get('z')} is not a pole of G^-1")
+                continue
+            if pole.get("multiplicity") != order:
+                problems.append(f"the pole shown at z = {pole.get('z')} has multiplicity {order}, not "
+                                f"{str(pole.get('multiplicity'))[:20]}")
+            where = "inside" if abs(z0) < 1 else "on" if abs(z0) == 1 else "outside"
+            if pole.get("location") != where:
+                problems.append(f"the pole shown at z = {pole.get('z')} is {'on the unit circle' if where == 'on' else where}, "
+                                f"not {str(pole.get('location'))[:20]}")
+        for z0 in _rational_roots(den):
+            if z0 not in seen:
+                problems.append(f"the pole z = {z0} of G^-1 is not shown")
+    residues = report.get("residues")
+    for residue in residues if isinstance(residues, list) else ():
+        try:
+            z0, value = exact_q(residue.get("z")), exact_q(residue.get("residue"))
+        except (TypeError, ValueError, ZeroDivisionError, AttributeError):
+            continue
+        if abs(z0) != 1:
+            continue
+        own = _residue_matrix([transfer], transfer, z0)[0][0]
+        if value not in (own, own * z0):
+            problems.append(f"the residue shown at z0 = {z0} is {residue.get('residue')}, G^-1 has Res/z0 = {own}")
+    try:
+        at = exact_q(report.get("minimiser"))
+    except (TypeError, ValueError, ZeroDivisionError):
+        at = None
+    if at is not None and not -1 <= at <= 1:
+        problems.append(f"the minimiser shown c = {report.get('minimiser')} is not a point of the circle (|c| > 1)")
+    return problems
+
+
+def _rational_roots(p: flint.fmpq_poly) -> list[Fraction]:
+    """The rational roots of ``p`` (from its factors of degree one)."""
+    if p.degree() <= 0:
+        return []
+    _, factors = p.numer().factor()
+    out = []
+    for factor, _ in factors:
+        if factor.degree() == 1:
+            a, b = factor.coeffs()
+            out.append(Fraction(-int(a), int(b)))
+    return sorted(out)
 
 
 def definition_proof(report: Mapping[str, Any]) -> list[str]:
