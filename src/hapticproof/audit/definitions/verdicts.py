@@ -666,7 +666,6 @@ def _printed_name(name: str, paper: PaperReading) -> str:
 def condition_finding(reading: Reading, paper: PaperReading, *, about: str | None = None, prop: str | None = None,
                       strength: str | None = None) -> Finding:
     """A printed condition against the exact condition of the property it claims."""
-    from hapticproof.analysis.immittance import exact_condition
 
     prop, strength, named = _claimed(reading, paper, prop, strength)
     printed = _printed_condition(reading)
