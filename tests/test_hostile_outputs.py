@@ -200,3 +200,26 @@ def test_a_signal_during_map_leaves_no_temporary_file(tmp_path, sig):
     assert "Traceback" not in err and err.strip().splitlines()[-1].startswith("hapticproof: "), err
     assert sorted(p.name for p in tmp_path.iterdir()) == ["map.csv"]
     assert target.read_text(encoding="utf-8") == "b,K,passive\n"
+
+
+def test_bench_output_folder_is_checked_before_any_work(tmp_path, capsys):
+    """``bench -o`` on a file, a FIFO, a device, a symbolic link to a folder, or a folder holding
+    a link where an output goes: one line, exit 2, nothing written (was a traceback, or a write
+    through the link)."""
+    import os
+
+    from hapticproof.cli import main
+
+    (tmp_path / "afile").write_text("keep", encoding="utf-8")
+    (tmp_path / "real").mkdir()
+    os.symlink(tmp_path / "real", tmp_path / "link")
+    os.mkfifo(tmp_path / "fifo")
+    (tmp_path / "d").mkdir()
+    os.symlink(tmp_path / "afile", tmp_path / "d" / "lazy.json")
+    for target, expected in ((tmp_path / "afile", "is a file, not a folder"), (tmp_path / "fifo", "FIFO"),
+                             ("/dev/null", "character device"), (tmp_path / "link", "symbolic link"),
+                             (tmp_path / "d", "symbolic link")):
+        assert main(["bench", "--tasks", "lazy", "--quick", "-o", str(target)]) == 2
+        err = capsys.readouterr().err
+        assert err.startswith("hapticproof: error: ") and expected in err and len(err.strip().splitlines()) == 1, err
+    assert (tmp_path / "afile").read_text(encoding="utf-8") == "keep" and not any((tmp_path / "real").iterdir())

@@ -443,7 +443,7 @@ def _circle_judge_equal(state: State, printed: Any, in_theta: sp.Expr, derived: 
                         L: int) -> dict[str, Any] | None:
     """The judge's sample points of a confirmed identity: a few parameter values, angles and
     delays where the display must equal ``Re G^{-1}`` of the scene."""
-    from hapticproof.audit.judged import ANGLES, circle_judge, circle_point
+    from hapticproof.audit.judged import ANGLES, circle_judge, circle_point, scene_inverse
     from hapticproof.exact.canonical import Sampler
 
     symbols = _sampled_symbols(state, in_theta, derived)
@@ -451,7 +451,8 @@ def _circle_judge_equal(state: State, printed: Any, in_theta: sp.Expr, derived: 
     for k, values in enumerate(Sampler(symbols, seed=11).draw(3)):
         point = circle_point(ANGLES[(3 * k) % len(ANGLES)], L, (1, 2, 5)[k] if symbolic_delay else None)
         rows.append(_judge_point(state, values, point))
-    return circle_judge("equal", printed, getattr(frequency_symbol(state), "name", "omega"), period_of(state), rows)
+    return circle_judge("equal", printed, getattr(frequency_symbol(state), "name", "omega"), period_of(state), rows,
+                        inverse=scene_inverse(state))
 
 
 def _in_c(relation: Any, state: State) -> Any:

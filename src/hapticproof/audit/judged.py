@@ -83,13 +83,32 @@ def display_tree(expr: Any) -> list | None:
         return None
 
 
-def circle_judge(claim: str, display: Any, frequency: str, period: Any, points: list[dict[str, Any]]) -> dict[str, Any] | None:
+def scene_inverse(state: Any) -> list | None:
+    """The scene's ``G^{-1}(z)`` with its parameters symbolic, as a tree in the paper's names
+    (``None`` for a scene that is not single-user or a model without a tree): the object a
+    judge evaluates at points of its own choosing."""
+    if getattr(state, "scene", None) is None or state.scene.system != "single-user":
+        return None
+    try:
+        from hapticproof.systems.models import inverse_transfer
+
+        chart = getattr(state, "chart", None)
+        back = chart.back if chart is not None else (lambda expr: expr)
+        return display_tree(back(inverse_transfer(state.model)))
+    except Exception:  # noqa: BLE001 - a model the judge cannot read is not judged, never a failure
+        return None
+
+
+def circle_judge(claim: str, display: Any, frequency: str, period: Any, points: list[dict[str, Any]],
+                 inverse: list | None = None) -> dict[str, Any] | None:
     """The judge's data of a claim about ``Re G^{-1}(e^{j omega T})``: ``claim`` is ``"equal"``
     (the display is ``Re G^{-1}`` at every point) or ``"differ"`` (at the first point);
     ``period`` is the sampling period ``T`` (a symbol of the values, or the scene's number);
     ``points`` hold ``values`` (parameters), the circle point (:func:`circle_point`) and the
     ``transfer`` at those values. The judge also holds the finding's displayed witness against
-    the first point (a ``differ`` claim)."""
+    the first point (a ``differ`` claim). ``inverse``, the scene's ``G^{-1}(z)`` as a tree
+    (:func:`scene_inverse`), lets the checker test an ``equal`` claim at points of its own
+    choosing (without it, the claim is not judged)."""
     tree, period_tree = display_tree(display), display_tree(period)
     if tree is None or period_tree is None or not points or any(p.get("transfer") is None for p in points):
         return None
@@ -97,8 +116,11 @@ def circle_judge(claim: str, display: Any, frequency: str, period: Any, points: 
     for p in points:
         rows.append({"values": {str(getattr(k, "name", k)): str(v) for k, v in p["values"].items()},
                      "t": str(p["t"]), "L": p["L"], **({"n": p["n"]} if "n" in p else {}), "transfer": p["transfer"]})
-    return {"judge": "circle-identity", "claim": claim, "object": "Re G^-1(e^{j omega T})", "display": tree,
-            "frequency": frequency, "period": period_tree, "points": rows}
+    out = {"judge": "circle-identity", "claim": claim, "object": "Re G^-1(e^{j omega T})", "display": tree,
+           "frequency": frequency, "period": period_tree, "points": rows}
+    if inverse is not None:
+        out.update(inverse=inverse, variable="z")
+    return out
 
 
 #: The judged claim of a condition finding, by the exact decision at its witness.

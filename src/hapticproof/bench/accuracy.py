@@ -361,6 +361,9 @@ def run(tasks: Iterable[str], outdir: str | Path, quick: bool = False, repeat: i
         log: Callable[[str], None] = print, progress: Callable[..., None] | None = None) -> dict[str, Any]:
     """Run the named studies, write ``<task>.json`` (+ PNG) into ``outdir``, return a summary;
     ``progress(done, total, label)`` is called before each study and at the end."""
+    from hapticproof.core.files import check_output_folder
+
+    check_output_folder(outdir, "bench")              # no link, file or device where the folder goes
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
     summary: dict[str, Any] = {"machine": machine_info(), "quick": quick, "repeat": repeat}

@@ -10,6 +10,9 @@ from hapticproof.core.errors import InputFormatError
 __all__ = ["register"]
 
 TASKS = ("margin", "boundary", "stress", "audit", "lazy", "peers", "delays", "maps")
+#: The figures each study writes into the output folder.
+_FIGURES = (("margin", "margin.png"), ("boundary", "boundary.png"), ("peers", "peers.png"), ("delays", "delays.png"),
+            ("maps", "map_passivity.png"))
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -35,6 +38,11 @@ def run(args: argparse.Namespace) -> int:
         raise InputFormatError(f"unknown task(s) {unknown}; choose from {', '.join(TASKS)}")
     if args.repeat < 1:
         raise InputFormatError("--repeat must be at least 1")
+    from hapticproof.core.files import check_output_folder
+
+    outputs = [f"{task}.json" for task in args.tasks] + ["summary.json"] + [
+        name for task, name in _FIGURES if task in args.tasks]
+    check_output_folder(args.output, "--output", outputs)      # before any work
     from hapticproof.bench.accuracy import run as run_studies
     from hapticproof.cli.terminal import progress_bar
 

@@ -52,7 +52,7 @@ from typing import IO, Any
 from hapticproof.core.errors import InputFormatError
 from hapticproof.core.limits import current
 
-__all__ = ["FileAccessError", "OutputError", "read_text", "decode_text", "file_in_folder", "read_json", "toml_depth",
+__all__ = ["FileAccessError", "OutputError", "check_output_folder", "read_text", "decode_text", "file_in_folder", "read_json", "toml_depth",
            "check_output", "write_atomic", "AtomicOutput", "same_file"]
 
 
@@ -420,6 +420,38 @@ def check_output(path: str | Path | None, option: str, suffixes: tuple[str, ...]
             raise OutputError(f"{option} {text}: the file is read-only")
     if not os.access(parent, os.W_OK | os.X_OK):
         raise OutputError(f"{option} {text}: the folder {parent} is not writable")
+
+
+def check_output_folder(path: str | Path, option: str, names: Iterable[str] = ()) -> None:
+    """Fail, before any work, if the folder ``path`` cannot take a command's outputs: a
+    symbolic link (outputs are never written through a link), a file, a FIFO or a device where a
+    folder is named, a folder that is not writable, or an output file ``names`` inside it that
+    :func:`check_output` refuses. A folder that does not exist yet is fine (it is created).
+
+    >>> check_output_folder("/dev/null", "-o")
+    Traceback (most recent call last):
+    ...
+    hapticproof.core.files.OutputError: -o /dev/null: is a character device, not a folder
+    """
+    text = str(path)
+    if not text.strip() or any(ord(ch) < 32 or ord(ch) == 127 for ch in text):
+        raise OutputError(f"{option} {text!r}: a folder name is needed")
+    try:
+        info = os.lstat(text)
+    except FileNotFoundError:
+        return
+    except OSError as err:
+        raise OutputError(f"{option} {text}: {_reason(err)}") from None
+    if stat.S_ISLNK(info.st_mode):
+        raise OutputError(f"{option} {text}: is a symbolic link; outputs are never written through a link "
+                          "(remove the link or name another folder)")
+    if not stat.S_ISDIR(info.st_mode):
+        kind = next((k for test, k in _KINDS if test(info.st_mode)), "a file")
+        raise OutputError(f"{option} {text}: is {kind}, not a folder")
+    if not os.access(text, os.W_OK | os.X_OK):
+        raise OutputError(f"{option} {text}: the folder is not writable")
+    for name in names:
+        check_output(os.path.join(text, name), option)
 
 
 #: Temporary files being written now: removed when the write fails, when the process is

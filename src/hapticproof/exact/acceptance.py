@@ -41,9 +41,22 @@ from typing import Any
 
 import flint
 
-from hapticproof.exact.checkarith import exact_q, is_kind, json_poly
+from hapticproof.exact.checkarith import (
+    CheckFailed,
+    CheckSkipped,
+    Gaussian,
+    budget,
+    charpoly_coefficients,
+    exact_q,
+    has_root_outside,
+    is_kind,
+    is_proper,
+    json_poly,
+    max_degree,
+)
 
-__all__ = ["CLAIMLESS", "angle", "audit_binding", "claim_of", "derive_binding", "same_transfer", "witness_problems"]
+__all__ = ["CLAIMLESS", "angle", "audit_binding", "claim_of", "definition_proof", "derive_binding", "same_transfer",
+           "witness_problems"]
 
 #: Verdicts and decisions that claim nothing (no evidence needed to show them).
 CLAIMLESS = frozenset({"undecided", "symbolic"})
@@ -137,11 +150,26 @@ def _proportional(p: flint.fmpq_poly, q: flint.fmpq_poly) -> bool:
     return remainder.is_zero() and quotient.degree() == 0
 
 
+def _about_poles(cert: Mapping[str, Any], cond: Mapping[str, Any], poles: flint.fmpq_poly) -> bool:
+    """A roots certificate is about the poles of ``G^{-1}``: its polynomial is their denominator
+    (up to a constant), or -- for a proof that no pole is outside or that the boundary poles are
+    simple (an m-user ``G^{-1}`` decided by its kernels' denominator) -- a multiple of it."""
+    p = json_poly(cert["polynomial"])
+    if _proportional(p, poles):
+        return True
+    if p.is_zero() or cond.get("decision") != "proved":
+        return False
+    return (p % poles).is_zero()
+
+
 def derive_binding(report: Mapping[str, Any]) -> list[str]:
     """What a ``derive`` report's certificates and displays are about, against its ``G^{-1}``."""
     problems: list[str] = []
     verdict = report.get("verdict")
     definition = report.get("definition")
+    conditions = report.get("conditions")
+    if verdict in ("proved", "disproved") and not conditions:
+        return [f"the verdict {verdict!r} is shown with no condition to back it (its conditions were removed)"]
     if "G_inverse" in report and verdict in ("proved", "disproved") and _numeric(report) and \
             not (isinstance(definition, Mapping) and definition.get("judge") == "positive-real"):
         return [(f"the verdict {verdict!r} carries no positive-real definition object: nothing ties it to G^-1 "
@@ -160,7 +188,7 @@ def derive_binding(report: Mapping[str, Any]) -> list[str]:
             named = "transfer" in cert and kind != "infinity" or kind == "infinity" and scalar
             if named and not same_transfer(cert.get("transfer"), transfer):
                 problems.append(f"{name}: the {kind} certificate is about another transfer function than the report's G^-1")
-            if kind == "roots" and cert.get("domain") == "disk" and not _proportional(json_poly(cert["polynomial"]), poles):
+            if kind == "roots" and cert.get("domain") == "disk" and not _about_poles(cert, cond, poles):
                 problems.append(f"{name}: the roots certificate is not about the denominator of the report's G^-1")
         if scalar and name == _SIGN_CONDITION and cond.get("decision") in ("proved", "disproved"):
             signs = [c for c in _certificates(cond) if c["certificate"] in ("sign", "chebyshev-sign")]
@@ -173,7 +201,207 @@ def derive_binding(report: Mapping[str, Any]) -> list[str]:
             problems += _shown_minimum(report, cond)
     if scalar:
         problems += _shown_inverse(report, transfer)
+        if definition.get("domain") == "disk":
+            problems += shown_poles(report, transfer)
+    if verdict == "proved" or definition.get("decision") == "proved":
+        problems += definition_proof(report)
     return problems
+
+
+def shown_poles(report: Mapping[str, Any], transfer: Mapping[str, Any]) -> list[str]:
+    """The ``poles``, ``residues`` and ``minimiser`` a scalar report shows, re-derived from its
+    ``G^{-1}``: a rational pole is a root of its denominator in lowest terms of the multiplicity
+    and location shown, every rational root is shown, a residue shown at ``z0 = +-1`` is
+    ``Res`` (or ``Res/z0``) of ``G^{-1}`` there, and the minimiser is a ``c`` in ``[-1, 1]``.
+
+    >>> wall = {"variable": "z", "num": ["-1", "3", "1"], "den": ["0", "-1", "1"]}
+    >>> shown_poles({"poles": [{"z": "1", "multiplicity": 1, "location": "outside"}]}, wall)
+    ['the pole shown at z = 1 is on the unit circle, not outside', 'the pole z = 0 of G^-1 is not shown']
+    """
+    problems: list[str] = []
+    num, den = json_poly(transfer["num"]), json_poly(transfer["den"])
+    if not num.is_zero():
+        g = num.gcd(den)
+        num, den = num / g, den / g
+    shown = report.get("poles")
+    if isinstance(shown, list):
+        seen = set()
+        for pole in shown:
+            if not isinstance(pole, Mapping):
+                continue
+            try:
+                z0 = exact_q(pole.get("z"))
+            except (TypeError, ValueError, ZeroDivisionError):
+                continue                                  # an algebraic pole: shown by its radicals
+            seen.add(z0)
+            factor = flint.fmpq_poly([-flint.fmpq(z0.numerator, z0.denominator), 1])
+            order, rest = 0, den
+            while rest.degree() > 0:
+                quotient, remainder = divmod(rest, factor)
+                if not remainder.is_zero():
+                    break
+                order, rest = order + 1, quotient
+            if order == 0:
+                problems.append(f"the pole shown at z = {pole.get('z')} is not a pole of G^-1")
+                continue
+            if pole.get("multiplicity") != order:
+                problems.append(f"the pole shown at z = {pole.get('z')} has multiplicity {order}, not "
+                                f"{str(pole.get('multiplicity'))[:20]}")
+            where = "inside" if abs(z0) < 1 else "on" if abs(z0) == 1 else "outside"
+            if pole.get("location") != where:
+                problems.append(f"the pole shown at z = {pole.get('z')} is {'on the unit circle' if where == 'on' else where}, "
+                                f"not {str(pole.get('location'))[:20]}")
+        for z0 in _rational_roots(den):
+            if z0 not in seen:
+                problems.append(f"the pole z = {z0} of G^-1 is not shown")
+    residues = report.get("residues")
+    for residue in residues if isinstance(residues, list) else ():
+        try:
+            z0, value = exact_q(residue.get("z")), exact_q(residue.get("residue"))
+        except (TypeError, ValueError, ZeroDivisionError, AttributeError):
+            continue
+        if abs(z0) != 1:
+            continue
+        own = _residue_matrix([transfer], transfer, z0)[0][0]
+        if value not in (own, own * z0):
+            problems.append(f"the residue shown at z0 = {z0} is {residue.get('residue')}, G^-1 has Res/z0 = {own}")
+    try:
+        at = exact_q(report.get("minimiser"))
+    except (TypeError, ValueError, ZeroDivisionError):
+        at = None
+    if at is not None and not -1 <= at <= 1:
+        problems.append(f"the minimiser shown c = {report.get('minimiser')} is not a point of the circle (|c| > 1)")
+    return problems
+
+
+def _rational_roots(p: flint.fmpq_poly) -> list[Fraction]:
+    """The rational roots of ``p`` (from its factors of degree one)."""
+    if p.degree() <= 0:
+        return []
+    _, factors = p.numer().factor()
+    out = []
+    for factor, _ in factors:
+        if factor.degree() == 1:
+            a, b = factor.coeffs()
+            out.append(Fraction(-int(a), int(b)))
+    return sorted(out)
+
+
+def definition_proof(report: Mapping[str, Any]) -> list[str]:
+    r"""What a ``proved`` verdict of discrete positive realness (Definition 2) needs, re-derived
+    from the report's own ``G^{-1}`` (its definition object) -- never from what the report says
+    about it: (i) ``G^{-1}`` proper, (ii) no pole in ``|z| > 1`` (Routh-Hurwitz after the
+    bilinear map), (iii) the unit-circle poles simple with (iv) ``Res/z_0`` (a residue matrix)
+    Hermitian PSD, computed here at ``z_0 = +-1`` (a pole elsewhere on the circle is algebraic:
+    not re-derived, never success), and (v) the Hermitian part PSD on the whole circle: a sign
+    certificate of ``Re G^{-1}`` (a ``psd`` certificate of a matrix) that holds over the whole
+    range of ``c`` and names this ``G^{-1}``. (The certificate itself is re-verified with the
+    report's others.) A negative worst case shown with the proof is refused.
+
+    >>> wall = {"num": ["-1", "3", "1"], "den": ["0", "-1", "1"]}        # (z^2 + 3z - 1)/(z^2 - z)
+    >>> report = {"verdict": "proved", "conditions": [], "definition": {"judge": "positive-real", "domain": "disk",
+    ...           "decision": "proved", "transfer": dict(wall, variable="z")}}
+    >>> definition_proof(report)
+    ['Re G^-1 >= 0 for all w: no sign certificate of Re G^-1 over the whole circle backs the proof']
+    """
+    definition = report.get("definition")
+    if not isinstance(definition, Mapping) or definition.get("judge") != "positive-real":
+        return []
+    transfer = definition.get("transfer")
+    if not isinstance(transfer, Mapping):
+        return ["the proof's definition object carries no transfer function"]
+    if definition.get("domain") != "disk":
+        return []                          # continuous definitions: decided by their certificates
+    scalar = "num" in transfer
+    problems: list[str] = []
+    with budget():
+        try:
+            problems += _poles_of_proof(transfer)
+        except CheckSkipped as skip:
+            problems.append(f"the pole conditions of the proof are not re-derived: {skip}")
+        except (CheckFailed, ValueError, ZeroDivisionError) as err:
+            problems.append(f"the pole conditions of the proof cannot be re-derived ({str(err)[:120]})")
+    signs = []
+    for cond in report.get("conditions") or []:
+        if not isinstance(cond, Mapping) or cond.get("decision") != "proved":
+            continue
+        for cert in _certificates(cond):
+            kind = cert["certificate"]
+            if not cert.get("holds") is True or not same_transfer(cert.get("transfer"), transfer):
+                continue
+            if scalar and kind in ("sign", "chebyshev-sign") and "numerator" in cert and "denominator" in cert:
+                signs.append(cert)
+            if not scalar and kind == "psd":
+                signs.append(cert)
+    if not signs:
+        what = "psd certificate of G^-1 + G^-H" if not scalar else "sign certificate of Re G^-1"
+        problems.append(f"{_SIGN_CONDITION}: no {what} over the whole circle backs the proof")
+    for where in (report, *[c for c in report.get("conditions") or [] if isinstance(c, Mapping)]):
+        try:
+            low = exact_q(where.get("minimum"))
+        except (TypeError, ValueError, ZeroDivisionError):
+            continue
+        if low < 0:
+            problems.append(f"the minimum shown {where.get('minimum')} is negative, but the verdict is 'proved'")
+            break
+    return problems
+
+
+def _poles_of_proof(transfer: Mapping[str, Any]) -> list[str]:
+    """Conditions (i)-(iv) of Definition 2 from ``G^{-1}`` itself."""
+    cells = [e for row in transfer["entries"] for e in row] if "entries" in transfer else [transfer]
+    if any(len(cell["num"]) > max_degree() + 1 or len(cell["den"]) > max_degree() + 1 for cell in cells):
+        raise CheckSkipped(f"a degree above the checker's limit of {max_degree()}")
+    problems = []
+    if not all(is_proper(json_poly(c["num"]), json_poly(c["den"])) for c in cells):
+        problems.append("poles in |z| <= 1: G^-1 has a pole at z = oo (not proper)")
+    poles = _poles(transfer)
+    if has_root_outside(poles, "disk"):
+        return problems + ["poles in |z| <= 1: G^-1 has a pole outside the unit circle"]
+    # no pole outside: the poles on the circle are the common roots of p and its reversal
+    reverse = flint.fmpq_poly(list(reversed(poles.coeffs())))
+    circle = poles.gcd(reverse) if poles.degree() > 0 else flint.fmpq_poly([1])
+    if circle.degree() > 0 and circle.gcd(circle.derivative()).degree() > 0:
+        return problems + ["unit-circle poles simple: G^-1 has a multiple pole on the unit circle"]
+    rest = circle
+    for z0 in (Fraction(1), Fraction(-1)):
+        factor = flint.fmpq_poly([-z0.numerator, 1])
+        quotient, remainder = divmod(rest, factor)
+        if not remainder.is_zero():
+            continue
+        rest = quotient
+        residue = _residue_matrix(cells, transfer, z0)
+        m = len(residue)
+        if any(residue[i][j] != residue[j][i] for i in range(m) for j in range(m)):
+            problems.append(f"Res/z0 >= 0 at unit-circle poles: the residue matrix at z0 = {z0} is not Hermitian")
+        elif not all(e >= 0 for e in charpoly_coefficients([[Gaussian(v) for v in row] for row in residue])):
+            problems.append(f"Res/z0 >= 0 at unit-circle poles: the residue at z0 = {z0} is not PSD (re-derived from G^-1)")
+    if rest.degree() > 0:
+        problems.append("Res/z0 >= 0 at unit-circle poles: G^-1 has algebraic poles on the unit circle whose residues "
+                        "the checker cannot re-derive (not re-verified)")
+    return problems
+
+
+def _residue_matrix(cells: list, transfer: Mapping[str, Any], z0: Fraction) -> list[list[Fraction]]:
+    """``Res_{z0} G^{-1} / z0`` entry by entry (a 1 x 1 matrix of a scalar ``G^{-1}``)."""
+    point = flint.fmpq(z0.numerator, z0.denominator)
+    factor = flint.fmpq_poly([-point, 1])
+
+    def one(cell: Mapping[str, Any]) -> Fraction:
+        num, den = json_poly(cell["num"]), json_poly(cell["den"])
+        if num.is_zero():
+            return Fraction(0)
+        g = num.gcd(den)
+        num, den = num / g, den / g
+        quotient, remainder = divmod(den, factor)
+        if not remainder.is_zero():
+            return Fraction(0)
+        value = num(point) / quotient(point) / point
+        return Fraction(int(value.p), int(value.q))
+
+    if "entries" in transfer:
+        return [[one(cell) for cell in row] for row in transfer["entries"]]
+    return [[one(transfer)]]
 
 
 def _shown_minimum(report: Mapping[str, Any], cond: Mapping[str, Any]) -> list[str]:

@@ -65,6 +65,7 @@ from hapticproof.exact.checkarith import (
     is_proper,
     json_poly,
 )
+from hapticproof.exact.judgepoints import MAX_OWN_POINTS, names_of, own_points, tree_size
 
 __all__ = ["Judgement", "judge", "judges", "judged_definition", "evaluate_tree", "consistent_witness", "displayed_number",
            "JUDGE_BITS"]
@@ -620,9 +621,48 @@ def _circle_env(point: Mapping[str, Any], frequency: str, period: list | None) -
     return env, z, theta
 
 
+def _identity_at_own_points(obj: Mapping[str, Any], frequency: str) -> int:
+    """The display against ``Re G^{-1}`` of the object's own ``inverse`` tree at points the
+    judge chooses (:func:`own_points`): as many as the two trees have nodes (a bound on the
+    degree of their difference in each parameter), at least 8, at most :data:`MAX_OWN_POINTS`."""
+    inverse, display = obj["inverse"], obj["display"]
+    variable = obj.get("variable", "z")
+    names = names_of(display) | names_of(inverse) | names_of(obj.get("period"))
+    needed = min(MAX_OWN_POINTS, max(8, tree_size(display) + tree_size(inverse)))
+    checked = 0
+    for point in own_points(obj, names, 4 * needed):
+        if checked >= needed:
+            break
+        env, z, _ = _circle_env(point, frequency, obj.get("period"))
+        try:
+            value = evaluate_tree(inverse, {**env, variable: z})
+            with _precision(JUDGE_BITS):
+                real = _ball_of(value).real if not isinstance(value, Gaussian) else _ball_of(Gaussian(value.re)).real
+                shown = _ball(display, env)
+                diff = shown - flint.acb(real)
+        except (ZeroDivisionError, CheckFailed, _NotExact):
+            continue                                   # a pole of G^-1 or of the display
+        if not diff.real.contains(0) or not diff.imag.contains(0):
+            raise CheckFailed(f"the display is {shown.real.str(8)} but Re G^-1 = {real.str(8)} at a point the checker "
+                              f"chose (z = {_show(z)}, {', '.join(f'{k} = {v}' for k, v in point['values'].items())}"
+                              f"{', n = ' + str(point['n']) if 'n' in point else ''}): not the same function")
+        checked += 1
+    if checked < needed:
+        raise CheckSkipped(f"the identity holds at {checked} points of the checker's choosing only, fewer than {needed}")
+    return checked
+
+
 def _circle_identity(obj: Mapping[str, Any]) -> str:
     claim = obj["claim"]
     frequency = obj.get("frequency", "omega")
+    if not isinstance(obj.get("points"), list) or not obj["points"]:
+        raise CheckFailed("the judge object carries no point of the circle (no point is no evidence)")
+    own = 0
+    if claim == "equal":
+        if not isinstance(obj.get("inverse"), list):
+            raise CheckSkipped("the identity carries no G^-1 of the scene: the checker cannot test it at points of "
+                               "its own choosing (the object's points are the author's)")
+        own = _identity_at_own_points(obj, frequency)
     outcomes = []
     for k, point in enumerate(obj["points"]):
         env, z, _ = _circle_env(point, frequency, obj.get("period"))
@@ -643,7 +683,8 @@ def _circle_identity(obj: Mapping[str, Any]) -> str:
         if not outcomes or not outcomes[0]:
             raise CheckFailed("the display equals Re G^-1 at the witness: it is no counterexample")
         return "the display differs from Re G^-1 of the scene at the witness (ball arithmetic, exact transfer)"
-    return f"the display equals Re G^-1 of the scene at {len(outcomes)} points of the circle (ball arithmetic)"
+    return (f"the display equals Re G^-1 of the scene at {len(outcomes)} points of the circle and at {own} points of "
+            "the checker's choosing (ball arithmetic)")
 
 
 # ---------------------------------------------------------------------------------------------
@@ -665,16 +706,81 @@ def _real_sign(value: Any) -> int | None:
     return None
 
 
+#: The parameter values the condition judge tries along each parameter from a point of its own:
+#: the point's value times 2^(k/8), k = -40..40 (a factor 32 either way, steps of 9 %).
+_SCAN = tuple(range(-40, 41))
+#: Bisection steps towards the printed condition's boundary between a holding and a failing value.
+_BISECT = 24
+
+
+def _negative_on_circle(tree: list, values: Mapping[str, Gaussian], variable: str) -> Gaussian | None:
+    """A point of the unit circle where ``Re G^{-1} < 0`` (exact), among the judge's own."""
+    for z in _circle_points(_CIRCLE_COUNT):
+        try:
+            if _real_sign(_inverse_at(tree, values, z, variable)) == -1:
+                return z
+        except (ZeroDivisionError, _NotExact, CheckFailed):
+            continue
+    return None
+
+
+def _sufficient_at_own_points(obj: Mapping[str, Any]) -> int:
+    """A confirmed (sufficient) printed condition tested where the checker chooses: from points
+    of its own (:func:`own_points`), each parameter is scanned and the printed condition's
+    boundary found by bisection; just inside it, the scene's own ``G^{-1}`` (the ``inverse``
+    tree) must have ``Re G^{-1} >= 0`` at the judge's points of the circle. A printed bound
+    below the exact one (``b > KT/8 + B`` for ``b >= KT/2 + B``) holds there while the scene is
+    not passive: refused, whatever points the report carries."""
+    display, tree, variable = obj["display"], obj["inverse"], obj.get("variable", "z")
+    names = sorted((names_of(display) | names_of(tree)) - {variable})
+    tried = 0
+    for point in own_points(obj, names, 4):
+        base = {name: exact_q(v) for name, v in point["values"].items()}
+        for name in sorted(names_of(display) - {variable}):
+            previous = None
+            for k in _SCAN:
+                value = base[name] * (Fraction(2) ** (k // 8)) * (Fraction(1) + Fraction(k % 8, 8))
+                env = {n: Gaussian(v) for n, v in {**base, name: value}.items()}
+                try:
+                    holds = _holds(display, env)
+                except (ZeroDivisionError, CheckFailed):
+                    holds = None
+                if holds is not None and previous is not None and holds != previous[1]:
+                    inside, outside = (value, previous[0]) if holds else (previous[0], value)
+                    for _ in range(_BISECT):
+                        middle = (inside + outside) / 2
+                        try:
+                            between = _holds(display, {**env, name: Gaussian(middle)})
+                        except (ZeroDivisionError, CheckFailed):
+                            break
+                        if between is None:
+                            break
+                        inside, outside = (middle, outside) if between else (inside, middle)
+                    at = {**env, name: Gaussian(inside)}
+                    tried += 1
+                    bad = _negative_on_circle(tree, at, variable)
+                    if bad is not None:
+                        shown = ", ".join(f"{n} = {v.re}" for n, v in sorted(at.items()))
+                        raise CheckFailed(f"the printed condition holds at a point the checker chose ({shown}), but "
+                                          f"Re G^-1({_show(bad)}) < 0 there: it is not sufficient")
+                previous = (value, holds) if holds is not None else previous
+    return tried
+
+
 def _condition(obj: Mapping[str, Any]) -> str:
-    if obj.get("claim") == "holds-passive" and obj.get("samples"):
-        done = [_condition({**obj, "values": sample, "samples": None}) for sample in obj["samples"]]
+    if obj.get("claim") == "holds-passive":
+        if not isinstance(obj.get("samples"), list) or not obj["samples"]:
+            raise CheckFailed("a confirmed condition is judged at no sample point (no point is no evidence)")
+        done = [_condition({**obj, "values": sample, "samples": None, "claim": "holds-passive-at"})
+                for sample in obj["samples"]]
+        _sufficient_at_own_points(obj)          # (its reason unchanged: the audit's tally stays as it was)
         return f"{len(done)} points where the printed condition holds: " + done[-1]
     values = {name: Gaussian(exact_q(v)) for name, v in obj["values"].items()}
     variable = obj.get("variable", "z")
     holds = _holds(obj["display"], values)
     if holds is None:
         raise CheckFailed("the printed condition is not decided at the witness (its two sides are equal, or a ball holds 0)")
-    claim = obj["claim"]
+    claim = "holds-passive" if obj["claim"] == "holds-passive-at" else obj["claim"]
     expected = claim in ("holds-not-passive", "holds-passive")
     if holds != expected:
         raise CheckFailed(f"the printed condition {'holds' if holds else 'fails'} at the witness, "
