@@ -635,12 +635,11 @@ def _identity_at_own_points(obj: Mapping[str, Any], frequency: str) -> int:
             break
         env, z, _ = _circle_env(point, frequency, obj.get("period"))
         try:
-            value = evaluate_tree(inverse, {**env, variable: z})
             with _precision(JUDGE_BITS):
-                real = _ball_of(value).real if not isinstance(value, Gaussian) else _ball_of(Gaussian(value.re)).real
+                real = _ball(inverse, {**_balls(env), variable: _ball_of(z)}).real
                 shown = _ball(display, env)
                 diff = shown - flint.acb(real)
-        except (ZeroDivisionError, CheckFailed, _NotExact):
+        except (ZeroDivisionError, CheckFailed, ValueError):
             continue                                   # a pole of G^-1 or of the display
         if not diff.real.contains(0) or not diff.imag.contains(0):
             raise CheckFailed(f"the display is {shown.real.str(8)} but Re G^-1 = {real.str(8)} at a point the checker "
@@ -710,17 +709,32 @@ def _real_sign(value: Any) -> int | None:
 #: the point's value times 2^(k/8), k = -40..40 (a factor 32 either way, steps of 9 %).
 _SCAN = tuple(range(-40, 41))
 #: Bisection steps towards the printed condition's boundary between a holding and a failing value.
-_BISECT = 24
+_BISECT = 16
+
+
+def _holds_ball(tree: list, values: Mapping[str, Gaussian]) -> bool | None:
+    """:func:`_holds` with every value a ball (bounded work; ``None`` where a ball holds 0)."""
+    with _precision(JUDGE_BITS):
+        return _holds(tree, _balls(values))
+
+
+def _balls(values: Mapping[str, Any]) -> dict[str, flint.acb]:
+    return {name: _ball_of(v) for name, v in values.items()}
 
 
 def _negative_on_circle(tree: list, values: Mapping[str, Gaussian], variable: str) -> Gaussian | None:
-    """A point of the unit circle where ``Re G^{-1} < 0`` (exact), among the judge's own."""
-    for z in _circle_points(_CIRCLE_COUNT):
-        try:
-            if _real_sign(_inverse_at(tree, values, z, variable)) == -1:
+    """A point of the unit circle where ``Re G^{-1} < 0`` -- certainly: the whole ball is
+    negative (balls, not exact fractions, so the judge's own search is bounded whatever the tree's
+    powers and the bisection's denominators)."""
+    env = _balls(values)
+    with _precision(JUDGE_BITS):
+        for z in _circle_points(_CIRCLE_COUNT):
+            try:
+                value = _ball(tree, {**env, variable: _ball_of(z)})
+            except (ZeroDivisionError, CheckFailed, ValueError):
+                continue
+            if value.real < 0:
                 return z
-        except (ZeroDivisionError, _NotExact, CheckFailed):
-            continue
     return None
 
 
@@ -742,7 +756,7 @@ def _sufficient_at_own_points(obj: Mapping[str, Any]) -> int:
                 value = base[name] * (Fraction(2) ** (k // 8)) * (Fraction(1) + Fraction(k % 8, 8))
                 env = {n: Gaussian(v) for n, v in {**base, name: value}.items()}
                 try:
-                    holds = _holds(display, env)
+                    holds = _holds_ball(display, env)
                 except (ZeroDivisionError, CheckFailed):
                     holds = None
                 if holds is not None and previous is not None and holds != previous[1]:
@@ -750,7 +764,7 @@ def _sufficient_at_own_points(obj: Mapping[str, Any]) -> int:
                     for _ in range(_BISECT):
                         middle = (inside + outside) / 2
                         try:
-                            between = _holds(display, {**env, name: Gaussian(middle)})
+                            between = _holds_ball(display, {**env, name: Gaussian(middle)})
                         except (ZeroDivisionError, CheckFailed):
                             break
                         if between is None:
