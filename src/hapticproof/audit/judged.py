@@ -175,7 +175,10 @@ def condition_judge(state: Any, finding: Any) -> dict[str, Any] | None:
             samples = [{k: str(v) for k, v in chart.witness({n: sp.Rational(x) for n, x in point.items()}).items()}
                        for point in samples]
         if samples:
-            return {**base, "claim": "holds-passive", "values": samples[0], "samples": samples}
+            out = {**base, "claim": "holds-passive", "values": samples[0], "samples": samples}
+            if chart is not None:
+                out["region"] = True        # a restricted scene: the checker chooses no points of its own
+            return out
     return None
 
 

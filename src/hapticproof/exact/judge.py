@@ -628,6 +628,11 @@ def _identity_at_own_points(obj: Mapping[str, Any], frequency: str) -> int:
     inverse, display = obj["inverse"], obj["display"]
     variable = obj.get("variable", "z")
     names = names_of(display) | names_of(inverse) | names_of(obj.get("period"))
+    first = obj["points"][0]
+    known = set(first.get("values", {})) | {variable, frequency} | ({"n"} if "n" in first else set())
+    if names - known:
+        raise CheckSkipped(f"the trees name {', '.join(sorted(names - known))[:60]}, which the object's points give no "
+                           "value: the checker does not choose one")
     needed = min(MAX_OWN_POINTS, max(8, tree_size(display) + tree_size(inverse)))
     checked = 0
     for point in own_points(obj, names, 4 * needed):
@@ -656,12 +661,6 @@ def _circle_identity(obj: Mapping[str, Any]) -> str:
     frequency = obj.get("frequency", "omega")
     if not isinstance(obj.get("points"), list) or not obj["points"]:
         raise CheckFailed("the judge object carries no point of the circle (no point is no evidence)")
-    own = 0
-    if claim == "equal":
-        if not isinstance(obj.get("inverse"), list):
-            raise CheckSkipped("the identity carries no G^-1 of the scene: the checker cannot test it at points of "
-                               "its own choosing (the object's points are the author's)")
-        own = _identity_at_own_points(obj, frequency)
     outcomes = []
     for k, point in enumerate(obj["points"]):
         env, z, _ = _circle_env(point, frequency, obj.get("period"))
@@ -682,6 +681,10 @@ def _circle_identity(obj: Mapping[str, Any]) -> str:
         if not outcomes or not outcomes[0]:
             raise CheckFailed("the display equals Re G^-1 at the witness: it is no counterexample")
         return "the display differs from Re G^-1 of the scene at the witness (ball arithmetic, exact transfer)"
+    if not isinstance(obj.get("inverse"), list):
+        raise CheckSkipped("the identity carries no G^-1 of the scene: the checker cannot test it at points of "
+                           "its own choosing (the object's points are the author's)")
+    own = _identity_at_own_points(obj, frequency)
     return (f"the display equals Re G^-1 of the scene at {len(outcomes)} points of the circle and at {own} points of "
             "the checker's choosing (ball arithmetic)")
 
@@ -747,10 +750,21 @@ def _sufficient_at_own_points(obj: Mapping[str, Any]) -> int:
     not passive: refused, whatever points the report carries."""
     display, tree, variable = obj["display"], obj["inverse"], obj.get("variable", "z")
     names = sorted((names_of(display) | names_of(tree)) - {variable})
+    known = set().union(*(set(sample) for sample in obj["samples"] if isinstance(sample, Mapping))) | {"n"}
+    if set(names) - known:
+        raise CheckSkipped(f"the trees name {', '.join(sorted(set(names) - known))[:60]}, which the samples give no "
+                           "value: the checker does not choose one")
     tried = 0
-    for point in own_points(obj, names, 4):
-        base = {name: exact_q(v) for name, v in point["values"].items()}
-        for name in sorted(names_of(display) - {variable}):
+    for k, point in enumerate(own_points(obj, names, 4)):
+        signs = obj["samples"][0] if isinstance(obj["samples"][0], Mapping) else {}
+        # each value with the sign of the author's first sample (a parameter declared negative stays negative)
+        base = {name: -exact_q(v) if name in signs and exact_q(signs[name]) < 0 else exact_q(v)
+                for name, v in point["values"].items()}
+        if "n" in names:
+            base["n"] = Fraction(1 + k % 3)             # the delay: a whole number of samples
+        for name in sorted(names_of(display) - {variable, "n"}):
+            if name not in base:
+                continue
             previous = None
             for k in _SCAN:
                 value = base[name] * (Fraction(2) ** (k // 8)) * (Fraction(1) + Fraction(k % 8, 8))
@@ -787,6 +801,11 @@ def _condition(obj: Mapping[str, Any]) -> str:
             raise CheckFailed("a confirmed condition is judged at no sample point (no point is no evidence)")
         done = [_condition({**obj, "values": sample, "samples": None, "claim": "holds-passive-at"})
                 for sample in obj["samples"]]
+        if obj.get("region") is not None:
+            # a scene restricted to a region (assumptions, a change of variables): points of the
+            # checker's own may lie outside it, so none is chosen -- and the claim is not re-verified
+            raise CheckSkipped("a condition judged in a restricted region: the checker chooses no points of its own "
+                               "there (its samples are the author's)")
         _sufficient_at_own_points(obj)          # (its reason unchanged: the audit's tally stays as it was)
         return f"{len(done)} points where the printed condition holds: " + done[-1]
     values = {name: Gaussian(exact_q(v)) for name, v in obj["values"].items()}
