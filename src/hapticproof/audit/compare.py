@@ -355,7 +355,10 @@ def _signs_seen(expr: sp.Expr, tries: int = 12) -> set[int]:
     symbols = sorted(expr.free_symbols, key=str)
     if not all(isinstance(s, sp.Symbol) for s in symbols):
         return set()
-    facts = {s: [(f"is_{k}", v) for k, v in s.assumptions0.items()] for s in symbols}
+    # SymPy's own assumptions only: a marker a symbol carries (``parameter``, kept apart from a
+    # helper of the same name) says nothing of its values
+    facts = {s: [(f"is_{k}", v) for k, v in s.assumptions0.items() if hasattr(sp.S.One, f"is_{k}")]
+             for s in symbols}
     seen: set[int] = set()
     for point in Sampler(symbols, seed=3).draw(tries):
         if not all(getattr(point[s], name) == v for s in symbols for name, v in facts[s]):

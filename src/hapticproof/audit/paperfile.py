@@ -89,6 +89,7 @@ import sympy as sp
 from hapticproof.audit.runner import Equation, Paper
 from hapticproof.core.errors import HapticproofError, InputFormatError, LatexParseError
 from hapticproof.core.limits import LimitError
+from hapticproof.core.expr import apart_symbol
 
 __all__ = [
     "CLAIMS",
@@ -351,7 +352,7 @@ def _read_symbols(raw: Mapping[str, Any], path: str, text: str,
             if scenes:
                 _refuse_toolkit_name(name, "relation", where)
             relations.append((printed, name, value, line))
-            symbols[printed] = sp.Symbol(name, real=True)
+            symbols[printed] = apart_symbol(name, real=True)
             continue
         parts = [w for w in re.split(r"[\s,]+", value.strip().lower()) if w]
         if re.fullmatch(r"[a-z]+(?:[\s,]+[a-z]+)*", value.strip()):
@@ -382,7 +383,7 @@ def _read_symbols(raw: Mapping[str, Any], path: str, text: str,
                 symbols[printed] = symbol
                 functions[printed] = (lambda sym: (lambda *args: sym))(symbol)
             else:
-                symbols[printed] = sp.Symbol(name, **_assumption_kwargs(word))
+                symbols[printed] = apart_symbol(name, **_assumption_kwargs(word))
             continue
         definitions.append((printed, name, value, line))
     from hapticproof.core.symbols import n as N_SYM
@@ -395,7 +396,7 @@ def _read_symbols(raw: Mapping[str, Any], path: str, text: str,
     table = SymbolTable(symbols=symbols, functions=functions, families=families)
     region, lines = _read_relations(relations, table, words, path)
     if relations:
-        table = table.with_symbols({printed: sp.Symbol(name, **_assumption_kwargs(words[name]))
+        table = table.with_symbols({printed: apart_symbol(name, **_assumption_kwargs(words[name]))
                                     for printed, name, _value, _line in relations})
         region, lines = _read_relations(relations, table, words, path)
     for printed, name, value, line in definitions:

@@ -64,6 +64,7 @@ __all__ = [
     "KEPT_APART",
     "DEFAULT_ASSUMPTIONS",
     "parameter_symbol",
+    "apart_symbol",
     "read_expression",
     "read_number",
     "normalise_variables",
@@ -154,9 +155,20 @@ def parameter_symbol(name: str, assumption: str | None = None) -> sp.Symbol:
     word = assumption or DEFAULT_ASSUMPTIONS.get(name) or _indexed_default(name)
     if word not in ASSUMPTIONS:
         raise ExpressionError(f"{name}: unknown assumption {word!r}; use one of {', '.join(ASSUMPTIONS)}")
-    symbol = sp.Symbol(name, **ASSUMPTIONS[word])
-    if symbol in _CIRCLE_VARIABLES:          # one symbol, one meaning
-        symbol = sp.Symbol(name, parameter=True, **ASSUMPTIONS[word])
+    return apart_symbol(name, **ASSUMPTIONS[word])
+
+
+def apart_symbol(name: str, **assumptions: bool) -> sp.Symbol:
+    """The symbol of a user's name ``name``: never one of the toolkit's variables of the circle
+    and the axis (a paper's real ``c`` is not ``c = cos wT``: one symbol, one meaning).
+
+    >>> from hapticproof.core.symbols import c
+    >>> apart_symbol("c", real=True) == c, apart_symbol("K", positive=True) == sp.Symbol("K", positive=True)
+    (False, True)
+    """
+    symbol = sp.Symbol(name, **assumptions)
+    if symbol in _CIRCLE_VARIABLES:
+        symbol = sp.Symbol(name, parameter=True, **assumptions)
     return symbol
 
 

@@ -13,6 +13,7 @@ from typing import Any
 import sympy as sp
 
 from hapticproof.core.errors import LatexParseError
+from hapticproof.core.expr import apart_symbol
 from hapticproof.audit.reader.lexer import DECORATIONS, GREEK, Token, closer_key, describe_token, matching_close, opener_key, tokenize
 from hapticproof.audit.reader.lexer import ARROWS, ELLIPSES, FRACTIONS, MULTIPLY, OPERATOR_COMMANDS, RELATIONS, UNSUPPORTED_RELATIONS
 
@@ -179,7 +180,7 @@ def symbol_for(printed: str, **assumptions: bool) -> sp.Symbol:
     >>> symbol_for('K_{01}', positive=True), symbol_for(r'\omega_s'), symbol_for(r'\mathbf{Z}_x')
     (K_01, omega_s, \mathbf{Z}_{x})
     """
-    return sp.Symbol(sympy_name(normalise_name(printed)), **assumptions)
+    return apart_symbol(sympy_name(normalise_name(printed)), **assumptions)
 
 
 def index_symbol(name: str) -> sp.Symbol:
