@@ -611,9 +611,7 @@ class PaperReading:
         """Signs and ranges the prose states of single names (``$K \\ge 0$``, ``$b_1, b_2 > 0$``,
         ``$0 \\le a < 1$``): assumptions of the whole paper from there on; "sampling period $h$"
         names the period."""
-        for m in re.finditer(r"(?:sampling|sample)\s+(?:period|interval|time)s?\s+(?:of\s+|is\s+)?\$([^$]{1,20})\$|"
-                             r"(?:sampled|samples?)\s+(?:with|at|every)\s+(?:a\s+)?(?:period\s+)?\$([^$]{1,20})\$", prose, re.I):
-            self._periods("\\omega " + (m.group(1) or m.group(2)).strip())
+        self._periods(prose=prose)
         for m in re.finditer(r"\$([^$]{1,400})\$", prose):
             math = m.group(1).strip()
             if not re.search(r"\\[lg]eq?\b|\\[lg]eqslant|[<>]", math) or re.search(r"\\omega|\\vartheta|\\theta|=\s*$", math):
@@ -631,11 +629,11 @@ class PaperReading:
                         if expr not in self.assumptions:
                             self.assumptions.append(expr)
 
-    def _periods(self, text: str) -> None:
+    def _periods(self, text: str = "", prose: str = "") -> None:
         from hapticproof.audit.reader.names import normalise_name, sympy_name
+        from hapticproof.audit.source.guess import period_names
 
-        for m in re.finditer(r"\\omega\s*([A-Za-z](?:_\{?[A-Za-z0-9]+\}?)?)|e\^\{\s*s\s*([A-Za-z](?:_\{?[A-Za-z0-9]+\}?)?)\s*\}", text):
-            printed = m.group(1) or m.group(2)
+        for printed in period_names(prose, text):
             try:
                 self.periods.add(sympy_name(normalise_name(printed)))
             except (HapticproofError, ValueError):

@@ -229,10 +229,16 @@ def expr_symbols(text: str) -> set:
 
 def _guessed_roles(source: Source, environment: set[str]) -> str | None:
     """The wall's roles in the paper's own names, as an inline TOML table: the period when
-    ``H(z)`` has one ``T_...`` and no ``T``; the device damping when a display
+    ``H(z)`` has one ``T_...`` and no ``T``, or uses the one period the prose or the displays
+    name ("sampled with period $h$", ``\\cos(\\omega h)``); the device damping when a display
     ``G^{-1}(z) = X + ...`` starts with a name ``X`` that ``H`` does not use."""
+    from hapticproof.audit.source.guess import period_names
+
     roles = {}
     periods = sorted(n for n in environment if re.fullmatch(r"T_?\w*", n) and n != "T")
+    if "T" not in environment and len(periods) != 1:     # the period the prose or the displays name
+        named = period_names("\n".join(d.prose for d in source.displays), "\n".join(d.text for d in source.displays))
+        periods = [n for n in (p.replace("{", "").replace("}", "") for p in named) if n in environment]
     if "T" not in environment and len(periods) == 1:
         roles["period"] = periods[0]
     for display in source.displays:

@@ -43,7 +43,7 @@ import re
 
 from hapticproof.audit.source.displays import trailing_number
 
-__all__ = ["guess_claim", "guess_form", "has_inequality", "symbols_of", "symbol_guesses", "relations"]
+__all__ = ["guess_claim", "guess_form", "has_inequality", "symbols_of", "symbol_guesses", "relations", "period_names"]
 
 _TOKEN = re.compile(r"\\(?:[A-Za-z]+|.)|\s+|.", re.S)
 _INEQUALITIES = {"<", ">", "\\le", "\\leq", "\\ge", "\\geq", "\\leqslant", "\\geqslant", "\\lt", "\\gt", "\\ll", "\\gg"}
@@ -112,6 +112,30 @@ def _main_part(tokens: list[str]) -> list[str]:
             continue
         kept.append(piece)
     return [tok for k, piece in enumerate(kept) for tok in (piece if k == 0 else [" ", "\\quad", " ", *piece])]
+
+
+#: a period as prose names it: "sampling period $h$", "sampled with period $h$", "samples every $h$"
+_PERIOD_PROSE = re.compile(r"(?:sampling|sample)\s+(?:period|interval|time)s?\s+(?:of\s+|is\s+)?\$([^$]{1,20})\$|"
+                          r"(?:sampled|samples?)\s+(?:with|at|every)\s+(?:a\s+)?(?:period\s+)?\$([^$]{1,20})\$", re.I)
+#: a period as a formula names it: the name multiplying the frequency (``\omega h``, ``e^{s h}``)
+_PERIOD_MATH = re.compile(r"\\omega\s*([A-Za-z](?:_\{?[A-Za-z0-9]+\}?)?)|e\^\{\s*s\s*([A-Za-z](?:_\{?[A-Za-z0-9]+\}?)?)\s*\}")
+
+
+def period_names(prose: str = "", math: str = "") -> list[str]:
+    r"""The printed names of the sampling period that ``prose`` states ("sampled with period
+    $h$") and ``math`` multiplies the frequency by (``\cos(\omega h)``), in order, once each.
+
+    >>> period_names("The device is sampled with period $h$.", r"\cos(\omega T_s) + e^{s h}")
+    ['h', 'T_s']
+    """
+    found = ["\\omega " + (m.group(1) or m.group(2)).strip() for m in _PERIOD_PROSE.finditer(prose)]
+    out: list[str] = []
+    for text in (*found, math):
+        for m in _PERIOD_MATH.finditer(text):
+            name = m.group(1) or m.group(2)
+            if name not in out:
+                out.append(name)
+    return out
 
 
 def relations(text: str) -> list[tuple[str, str]]:
