@@ -102,12 +102,14 @@ def math_tokens(math: str) -> list[str]:
 
 def json_texts(data, path: str = ""):
     """(path, text) of every string of a JSON report that a reader reads: the certificates, the
-    judge's objects, the verbatim ``printed`` display and the witness keys are data, not text."""
+    judge's objects and the verbatim ``printed`` display are data, not text; a witness's keys are read."""
     if isinstance(data, dict):
         for key, value in data.items():
             if key in ("certificate", "judge", "checker", "definition", "printed_form", "printed", "transfer",
                        "certificates", "stages_seconds", "notation", "claim", "variable", "slave"):
                 continue
+            if key == "witness" and isinstance(value, dict):       # its keys are read too (gamma, omega*h)
+                yield f"{path}.witness", " ".join(value)
             yield from json_texts(value, f"{path}.{key}")
     elif isinstance(data, list):
         for k, value in enumerate(data):
@@ -145,6 +147,12 @@ def _mapped(text: str, back: dict[str, str]) -> str:
     return _WORD.sub(lambda m: back.get(m.group(0), m.group(0)), text)
 
 
+def _witness_key(key: str, back: dict[str, str]) -> str:
+    """A displayed witness's key in the papers' names: ``gamma`` -> ``c``, ``omega*h`` -> ``omega_T``."""
+    mapped = _mapped(key, back)
+    return "omega_T" if mapped == "omega*T" else mapped
+
+
 def _same_expression(a: str, b: str) -> bool:
     try:
         ea, eb = sp.sympify(a, locals={n: sp.Symbol(n) for n in words(a) + words(b)}), \
@@ -163,8 +171,9 @@ def same_up_to_renaming(mine, papers, back: dict[str, str], path: str = "") -> N
     once its names are mapped back (``back``): the same structure, the same numbers, each text
     the same words (expressions equal as expressions: their terms may print in another order)."""
     if isinstance(papers, dict):
-        keep = path.endswith(".witness")               # a witness's keys are the JSON schema's (c, z, omega_T)
-        mine = {(_mapped(k, back) if isinstance(k, str) and not keep else k): v for k, v in mine.items() if k != "notation"}
+        witness = path.endswith(".witness") and ".definition" not in path    # a displayed witness: gamma, omega*h
+        mine = {(_witness_key(k, back) if witness else _mapped(k, back) if isinstance(k, str) else k): v
+                for k, v in mine.items() if k != "notation"}
         papers = {k: v for k, v in papers.items() if k not in ("notation", "seconds", "stages_seconds")}
         mine.pop("seconds", None)
         assert set(mine) == set(papers), f"{path}: keys {sorted(set(mine) ^ set(papers))}"

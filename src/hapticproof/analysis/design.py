@@ -344,7 +344,7 @@ def _single_margin_of(ns: Any, max_delay: int, clock: _Clock, names: Any) -> Del
                            f"are beyond --max-delay {max_delay}", lower=low, upper=fail - 1, proved_up_to=low,
                            decided=tuple(decided), proof=proof, seconds=clock.elapsed())
     at_fail = Outcome(Decision.DISPROVED,
-                      Evidence(Method.ENDPOINT_ANALYSIS, witness={"c": "-> 1", "limit": limit},
+                      Evidence(Method.ENDPOINT_ANALYSIS, witness=names.witness({"c": "-> 1", "limit": limit}),
                                facts={"limit": f"{f['a']} + {f['F_0']}(1) - {f['R']}(n + 1/2) at n = {fail}"}),
                       f"Re G^-1 -> {f['a']} + {f['F_0']}(1) - {f['R']}(n + 1/2) = {limit} < 0 as {f['c']} -> 1 "
                       f"({f['w']} -> 0) at n = {fail}")

@@ -22,6 +22,7 @@ from typing import Any
 import sympy as sp
 
 from hapticproof.core.exprtree import to_tree
+from hapticproof.core.naming import angle_marker, marker
 
 __all__ = ["circle_point", "witness_of", "transfer_at", "display_tree", "circle_judge", "condition_judge", "ANGLES"]
 
@@ -52,11 +53,12 @@ def witness_of(values: Mapping[Any, Any], point: Mapping[str, Any], T: Any) -> d
     out = {str(getattr(k, "name", k)): v for k, v in values.items()}
     if "n" in point:
         out["n"] = point["n"]
-    out["omega_T"] = point["theta"]
+    # the circle's keys marked: the paper's naming writes them (gamma when the paper has a c)
+    out[angle_marker()] = point["theta"]
     T_value = sp.sympify(T).xreplace({k: v for k, v in values.items() if isinstance(k, sp.Symbol)})
     if T_value.is_Rational:
-        out["omega"] = point["theta"] / T_value
-    out["c"] = point["c"]
+        out[marker("omega")] = point["theta"] / T_value
+    out[marker("cos")] = point["c"]
     out["z"] = list(point["z"])
     return out
 

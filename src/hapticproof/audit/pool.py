@@ -234,5 +234,5 @@ def audit_reports(papers: Sequence[Paper], only: Mapping[str, Sequence[str] | No
                 process.kill()
                 process.join(timeout=5)
             pipe.close()
-    return [AuditReport(p.id, p.title, rows, notation_of(p, rows))
+    return [AuditReport(p.id, p.title, rows, notation_of(p, rows), p.naming.changed())
             for p in papers for rows in [tuple(results[(p.id, eq.id)] for eq in selected[p.id])]]

@@ -40,6 +40,7 @@ from typing import Any
 
 import sympy as sp
 
+from hapticproof.core.naming import witness_keys
 from hapticproof.core.notation import symbol_names, to_latex
 from hapticproof.core.errors import LatexParseError, UnknownEquationError
 from hapticproof.core.evidence import Evidence, Finding, Method, Verdict, to_jsonable
@@ -280,9 +281,6 @@ class EquationResult:
     seconds: float
     section: str = ""
     assumptions: str = ""
-    #: the names the views show for the toolkit's witness keys (``c`` -> ``gamma``, ``omega_T`` ->
-    #: ``omega*h``: the paper's naming); the JSON keeps the keys (the judge reads them)
-    witness_names: Mapping[str, str] = field(default_factory=dict, compare=False, repr=False)
 
     def to_json(self) -> dict[str, Any]:
         return {
@@ -311,11 +309,16 @@ class AuditReport:
     #: the toolkit's names this report prints differently from the papers' (``{"gamma": "cos wh"}``:
     #: :func:`notation_of`), defined in every format
     notation: Mapping[str, str] = field(default_factory=dict)
+    #: what the paper's naming prints differently (:meth:`~hapticproof.core.naming.Naming.changed`:
+    #: the period ``h``, ``cos`` -> ``gamma``): the keys of its witnesses, for ``check``
+    names: Mapping[str, str] = field(default_factory=dict)
 
     def to_json(self) -> dict[str, Any]:
         out = {"paper": self.paper, "title": self.title, "equations": [r.to_json() for r in self.results]}
         if self.notation:
             out["notation"] = dict(self.notation)
+        if self.names:
+            out["names"] = dict(self.names)
         return out
 
     def __repr__(self) -> str:  # short and free of timings (notebooks compare it)
@@ -387,7 +390,7 @@ def run_equation(paper: Paper, equation: Equation) -> EquationResult:
         finding = equation.check(ctx)
     except LatexParseError as err:
         finding = parse_failure(equation, err)
-    finding = rechecked(_with_printed(finding, equation.printed))
+    finding = rechecked(_with_printed(finding, equation.printed), witness_keys(paper.naming.changed()))
     seconds = time.perf_counter() - start
     return EquationResult(
         id=equation.id,
@@ -401,7 +404,6 @@ def run_equation(paper: Paper, equation: Equation) -> EquationResult:
         seconds=seconds,
         section=equation.section,
         assumptions=equation.assumptions,
-        witness_names=paper.naming.word_map(),
     )
 
 
@@ -415,7 +417,7 @@ def _with_printed(finding: Finding, printed: str) -> Finding:
     return replace(finding, evidence=replace(finding.evidence, facts=facts))
 
 
-def rechecked(finding: Finding) -> Finding:
+def rechecked(finding: Finding, keys: Mapping[str, str] | None = None) -> Finding:
     """``finding`` with every certificate in its evidence re-verified by the independent checker
     (:mod:`hapticproof.exact.checker`) and every judge object (the printed display and the
     scene's original ``G^{-1}`` at its points) judged against the definition
@@ -427,7 +429,7 @@ def rechecked(finding: Finding) -> Finding:
 
     data = finding.evidence.to_json()
     results = check_certificates(data)
-    judged = judge_results({"verdict": finding.verdict.value, "evidence": data})
+    judged = judge_results({"verdict": finding.verdict.value, "evidence": data}, keys)
     if not results and not judged:
         return finding
     tally: dict[str, Any] = {}
@@ -461,7 +463,7 @@ def audit_paper(paper: Paper, only: Iterable[str] | None = None,
         results.append(run_equation(paper, eq))
         if progress is not None:
             progress(len(results), len(equations))
-    return AuditReport(paper.id, paper.title, tuple(results), notation_of(paper, results))
+    return AuditReport(paper.id, paper.title, tuple(results), notation_of(paper, results), paper.naming.changed())
 
 
 def notation_of(paper: Paper, results: Iterable[EquationResult]) -> dict[str, str]:

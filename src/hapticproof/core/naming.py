@@ -43,7 +43,8 @@ from hapticproof.core.symbols import c as C_SYM
 from hapticproof.core.symbols import cos_n, omega, sin_n, sin_theta, theta
 from hapticproof.core.symbols import x as X_SYM
 
-__all__ = ["Helper", "HELPERS", "Naming", "DEFAULT", "name_head", "clashes", "marker", "role_marker", "marked"]
+__all__ = ["Helper", "HELPERS", "Naming", "DEFAULT", "name_head", "clashes", "marker", "role_marker", "marked",
+           "witness_keys", "angle_marker"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -86,6 +87,31 @@ HELPERS: dict[str, Helper] = {h.key: h for h in (
 #: What words of the toolkit's texts each helper is written as (``w`` is the frequency in words).
 _WORDS: dict[str, str] = {"c": "cos", "s_theta": "sin", "theta": "theta", "x": "x", "C_n": "cos_n", "S_n": "sin_n",
                           "L": "leak", "h": "coupling", "M": "matrix", "lambda": "eigenvalue"}
+
+
+#: The keys of a displayed witness that are the toolkit's own quantities -> their helper.
+_WITNESS_HELPERS = {"c": "cos", "omega": "omega", "x": "x", "theta": "theta"}
+
+
+def witness_keys(notation: Mapping[str, Any] | None = None) -> dict[str, str]:
+    """The key a displayed witness names each of the toolkit's quantities by, in a report whose
+    ``notation`` is :meth:`Naming.changed` (``c`` -> ``gamma``, ``omega_T`` -> ``omega*h``): one
+    rule for the views that write witnesses and the checker that reads them.
+
+    >>> witness_keys({"period": "h", "cos": "gamma"})["c"], witness_keys({"period": "h"})["omega_T"]
+    ('gamma', 'omega*h')
+    >>> witness_keys()["omega_T"]
+    'omega_T'
+    """
+    notation = notation if isinstance(notation, Mapping) else {}
+
+    def name(key: str, default: str) -> str:
+        value = notation.get(key, default)
+        return value if isinstance(value, str) else default
+    out = {key: name(helper, HELPERS[helper].default) for key, helper in _WITNESS_HELPERS.items()}
+    period = name("period", "T")
+    out["omega_T"] = "omega_T" if (out["omega"], period) == ("omega", "T") else f"{out['omega']}*{period}"
+    return out
 
 
 def name_head(name: str) -> str:
@@ -249,8 +275,7 @@ class Naming:
     @property
     def omega_T(self) -> str:
         """The key ``omega_T`` of a witness, in words (``omega_T``; ``omega*h`` for period ``h``)."""
-        omega_name, T = self.helper("omega"), self.period
-        return "omega_T" if (omega_name, T) == ("omega", "T") else f"{omega_name}*{T}"
+        return witness_keys(self.changed())["omega_T"]
 
     def meaning(self, key: str) -> str:
         """What a helper stands for, in this naming's words (``cos wh``, ``cos(w*Ts)``).
@@ -374,6 +399,8 @@ class Naming:
             if m.group(1):
                 default = m.group(0).partition(_MARK)[0]
                 return self.role(m.group(2), default)
+            if m.group(2) == "angle":
+                return self.omega_T
             return self.w if m.group(2) == "w" else self.helper(m.group(2))
         return _MARKED.sub(name, text)
 
@@ -381,6 +408,18 @@ class Naming:
         """``value`` (a finding, an outcome, evidence, a mapping or a text) with every marked text in
         it written in this naming."""
         return _unmark_value(self, value)
+
+    def witness(self, witness: Any) -> Any:
+        """A displayed witness of the toolkit's circle keys (``c``, ``omega_T``, ``omega``, ``x``)
+        with each key as this naming prints it (:func:`witness_keys`); other keys unchanged.
+
+        >>> Naming.choose({"c_d"}, roles=(("period", "T", "h"),)).witness({"c": 0, "omega_T": "pi/2", "K": 1})
+        {'gamma': 0, 'omega*h': 'pi/2', 'K': 1}
+        """
+        if not isinstance(witness, Mapping) or self.is_default:
+            return witness
+        keys = witness_keys(self.changed())
+        return {keys.get(k, k) if isinstance(k, str) else k: v for k, v in witness.items()}
 
     def worded(self, value: Any) -> Any:
         """``value`` (an outcome, a condition...) with every text in it -- reasons, names, the
@@ -425,6 +464,15 @@ def marker(key: str) -> str:
     ('minimum at c = -1', 'gamma')
     """
     return f"{'w' if key == 'w' else HELPERS[key].default}{_MARK}{key}{_MARK}"
+
+
+def angle_marker() -> str:
+    """The key ``omega_T`` of a witness (the frequency times the period) in a marked text.
+
+    >>> Naming.choose(roles=(("period", "T", "h"),)).unmark(angle_marker())
+    'omega*h'
+    """
+    return f"omega_T{_MARK}angle{_MARK}"
 
 
 def role_marker(field: str, default: str) -> str:
@@ -474,13 +522,17 @@ def _unmark_value(names: Naming, value: Any, key: Any = None, text: Any = None, 
     if isinstance(value, Evidence):
         witness = value.witness
         if nested and isinstance(witness, Mapping):
-            witness = {names.words(str(k)): v for k, v in witness.items()}
+            witness = names.witness(witness)
+        elif isinstance(witness, Mapping) and text == names.unmark:   # an audit's: the circle's keys are marked
+            witness = {text(k) if isinstance(k, str) else k: v for k, v in witness.items()}
+        elif isinstance(witness, Mapping):      # a derivation's: the circle's keys by their default names
+            witness = names.witness(witness)
         return replace(value, witness=witness, facts=_unmark_value(names, dict(value.facts), text=text, nested=True))
     if isinstance(value, Outcome):
         return replace(value, reason=text(value.reason), evidence=_unmark_value(names, value.evidence, text=text, nested=nested))
     if isinstance(value, dict):
-        if nested and key == "witness":           # a shown witness (not the judged one): its names in words
-            return {names.words(str(k)): v for k, v in value.items()}
+        if nested and key == "witness":           # a shown witness (not the judged one): its circle's keys named
+            return names.witness(value)
         return {(text(k) if isinstance(k, str) else k): _unmark_value(names, v, k, text, nested) for k, v in value.items()}
     if isinstance(value, (list, tuple)) and not hasattr(value, "_fields"):
         return type(value)(_unmark_value(names, v, None, text, nested) for v in value)

@@ -41,6 +41,7 @@ from typing import Any
 
 import flint
 
+from hapticproof.core.naming import witness_keys
 from hapticproof.exact.checkarith import (
     CheckFailed,
     CheckSkipped,
@@ -525,51 +526,53 @@ def audit_binding(entry: Mapping[str, Any]) -> list[str]:
 # ---------------------------------------------------------------------------------------------
 
 
-def witness_problems(node: Any) -> list[str]:
+def witness_problems(node: Any, keys: Mapping[str, str] | None = None) -> list[str]:
     """Every displayed witness inside ``node`` that names a point of the circle twice: ``z``
     (``[re, im]``) on the unit circle, ``c = Re z``, ``omega_T`` the angle of ``z`` (or, without
-    ``z``, ``cos(omega_T) = c``)."""
+    ``z``, ``cos(omega_T) = c``) -- ``c`` and ``omega_T`` as the report names them (``keys``:
+    :func:`~hapticproof.core.naming.witness_keys`, ``gamma`` and ``omega*h``)."""
+    keys = witness_keys() if keys is None else keys
     problems: list[str] = []
     for witness in _walk(node, "witness"):
         if not isinstance(witness, Mapping):
             continue
         try:
-            problems += _one_point(witness)
+            problems += _one_point(witness, keys["c"], keys["omega_T"])
         except (ValueError, TypeError, ZeroDivisionError, ArithmeticError) as err:
             problems.append(f"a displayed witness cannot be read ({type(err).__name__}: {str(err)[:80]})")
     return problems
 
 
-def _one_point(witness: Mapping[str, Any]) -> list[str]:
+def _one_point(witness: Mapping[str, Any], cos: str, angle_key: str) -> list[str]:
     z = witness.get("z")
     point = [exact_q(v) for v in z] if isinstance(z, list) and len(z) == 2 else None
-    c = exact_q(witness["c"]) if "c" in witness and isinstance(witness["c"], str) and (point or "omega_T" in witness) \
+    c = exact_q(witness[cos]) if cos in witness and isinstance(witness[cos], str) and (point or angle_key in witness) \
         else None
     out = []
-    if point is not None and (c is not None or "omega_T" in witness):
+    if point is not None and (c is not None or angle_key in witness):
         if point[0] ** 2 + point[1] ** 2 != 1:
             out.append(f"the displayed z = {z[0]} + {z[1]}j is not on the unit circle")
         if c is not None and c != point[0]:
-            out.append(f"the displayed c = {witness['c']} is not Re z = {z[0]}")
-    if "omega_T" in witness and (point is not None or c is not None):
+            out.append(f"the displayed {cos} = {witness[cos]} is not Re z = {z[0]}")
+    if angle_key in witness and (point is not None or c is not None):
         import mpmath
 
-        shown = witness["omega_T"]
+        shown = witness[angle_key]
         with mpmath.workdps(60):
             if isinstance(shown, Mapping) and "exact" not in shown:       # only a decimal: to its digits
                 theta, tolerance = angle(str(shown.get("approx"))), mpmath.mpf(10) ** -12
             else:
                 theta = angle(shown["exact"] if isinstance(shown, Mapping) else shown)
                 tolerance = mpmath.mpf(10) ** -40
-            cos, sin = mpmath.cos(theta), mpmath.sin(theta)
+            cos_value, sin = mpmath.cos(theta), mpmath.sin(theta)
             re = point[0] if point is not None else c
-            bad = abs(cos - mpmath.mpf(re.numerator) / re.denominator) > tolerance
+            bad = abs(cos_value - mpmath.mpf(re.numerator) / re.denominator) > tolerance
             if point is not None:
                 bad = bad or abs(sin - mpmath.mpf(point[1].numerator) / point[1].denominator) > tolerance
             if bad:
-                where = f"z = {z[0]} + {z[1]}j" if point is not None else f"c = {witness['c']}"
-                out.append(f"the displayed omega_T = {str(shown)[:40]} is not the angle of {where} "
-                           f"(cos {_short(cos)}, sin {_short(sin)})")
+                where = f"z = {z[0]} + {z[1]}j" if point is not None else f"{cos} = {witness[cos]}"
+                out.append(f"the displayed {angle_key} = {str(shown)[:40]} is not the angle of {where} "
+                           f"(cos {_short(cos_value)}, sin {_short(sin)})")
     return out
 
 

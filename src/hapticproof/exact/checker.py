@@ -41,13 +41,14 @@ from __future__ import annotations
 import itertools
 import json
 import math
-from collections.abc import Iterator
+from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any
 
 import flint
 
+from hapticproof.core.naming import witness_keys
 from hapticproof.exact.checkarith import MAX_DEGREE, is_kind
 from hapticproof.exact.checkarith import CheckFailed as _Fail
 from hapticproof.exact.checkarith import CheckSkipped as _Skip
@@ -682,21 +683,25 @@ def check_certificates(node: Any) -> list[CheckResult]:
     return [check_certificate(c) for c in certificates(node)]
 
 
-def _entries(report: Any) -> list[tuple[str, Any]]:
+def _entries(report: Any) -> list[tuple[str, Any, dict[str, str]]]:
     """Top-level entries: audit equations, derive conditions (and the verdict they give), or
-    the report itself."""
+    the report itself; each with the keys its witnesses name the circle's quantities by (the
+    paper's or the scene's ``names``/``notation``: :func:`~hapticproof.core.naming.witness_keys`)."""
+    def keys(node: Any) -> dict[str, str]:
+        return witness_keys(node.get("names") or node.get("notation") if isinstance(node, dict) else None)
     if isinstance(report, dict) and "papers" in report:
-        return [(f"{p['paper']} ({e['id']})", e) for p in report["papers"] for e in p.get("equations", [])]
+        return [(f"{p['paper']} ({e['id']})", e, keys(p)) for p in report["papers"] for e in p.get("equations", [])]
     if isinstance(report, dict) and "equations" in report:
-        return [(f"{report.get('paper', '?')} ({e['id']})", e) for e in report["equations"]]
+        return [(f"{report.get('paper', '?')} ({e['id']})", e, keys(report)) for e in report["equations"]]
     if isinstance(report, dict) and "conditions" in report:
-        return [(c.get("name", f"condition {i + 1}"), c) for i, c in enumerate(report["conditions"])]
-    return [("report", report)]
+        return [(c.get("name", f"condition {i + 1}"), c, keys(report)) for i, c in enumerate(report["conditions"])]
+    return [("report", report, keys(report))]
 
 
-def judge_results(node: Any) -> list[CheckResult]:
+def judge_results(node: Any, keys: Mapping[str, str] | None = None) -> list[CheckResult]:
     """The definition-level judge (:mod:`hapticproof.exact.judge`) on every judge object inside
-    a JSON value, and an audit finding's verdict and witness held against its judge object."""
+    a JSON value, and an audit finding's verdict and witness held against its judge object (the
+    witness's circle keys named by ``keys``, :func:`~hapticproof.core.naming.witness_keys`)."""
     from hapticproof.exact.judge import judge, judges
     from hapticproof.exact.judgedisplay import boundary_display, finding_display
 
@@ -706,7 +711,7 @@ def judge_results(node: Any) -> list[CheckResult]:
         out.append(CheckResult(result.ok, result.reason, verified=result.judged, source="judge"))
     if isinstance(node, dict):
         try:
-            problems = finding_display(node) + boundary_display(node)
+            problems = finding_display(node, keys) + boundary_display(node)
         except (KeyError, TypeError, ValueError, IndexError, AttributeError, ArithmeticError) as err:
             reason = f"{type(err).__name__}: {str(err)[:120]}"
             problems = [f"what the entry displays cannot be held against its evidence ({reason})"]
@@ -740,10 +745,10 @@ def check_report(report: Any) -> ReportCheck:
     if isinstance(report, str):
         report = json.loads(report)
     out = []
-    for name, entry in _entries(report):
-        results = check_certificates(entry) + judge_results(entry)
+    for name, entry, keys in _entries(report):
+        results = check_certificates(entry) + judge_results(entry, keys)
         results += _guarded(lambda e=entry: audit_binding(e) if isinstance(e, dict) and "verdict" in e else [], "binding")
-        results += _guarded(lambda e=entry: witness_problems(e), "display")
+        results += _guarded(lambda e=entry, k=keys: witness_problems(e, k), "display")
         claim = claim_of(entry)
         if claim is not None and not any(r.source in ("certificate", "judge") for r in results):
             if _vacuous_residues(report, name, claim, out):
@@ -761,8 +766,9 @@ def check_report(report: Any) -> ReportCheck:
             top.append(CheckResult(result.ok, result.reason, verified=result.judged, source="judge"))
         problems = [r for r in _guarded(lambda: derive_display(report), "display")]
         problems += _guarded(lambda: derive_binding(report), "binding")
-        problems += _guarded(lambda: witness_problems({"witness": report.get("witness"),
-                                                        "definition": report.get("definition")}), "display")
+        problems += _guarded(lambda: witness_problems({"witness": report.get("witness")},
+                                                       witness_keys(report.get("notation"))), "display")
+        problems += _guarded(lambda: witness_problems({"definition": report.get("definition")}), "display")
         top += problems
         if not problems:
             top.append(CheckResult(True, "verdict and witness re-derived from the conditions", source="display"))

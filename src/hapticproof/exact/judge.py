@@ -66,6 +66,7 @@ from hapticproof.exact.checkarith import (
     json_poly,
 )
 from hapticproof.exact.judgepoints import MAX_OWN_POINTS, names_of, own_points, tree_size
+from hapticproof.core.naming import witness_keys
 
 __all__ = ["Judgement", "judge", "judges", "judged_definition", "evaluate_tree", "consistent_witness", "displayed_number",
            "JUDGE_BITS"]
@@ -1001,18 +1002,20 @@ def displayed_number(value: Any) -> Any:
     return value
 
 
-def consistent_witness(witness: Mapping[str, Any] | None, obj: Mapping[str, Any]) -> list[str]:
+def consistent_witness(witness: Mapping[str, Any] | None, obj: Mapping[str, Any],
+                       keys: Mapping[str, str] | None = None) -> list[str]:
     """Disagreements between a finding's displayed witness and the judge object's point (empty
-    when they agree): parameters, ``n``, ``c``, ``z``, ``omega_T`` and ``omega``."""
+    when they agree): parameters, ``n``, ``c``, ``z``, ``omega_T`` and ``omega`` -- the circle's
+    keys as the report names them (``keys``: :func:`~hapticproof.core.naming.witness_keys`)."""
     if not witness:
         return []
     try:
-        return _witness_problems(witness, obj)
+        return _witness_problems(witness, obj, witness_keys() if keys is None else keys)
     except (CheckFailed, KeyError, TypeError, ValueError, ZeroDivisionError, IndexError) as err:
         return [f"the displayed witness cannot be held against the judge object ({type(err).__name__}: {err})"]
 
 
-def _witness_problems(witness: Mapping[str, Any], obj: Mapping[str, Any]) -> list[str]:
+def _witness_problems(witness: Mapping[str, Any], obj: Mapping[str, Any], keys: Mapping[str, str]) -> list[str]:
     problems = []
     if obj.get("judge") == "circle-identity":
         point = obj["points"][0]
@@ -1023,13 +1026,14 @@ def _witness_problems(witness: Mapping[str, Any], obj: Mapping[str, Any]) -> lis
         if "n" in point and "n" in witness and displayed_number(witness["n"]) != int(point["n"]):
             problems.append(f"the displayed n = {witness['n']} is not the point's {point['n']}")
         env, z, theta = _circle_env(point, obj.get("frequency", "omega"), obj.get("period"))
-        if "c" in witness and displayed_number(witness["c"]) != z.re:
-            problems.append(f"the displayed c = {witness['c']} is not cos(omega T) = {z.re} of the point")
+        cos = keys["c"]
+        if cos in witness and displayed_number(witness[cos]) != z.re:
+            problems.append(f"the displayed {cos} = {witness[cos]} is not cos(omega T) = {z.re} of the point")
         if isinstance(witness.get("z"), (list, tuple)):
             shown = Gaussian(exact_q(witness["z"][0]), exact_q(witness["z"][1]))
             if (shown.re, shown.im) != (z.re, z.im):
                 problems.append(f"the displayed z = {_show(shown)} is not e^(j omega T) = {_show(z)} of the point")
-        for key, target in (("omega_T", theta), ("omega", env.get(obj.get("frequency", "omega")))):
+        for key, target in ((keys["omega_T"], theta), (keys["omega"], env.get(obj.get("frequency", "omega")))):
             if key in witness and target is not None:
                 value = displayed_number(witness[key])
                 ball = target.real if isinstance(target, flint.acb) else target
@@ -1042,8 +1046,9 @@ def _witness_problems(witness: Mapping[str, Any], obj: Mapping[str, Any]) -> lis
     elif obj.get("judge") == "positive-real":
         own = obj.get("witness") or {}
         for key in ("c", "omega", "x"):
-            if key in witness and key in own and displayed_number(witness[key]) != displayed_number(own[key]):
-                problems.append(f"the displayed {key} = {witness[key]} is not the decision's {own[key]}")
+            shown = keys[key]
+            if shown in witness and key in own and displayed_number(witness[shown]) != displayed_number(own[key]):
+                problems.append(f"the displayed {shown} = {witness[shown]} is not the decision's {own[key]}")
         if isinstance(witness.get("z"), (list, tuple)) and isinstance(own.get("z"), (list, tuple)) and \
                 [exact_q(v) for v in witness["z"]] != [exact_q(v) for v in own["z"]]:
             problems.append(f"the displayed z = {witness['z']} is not the decision's {own['z']}")

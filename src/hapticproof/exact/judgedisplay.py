@@ -9,6 +9,7 @@ from collections.abc import Iterator, Mapping
 from fractions import Fraction
 from typing import Any
 
+from hapticproof.core.naming import witness_keys
 from hapticproof.exact.checkarith import CheckFailed, Gaussian, eval_transfer, exact_q
 from hapticproof.exact.judge import consistent_witness, displayed_number
 
@@ -54,8 +55,9 @@ def _same(a: Any, b: Any) -> bool:
     return na == nb
 
 
-def _condition_display(cond: Mapping[str, Any]) -> list[str]:
-    """A derive condition's decision and witness against its own certificates."""
+def _condition_display(cond: Mapping[str, Any], keys: Mapping[str, str]) -> list[str]:
+    """A derive condition's decision and witness against its own certificates (the witness's
+    circle keys as the report names them, ``keys``)."""
     name, decision = cond.get("name"), cond.get("decision")
     evidence = cond.get("evidence", {})
     certs = list(_certificates_in(evidence))
@@ -73,8 +75,9 @@ def _condition_display(cond: Mapping[str, Any]) -> list[str]:
             own = cert["witness"] if isinstance(cert.get("witness"), dict) else \
                 {"c": cert.get("witness"), "z": cert.get("witness_point")}
             for key in ("c", "z"):
-                if key in witness and own.get(key) is not None and not _same(witness[key], own[key]):
-                    problems.append(f"{name}: the displayed {key} = {witness[key]} is not the certificate's {own[key]}")
+                shown = keys.get(key, key)
+                if shown in witness and own.get(key) is not None and not _same(witness[shown], own[key]):
+                    problems.append(f"{name}: the displayed {shown} = {witness[shown]} is not the certificate's {own[key]}")
             break
     elif name == _POLES:
         for cert in certs:
@@ -105,7 +108,8 @@ def derive_display(report: Mapping[str, Any]) -> list[str]:
     """A ``derive --format json`` report's verdict and witness re-derived from its conditions
     and their certificates, and its ``definition`` (when present) held against both."""
     conditions = report.get("conditions") or []
-    problems = [p for cond in conditions for p in _condition_display(cond)]
+    keys = witness_keys(report.get("notation"))
+    problems = [p for cond in conditions for p in _condition_display(cond, keys)]
     if not conditions or "verdict" not in report:
         return problems
     expected = _combined([c.get("decision") for c in conditions])
@@ -132,12 +136,13 @@ def derive_display(report: Mapping[str, Any]) -> list[str]:
         problems += displayed_forms(report, definition)
         if definition.get("decision") != report["verdict"] and report["verdict"] in ("proved", "disproved"):
             problems.append(f"the verdict shown is {report['verdict']!r}, the definition object says {definition.get('decision')!r}")
-        problems += consistent_witness(shown, definition)
+        problems += consistent_witness(shown, definition, keys)
     return problems
 
 
-def finding_display(entry: Mapping[str, Any]) -> list[str]:
-    """An audit entry's verdict and displayed witness against its judge object."""
+def finding_display(entry: Mapping[str, Any], keys: Mapping[str, str] | None = None) -> list[str]:
+    """An audit entry's verdict and displayed witness against its judge object (the witness's
+    circle keys as the paper names them, ``keys``)."""
     evidence = entry.get("evidence") or {}
     obj = (evidence.get("facts") or {}).get("judge")
     if not isinstance(obj, dict) or "verdict" not in entry:
@@ -149,7 +154,7 @@ def finding_display(entry: Mapping[str, Any]) -> list[str]:
                         f"{' or '.join(allowed)}")
     if isinstance(obj.get("printed"), str) and "printed" in entry and entry["printed"] != obj["printed"]:
         problems.append("the display shown is not the one judged (the entry's 'printed' was changed)")
-    problems += consistent_witness(evidence.get("witness"), obj)
+    problems += consistent_witness(evidence.get("witness"), obj, keys)
     return problems
 
 

@@ -49,7 +49,7 @@ def reports_from_json(data: Any, papers: Iterable[Paper] = ()) -> list[AuditRepo
                            section=known[e["id"]].section if e["id"] in known else "",
                            assumptions=known[e["id"]].assumptions if e["id"] in known else "")
             for e in p["equations"])
-        out.append(AuditReport(p["paper"], p.get("title", ""), results))
+        out.append(AuditReport(p["paper"], p.get("title", ""), results, p.get("notation") or {}, p.get("names") or {}))
     return out
 
 

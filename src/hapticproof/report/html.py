@@ -231,11 +231,10 @@ def _inline_math(latex: str | None, text: str) -> str:
 # --------------------------------------------------------------------------------------------
 # evidence: witness, facts, plots
 # --------------------------------------------------------------------------------------------
-def _witness_table(witness: Mapping[str, Any], shown: Mapping[str, str] | None = None) -> str:
-    """The witness as a small two-row table: names (as ``shown``: the paper's naming) over exact values."""
+def _witness_table(witness: Mapping[str, Any]) -> str:
+    """The witness as a small two-row table: names (the paper's naming) over exact values."""
     names, values = [], []
     for name, value in to_jsonable(dict(witness)).items():
-        name = (shown or {}).get(name, name)
         latex = tex.value_math(value)
         names.append("<th>" + _inline_math(tex.name_math(name), name) + "</th>")
         values.append("<td>" + _inline_math(latex.replace(r"\tfrac", r"\frac") if latex else None,
@@ -306,13 +305,13 @@ def plot_svg(plot: Plot, key: str = "plot") -> str:
     return svg.replace("<svg", f'<svg class="hp-svg" role="img" aria-label="{escape(plot.title)}"', 1)
 
 
-def _evidence_html(evidence: Any, key: str, shown: Mapping[str, str] | None = None) -> str:
+def _evidence_html(evidence: Any, key: str) -> str:
     parts = ['<div class="hp-evidence"><span class="hp-label-inline">Evidence</span> <span class="hp-method">'
              + escape(str(evidence.method)) + "</span>"]
     if evidence.instances is not None:
         parts.append(f' &middot; {evidence.instances} instances')
     if evidence.witness:
-        parts.append(_witness_table(evidence.witness, shown))
+        parts.append(_witness_table(evidence.witness))
     for path, plot in _plots(evidence.facts):
         parts.append('<figure class="hp-plot">' + plot_svg(plot, f"{key}-{path}") + "<figcaption>"
                      + escape(plot.title) + "</figcaption></figure>")
@@ -353,7 +352,7 @@ def result_html(result: Any, anchor_id: str = "", timings: bool = True) -> str:
         body.append(_block("Derived", math_html(result.derived)))
     if result.corrected:
         body.append(_block("Corrected", math_html(result.corrected)))
-    body.append(_evidence_html(result.evidence, ident, getattr(result, "witness_names", None)))
+    body.append(_evidence_html(result.evidence, ident))
     if timings:
         body.append(f'<footer class="hp-time">{result.seconds:.3f} s</footer>')
     attrs = f' id="{ident}"' if anchor_id else ""

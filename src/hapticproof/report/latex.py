@@ -694,8 +694,7 @@ def equation_block(result: Any, anchor_id: str = "", show_printed: bool = True, 
         if ev.instances is not None:
             line += f", {ev.instances} instances"
         if ev.witness:
-            shown = getattr(result, "witness_names", None) or {}     # the paper's names for c, omega_T
-            line += "; witness " + witness_math({shown.get(k, k): v for k, v in dict(ev.witness).items()})
+            line += "; witness " + witness_math(dict(ev.witness))
         body.append(r"\par" + line + "}")
     return "\n".join(body)
 

@@ -75,7 +75,7 @@ class SceneSummary:
             "worst_case": names.text(self.worst_case) if self.worst_case is not None else None,
             "conditions": [c.to_json() for c in self.conditions],
             "verdict": self.verdict,
-            "witness": self.witness,
+            "witness": names.witness(self.witness),
             "reason": self.reason,
             "minimiser": self.minimiser,
             "minimum": self.minimum,
