@@ -191,3 +191,29 @@ scene = "wall"
     verdicts = {r.id: r.verdict.value for r in report.results}
     # (2) K T_s for K T_s/2: halving the term makes it exact (the repair search's lost half)
     assert verdicts == {"1": "confirmed", "2": "typo", "3": "typo"}
+
+
+@pytest.mark.parametrize("system, field, name, design", [
+    ("single-user", "device_damping", "K", {}),                                      # the wall's stiffness
+    ("single-user", "mass", "k", {"environment": "k + c*(z - 1)/(T*z)"}),
+    ("teleoperator", "master_damping", "K", {}),                                     # the PD controller's gain
+    ("teleoperator", "mass", "K_p", {"controller": "K_p + K_i*T*z/(z - 1)"}),
+])
+def test_a_role_named_like_a_parameter_of_the_design_is_refused(system, field, name, design):
+    """One name, one meaning: the device damping called K where K is the wall's stiffness would
+    make b = K silently; the period alone belongs to the role and the design."""
+    with pytest.raises(SceneError, match=rf"roles: {field} = '{name}', but {name} is already a parameter"):
+        Scene(system, roles={field: name}, **design).build()
+    renamed = Scene(system, roles={"period": "h"}, **{k: v.replace("T", "h") for k, v in design.items()}).build()
+    assert renamed is not None
+
+
+def test_the_symbolic_delays_pole_at_zero_shows_its_multiplicity_as_a_formula(capsys):
+    for approximation, formula in (("forward", "n + 1"), ("backward", "n"), ("tustin", "n + 1")):
+        code, out, _ = run(capsys, "derive", "single-user", "--delay", "n", "--approximation", approximation,
+                           "--format", "json")
+        assert code == 0
+        assert json.loads(out)["poles"][0] == {"z": "0", "multiplicity": formula, "location": "inside"}
+    code, out, _ = run(capsys, "derive", "single-user", "--delay", "n", "--approximation", "backward",
+                       "--environment", "K*z/(z - 1/2)")
+    assert "z = 0 (inside, multiplicity n - 2 (for n > 2))" in out

@@ -50,6 +50,9 @@ class Pole:
     value: sp.Expr
     multiplicity: int
     location: str
+    #: the multiplicity as a formula when it is not a number (``n + 1`` with a symbolic delay
+    #: ``n``; ``multiplicity`` is then -1)
+    formula: str | None = None
 
 
 @dataclass(frozen=True, slots=True)
@@ -429,11 +432,20 @@ def poles(scene: SingleUserScene) -> list[Pole]:
     if scene.delay.is_Symbol:
         listed = poles_of(environment_path(scene))
         others = [p for p in listed if p.value != 0]
-        # multiplicity n + (that of the path at 0): unknown as a number, recorded as -1
-        return [Pole(sp.Integer(0), -1, "inside")] + others
+        # multiplicity n + (the path's order of pole at 0, negative for a zero): not a number,
+        # so -1 with its formula
+        num, den = sp.fraction(sp.cancel(environment_path(scene)))
+        order = _order_at_zero(den) - _order_at_zero(num)
+        formula = str(scene.delay) + (f" + {order}" if order > 0 else f" - {-order} (for n > {-order})" if order < 0 else "")
+        return [Pole(sp.Integer(0), -1, "inside", formula)] + others
     if scene.is_numeric:
         return _numeric_poles(transfer_polynomials(scene)[1])
     return poles_of(inverse_transfer(scene))
+
+
+def _order_at_zero(poly: sp.Expr) -> int:
+    """The power of ``z`` that divides the polynomial ``poly`` (its lowest degree)."""
+    return min(m[0] for m in sp.Poly(poly, Z_SYM).monoms()) if poly != 0 else 0
 
 
 def _numeric_poles(Q: flint.fmpq_poly) -> list[Pole]:

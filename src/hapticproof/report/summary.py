@@ -70,7 +70,7 @@ class SceneSummary:
             "delay": self.delay,
             "G_inverse": names.text(self.G_inverse),
             "hermitian_part": None if self.hermitian_part is None else full_text(self.hermitian_part, names),
-            "poles": [{"z": p.value, "multiplicity": p.multiplicity, "location": p.location} for p in self.poles],
+            "poles": [{"z": p.value, "multiplicity": p.formula or p.multiplicity, "location": p.location} for p in self.poles],
             "residues": [{"z": r.pole, "residue": r.residue, "condition": r.outcome.decision.value} for r in self.residues],
             "worst_case": names.text(self.worst_case) if self.worst_case is not None else None,
             "conditions": [c.to_json() for c in self.conditions],
@@ -102,7 +102,7 @@ class SceneSummary:
              else f"Re G^-1 ({names.helper('cos')} = {names.cos_text}) = ")
             + (brief(self.hermitian_part, verbose=verbose, names=names) if self.hermitian_part is not None
                else _skipped_text(self, "hermitian_part")),
-            "poles:           " + ", ".join(f"z = {p.value} ({p.location}{'' if p.multiplicity == 1 else f', x{p.multiplicity}' if p.multiplicity > 0 else ', multiplicity n+...'})" for p in self.poles),
+            "poles:           " + ", ".join(f"z = {p.value} ({p.location}{'' if p.multiplicity == 1 else f', x{p.multiplicity}' if p.multiplicity > 0 else f', multiplicity {p.formula}'})" for p in self.poles),
             "residues:        " + (", ".join(f"Res(z = {r.pole}) = {names.text(r.residue)} [{r.outcome.reason}]" for r in self.residues) or "none on |z| = 1"),
             f"worst case:      {brief(self.worst_case, verbose=verbose, names=names) if self.worst_case not in (None, sp.true, sp.false) else _minimum_text(self)}",
             "conditions:",

@@ -508,8 +508,18 @@ class Scene:
         ...
         hapticproof.core.errors.SceneError: unknown parameter 'Q': this single-user scene has B, K, T, b (and m, t_d, z_a)
         """
-        from hapticproof.systems.roles import ROLES
+        from hapticproof.systems.roles import ROLES, role_names
 
+        if self.system in ("single-user", "teleoperator"):
+            # a role's name is not also a parameter of the design (the device damping named K in
+            # the wall K + B(z-1)/(Tz)): one name, one meaning; the period belongs in both
+            design = self.environment_z()
+            used = {s.name for s in sp.sympify(design).free_symbols} if design is not None else set()
+            for name, field in role_names(self.system, self.roles, self.users).items():
+                if name in used and field != "period":
+                    what = "environment H(z)" if self.system == "single-user" else "controller C(z)"
+                    raise SceneError(f"roles: {field} = {name!r}, but {name} is already a parameter of the {what}: "
+                                     "one name, one meaning (give the role another name)")
         model_names = self.model_names()
         names = self.names()
         known = names | set(self.reserved())
