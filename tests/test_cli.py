@@ -92,3 +92,15 @@ def test_option_mistakes_are_one_line_too(capsys, argv, message):
     err = capsys.readouterr().err
     assert stop.value.code == 2
     assert err.startswith("hapticproof: error: ") and err.count("\n") == 1 and message in err, err
+
+
+def test_an_unknown_option_points_to_the_help_of_its_own_command(capsys):
+    from hapticproof.cli import main
+
+    for argv, prog in ((["derive", "single-user", "--bogus", "1"], "hapticproof derive single-user"),
+                       (["audit", "--paperz", "x"], "hapticproof audit")):
+        with pytest.raises(SystemExit) as stop:
+            main(argv)
+        assert stop.value.code == 2
+        err = capsys.readouterr().err.strip()
+        assert len(err.splitlines()) == 1 and "unrecognized arguments" in err and err.endswith(f"(see: {prog} --help)")

@@ -13,7 +13,7 @@ import argparse
 import importlib
 import sys
 from collections.abc import MutableMapping, Sequence
-from typing import NoReturn
+from typing import Any, NoReturn
 
 from hapticproof.core.errors import HapticproofError
 
@@ -28,11 +28,28 @@ class OneLineParser(argparse.ArgumentParser):
     (``hapticproof: error: derive single-user: argument --format: invalid choice ...``), as every
     other mistake is; the usage stays in ``--help``."""
 
+    def parse_args(self, args: Any = None, namespace: Any = None) -> Any:
+        self.words = list(sys.argv[1:] if args is None else args)     # the command, for an error's hint
+        return super().parse_args(args, namespace)
+
     def error(self, message: str) -> NoReturn:
-        words = self.prog.split()[1:]
+        prog = self._command_prog()
+        words = prog.split()[1:]
         where = f"{' '.join(words)}: " if words else ""
-        hint = f" (see: {self.prog} --help)"
+        hint = f" (see: {prog} --help)"
         self.exit(2, f"hapticproof: error: {where}{message}{hint}\n")
+
+    def _command_prog(self) -> str:
+        """The prog of the subcommand the command line names (``hapticproof derive single-user``):
+        an argument the root parser does not recognise belongs to it."""
+        parser = self
+        for word in getattr(self, "words", ()):
+            commands = next((a.choices for a in parser._actions if isinstance(a, argparse._SubParsersAction)), None)
+            if commands is None:
+                break
+            if word in commands:
+                parser = commands[word]
+        return parser.prog
 
 
 def build_parser(command: str | None = None, system: str | None = None) -> argparse.ArgumentParser:
