@@ -37,7 +37,7 @@ _PUBLIC = {
     "TeleoperatorScene": "hapticproof.systems.teleoperator",
     "inverse_transfer": "hapticproof.systems.models",
     "discretize": "hapticproof.systems.discretize",
-    "positive_real": "hapticproof.analysis.positivereal",
+    "positive_real": "hapticproof.analysis.anysystem",
     "hermitian": "hapticproof.analysis.positivereal",
     "worst_case": "hapticproof.analysis.positivereal",
     "NumericScene": "hapticproof.analysis.fastpath",
