@@ -246,3 +246,17 @@ def test_an_unedited_draft_of_a_strangers_wall_audits_right():
     verdicts = [r.verdict.value for r in audit_paper(paper.paper).results]
     assert verdicts == ["confirmed", "confirmed", "confirmed", "confirmed", "conservative"]
     assert "'positive'" in result.text.split("[[equations]]")[0]          # h, the period, is positive
+
+
+def test_a_setting_that_names_itself_is_read_once():
+    """A display's setting ``b = b + T`` (or a chain back to its own name) substitutes once: the
+    value is ``b + T`` in the parameters, never an endless substitution."""
+    import sympy as sp
+
+    from hapticproof.audit.definitions.values import Environment, evaluate
+
+    b, T = sp.symbols("b T", real=True)
+    value = evaluate(b, Environment(substitutions={"b": b + T}))
+    assert sp.sstr(value.to_sympy()) == "T + b"
+    value = evaluate(b, Environment(substitutions={"b": T, "T": b}))
+    assert sp.sstr(value.to_sympy()) == "b"

@@ -364,6 +364,8 @@ def _unbound(expr: Any, env: Environment) -> set[str]:
 class _Evaluator:
     def __init__(self, env: Environment) -> None:
         self.env = env
+        #: the names being substituted (a setting ``t_d = T`` read where ``T`` names ``t_d``: once)
+        self.substituting: set[str] = set()
 
     # -- dispatch --------------------------------------------------------------------------------
 
@@ -424,8 +426,12 @@ class _Evaluator:
         if e == OMEGA:
             # omega alone: the axis (s = j omega); on the circle it only appears in omega T
             return Value.boundary(BoundaryValue.r(AXIS), CONTINUOUS)
-        if e.name in self.env.substitutions:
-            return self.value(sp.sympify(self.env.substitutions[e.name]))
+        if e.name in self.env.substitutions and e.name not in self.substituting:
+            self.substituting.add(e.name)
+            try:
+                return self.value(sp.sympify(self.env.substitutions[e.name]))
+            finally:
+                self.substituting.discard(e.name)
         if e.name in self.env.complex_names:
             re_part, im_part = (RationalFunction.variable(f"{e.name}'{p}") for p in ("re", "im"))
             domain = self.env.complex_domain
