@@ -117,23 +117,25 @@ class DelayMargin:
             head = f"delay margin: {self.names.helper('margin')} = {self.margin}" + (f" (t_d <= {t})" if t is not None else "") + \
                 f": passive for every n <= {self.margin}, not at n = {self.margin + 1}"
         lines = [head, f"  how: {self.reason}" if self.decision == Decision.PROVED else ""]
-        if self.decision == Decision.PROVED and self.proof and "M_0" in self.reason:
-            lines.append(f"  where {self._where()}")
+        where = self._where() if self.decision == Decision.PROVED and self.proof and "M_0" in self.reason else None
+        if where:
+            lines.append(f"  where {where}")
         if self.failing is not None:
             lines.append(f"  at n = {self.margin + 1 if self.margin is not None else '?'}: {_short(self.failing.reason)}")
         return "\n".join(line for line in lines if line)
 
 
-    def _where(self) -> str:
-        """The bound's quantities defined, with their values: ``G^-1 = a + z^-n F(z)``, ``a = b - z_a``,
-        ``R = Res(F, 1)``, ``F_0 = F - R/(z - 1)`` and ``M_0 >= max|F_0|`` on the circle."""
+    def _where(self) -> str | None:
+        """The bound's quantities of a single user defined, with their values: ``G^-1 = a + z^-n F(z)``,
+        ``a = b - z_a``, ``R = Res(F, 1)``, ``F_0 = F - R/(z - 1)`` and ``M_0 >= max|F_0|`` on the
+        circle (``None`` when the proof does not give them all: the modes of m users)."""
         f = _formula_names(self.names)
         value = {key.split(" ")[0]: v for key, v in self.proof.items() if not isinstance(v, dict)}
         a, R, M0 = (value.get(k) for k in (f["a"], f["R"], "M_0"))
-        return (f"G^-1 = {f['a']} + z^-n F(z), {f['a']} = {f['b']} - z_a" + (f" = {a}" if a is not None else "")
-                + f", {f['R']} = Res(F, 1)" + (f" = {R}" if R is not None else "")
-                + f", {f['F_0']} = F - {f['R']}/(z - 1), M_0 = " + (f"{M0} " if M0 is not None else "")
-                + f">= max|{f['F_0']}| on |z| = 1")
+        if a is None or R is None or M0 is None:
+            return None
+        return (f"G^-1 = {f['a']} + z^-n F(z), {f['a']} = {f['b']} - z_a = {a}, {f['R']} = Res(F, 1) = {R}, "
+                f"{f['F_0']} = F - {f['R']}/(z - 1), M_0 = {M0} >= max|{f['F_0']}| on |z| = 1")
 
 
 def _short(text: str, limit: int = 240) -> str:

@@ -164,8 +164,10 @@ def witness_text(witness: Any, names: Any = None) -> str:
     'c = -3/5, z = -3/5 + j*4/5, omega_T = 2*atan(2)'
     """
     out = []
-    for key, value in dict(witness).items():
-        key = names.words(key) if names is not None else key
+    # the circle's keys by the scene's names; other keys are the scene's own already (a key "h"
+    # is the user's period, not a toolkit word to rename)
+    shown_witness = names.witness(dict(witness)) if names is not None else dict(witness)
+    for key, value in shown_witness.items():
         if isinstance(value, (list, tuple)) and len(value) == 2:
             re, im = (str(v) for v in value)
             shown = f"{re} - j*{im[1:]}" if im.startswith("-") else f"{re} + j*{im}"
