@@ -104,3 +104,54 @@ def test_a_derived_witness_is_keyed_by_the_scenes_names_and_a_forged_one_is_refu
         (tmp_path / "f.json").write_text(json.dumps(data))
         out = _run("check", "f.json", cwd=tmp_path)
         assert out.returncode != 0 and f"the displayed {key} = {forged}" in out.stdout, out.stdout
+
+
+PAPER_FILE = r"""
+[paper]
+id = 'damped'
+title = 'Damped walls'
+
+[symbols]
+k = 'nonnegative'
+c = 'nonnegative'
+h = 'positive'
+c_d = 'positive'
+
+[scenes.wall]
+system = "single-user"
+approximation = "forward"
+environment = 'k + c*(z - 1)/(h*z)'
+roles = { period = "h", device_damping = "c_d" }
+
+[[equations]]
+id = '2'
+printed = '\Re\, G^{-1}(e^{j\omega h}) = c_d - \frac{kh}{2} + c\cos(\omega h).'
+claim = 'hermitian-part'
+scene = 'wall'
+
+[[equations]]
+id = '2b'
+printed = '\Re\, G^{-1}(e^{j\omega h}) = c_d - \frac{kh}{2} - c\cos(\omega h).'
+claim = 'hermitian-part'
+scene = 'wall'
+
+[[equations]]
+id = '3'
+printed = 'c_d > \frac{kh}{2} + c .'
+claim = 'passivity-condition'
+scene = 'wall'
+"""
+
+
+def test_a_damping_called_c_is_the_judges_c_too(tmp_path):
+    """The judge's sample scenes take the paper's c at its sampled values (not 1, the value of a
+    parameter left out): the right Re G^-1 is confirmed, its sign slip a typo."""
+    from hapticproof.audit.paperfile import loads
+    from hapticproof.audit.runner import audit_paper
+
+    report = audit_paper(loads(PAPER_FILE, "damped.toml").paper)
+    verdicts = {r.id: r.verdict.value for r in report.results}
+    assert verdicts == {"2": "confirmed", "2b": "typo", "3": "confirmed"}, [(r.id, r.detail[:200]) for r in report.results]
+    judge = report.results[0].evidence.facts["judge"]
+    values = [point["values"]["c"] for point in judge["points"]]
+    assert len(set(values)) > 1

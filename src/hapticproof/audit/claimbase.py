@@ -239,15 +239,17 @@ def numeric_scene_at(state: State, point: Mapping[Any, Any]) -> Any:
     scene = state.scene
     values: dict[str, Any] = {}
     delay = None
+    model_free = {s.name for s in getattr(state.model, "parameters", set())} - {"n"}
     for key, value in point.items():
         name = key if isinstance(key, str) else key.name
-        if name == "c":
+        # the circle's c is no parameter; a paper's own c is (its symbol is kept apart from the circle's)
+        circle = key == C_SYM if not isinstance(key, str) else ("\x1f" in name or name == "c" and "c" not in model_free)
+        if circle:
             continue
         if name == "n":
             delay = int(value)
             continue
         values[name] = value
-    model_free = {s.name for s in getattr(state.model, "parameters", set())} - {"n"}
     for name in model_free - set(values):
         values[name] = sp.Integer(1)
     params = {k: v for k, v in values.items() if k in model_free or k in dict(scene.params)}
