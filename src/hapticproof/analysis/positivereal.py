@@ -714,12 +714,17 @@ def positive_real(scene: SingleUserScene) -> Outcome:
     return combine(conditions(scene))
 
 
-def definition_object(out: Outcome, transfer: dict[str, Any]) -> dict[str, Any] | None:
+def definition_object(out: Outcome, transfer: dict[str, Any], names: Any = None) -> dict[str, Any] | None:
     """The judged definition object of a decision (:func:`hapticproof.exact.judge.judged_definition`)
     for a report that shows it (``derive``): ``hapticproof check`` tests the decision against the
     definition from ``G^{-1}`` itself. Not part of the decision: the judge's exact sample points
     cost far more than the decision (a map or an audit decides thousands of scenes)."""
+    from hapticproof.core.naming import witness_keys
     from hapticproof.exact.judge import judged_definition
 
-    return judged_definition("disk", out.decision.value, transfer,
-                             to_jsonable(out.witness) if out.decision == Decision.DISPROVED and out.witness else None)
+    witness = None
+    if out.decision == Decision.DISPROVED and out.witness:
+        # the judge's object speaks the checker's keys (c, omega_T), whatever the scene's names
+        printed = {shown: key for key, shown in witness_keys(names.changed() if names is not None else None).items()}
+        witness = to_jsonable({printed.get(k, k): v for k, v in out.witness.items()})
+    return judged_definition("disk", out.decision.value, transfer, witness)

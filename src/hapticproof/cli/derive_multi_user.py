@@ -130,7 +130,7 @@ def derive(scene: Any, minors: str = "auto", full: bool = False) -> dict[str, An
         from hapticproof.analysis.positivereal import definition_object
         from hapticproof.exact.judge import MAX_JUDGED_SIZE
 
-        definition = (definition_object(positive_real(scene), transfer_entries(scene))
+        definition = (definition_object(positive_real(scene), transfer_entries(scene), scene.naming())
                       if scene.users <= MAX_JUDGED_SIZE else None)
         if definition is not None:
             out["definition"] = definition

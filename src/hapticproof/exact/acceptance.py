@@ -54,10 +54,11 @@ from hapticproof.exact.checkarith import (
     is_proper,
     json_poly,
     max_degree,
+    Sturm,
 )
 
-__all__ = ["CLAIMLESS", "angle", "audit_binding", "claim_of", "definition_proof", "derive_binding", "same_transfer",
-           "witness_problems"]
+__all__ = ["CLAIMLESS", "angle", "audit_binding", "claim_of", "definition_proof", "derive_binding", "factored_transfers",
+           "same_transfer", "witness_problems"]
 
 #: Verdicts and decisions that claim nothing (no evidence needed to show them).
 CLAIMLESS = frozenset({"undecided", "symbolic"})
@@ -226,14 +227,16 @@ def shown_poles(report: Mapping[str, Any], transfer: Mapping[str, Any]) -> list[
         num, den = num / g, den / g
     shown = report.get("poles")
     if isinstance(shown, list):
-        seen = set()
+        seen, algebraic = set(), 0
         for pole in shown:
             if not isinstance(pole, Mapping):
                 continue
             try:
                 z0 = exact_q(pole.get("z"))
             except (TypeError, ValueError, ZeroDivisionError):
-                continue                                  # an algebraic pole: shown by its radicals
+                problems += _algebraic_pole(pole, den)    # shown by its decimal approximation
+                algebraic += 1
+                continue
             seen.add(z0)
             factor = flint.fmpq_poly([-flint.fmpq(z0.numerator, z0.denominator), 1])
             order, rest = 0, den
@@ -252,20 +255,44 @@ def shown_poles(report: Mapping[str, Any], transfer: Mapping[str, Any]) -> list[
             if pole.get("location") != where:
                 problems.append(f"the pole shown at z = {pole.get('z')} is {'on the unit circle' if where == 'on' else where}, "
                                 f"not {str(pole.get('location'))[:20]}")
-        for z0 in _rational_roots(den):
-            if z0 not in seen:
-                problems.append(f"the pole z = {z0} of G^-1 is not shown")
+        missing = [z0 for z0 in _rational_roots(den) if z0 not in seen]
+        problems += [f"the pole z = {z0} of G^-1 is not shown" for z0 in missing]
+        distinct = (den / den.gcd(den.derivative())).degree() if den.degree() > 0 else 0
+        if len(seen) + algebraic + len(missing) != distinct:
+            problems.append(f"{len(seen) + algebraic} poles are shown, G^-1 has {distinct} distinct poles")
     residues = report.get("residues")
     for residue in residues if isinstance(residues, list) else ():
         try:
-            z0, value = exact_q(residue.get("z")), exact_q(residue.get("residue"))
+            z0 = exact_q(residue.get("z"))
         except (TypeError, ValueError, ZeroDivisionError, AttributeError):
+            problems.append(f"the residue shown at z0 = {str(residue.get('z') if isinstance(residue, Mapping) else residue)[:40]} "
+                            "is at no rational pole of G^-1 on the circle (an algebraic pole's residue is not shown)")
             continue
-        if abs(z0) != 1:
+        if abs(z0) != 1 or den(flint.fmpq(z0.numerator, z0.denominator)) != 0:
+            problems.append(f"the residue shown at z0 = {z0} is at no pole of G^-1 on the unit circle")
+            continue
+        if den.derivative()(flint.fmpq(z0.numerator, z0.denominator)) == 0:
+            if residue.get("condition") == "proved":       # a multiple pole on the circle: never a positive residue
+                problems.append(f"the residue condition at the multiple pole z0 = {z0} is shown 'proved'")
+            continue
+        try:
+            value = exact_q(residue.get("residue"))
+        except (TypeError, ValueError, ZeroDivisionError, AttributeError):
+            problems.append(f"the residue shown at the simple pole z0 = {z0} cannot be read")
             continue
         own = _residue_matrix([transfer], transfer, z0)[0][0]
         if value not in (own, own * z0):
             problems.append(f"the residue shown at z0 = {z0} is {residue.get('residue')}, G^-1 has Res/z0 = {own}")
+        expected = "proved" if own >= 0 else "disproved"
+        if residue.get("condition") in ("proved", "disproved") and residue.get("condition") != expected:
+            problems.append(f"the residue condition at z0 = {z0} is shown {residue.get('condition')!r}, "
+                            f"Res/z0 = {own} makes it {expected!r}")
+    worst = report.get("worst_case")
+    sign = next((c for c in report.get("conditions") or [] if isinstance(c, Mapping) and c.get("name") == _SIGN_CONDITION), None)
+    if worst in ("True", "False", True, False) and sign is not None and sign.get("decision") in ("proved", "disproved"):
+        if (str(worst) == "True") != (sign.get("decision") == "proved"):
+            problems.append(f"the worst case shown ({worst}) contradicts the decision of {_SIGN_CONDITION} "
+                            f"({sign.get('decision')})")
     try:
         at = exact_q(report.get("minimiser"))
     except (TypeError, ValueError, ZeroDivisionError):
@@ -273,6 +300,46 @@ def shown_poles(report: Mapping[str, Any], transfer: Mapping[str, Any]) -> list[
     if at is not None and not -1 <= at <= 1:
         problems.append(f"the minimiser shown c = {report.get('minimiser')} is not a point of the circle (|c| > 1)")
     return problems
+
+
+def _algebraic_pole(pole: Mapping[str, Any], den: flint.fmpq_poly) -> list[str]:
+    """A pole shown by its decimals (``{"approx": "0.5 - 0.2887*I"}``): within ``1e-9`` of an
+    irrational root of the denominator, of that root's multiplicity and location."""
+    shown = pole.get("z")
+    text = shown.get("approx") if isinstance(shown, Mapping) else None
+    if not isinstance(text, str) or len(text) > 200:
+        return [f"the pole shown at z = {str(shown)[:40]} is neither a rational number nor a decimal approximation"]
+    try:
+        m = re.fullmatch(r"\s*([-+]?[0-9.eE+-]+?)?\s*(?:([-+])\s*([0-9.eE+-]+)\*I)?\s*", text)
+        if m is None or not (m.group(1) or m.group(3)):
+            raise ValueError(text)
+        point = flint.acb(float(m.group(1) or 0), (-1 if m.group(2) == "-" else 1) * float(m.group(3) or 0))
+    except (ValueError, TypeError):
+        return [f"the pole shown at z = {text[:40]} cannot be read"]
+    if den.degree() > max_degree():
+        raise CheckSkipped(f"a denominator of degree {den.degree()} is above the checker's limit")
+    g = den.gcd(den.derivative())
+    square_free = den / g if g.degree() > 0 else den
+    for root in square_free.complex_roots():
+        z = root[0]
+        if abs(complex(z.real.mid(), z.imag.mid()) - complex(point.real.mid(), point.imag.mid())) < 1e-9:
+            order = _root_order(den, z)
+            where = "inside" if (abs(z) < 1) is True else "outside" if (abs(z) > 1) is True else "on"
+            problems = []
+            if pole.get("multiplicity") != order:
+                problems.append(f"the pole shown at z = {text[:40]} has multiplicity {order}, not {pole.get('multiplicity')}")
+            if pole.get("location") != where:
+                problems.append(f"the pole shown at z = {text[:40]} is {where}, not {str(pole.get('location'))[:20]}")
+            return problems
+    return [f"the pole shown at z = {text[:40]} is not a pole of G^-1"]
+
+
+def _root_order(p: flint.fmpq_poly, z: Any) -> int:
+    """The multiplicity of the root (a ball) ``z`` of ``p``: derivatives that contain 0 there."""
+    order, q = 0, p
+    while q.degree() > 0 and flint.acb_poly(q)(z).contains(0):
+        order, q = order + 1, q.derivative()
+    return order
 
 
 def _rational_roots(p: flint.fmpq_poly) -> list[Fraction]:
@@ -413,6 +480,8 @@ def _shown_minimum(report: Mapping[str, Any], cond: Mapping[str, Any]) -> list[s
         value = exact_q(((cond.get("evidence") or {}).get("facts") or {}).get("value"))
     except (TypeError, ValueError, ZeroDivisionError):
         value = None
+    form = next(((json_poly(c["numerator"]), json_poly(c["denominator"])) for c in _certificates(cond)
+                 if c["certificate"] == "sign" and "numerator" in c and "denominator" in c), None)
     for where in (report, cond):
         shown = where.get("minimum")
         try:
@@ -423,7 +492,73 @@ def _shown_minimum(report: Mapping[str, Any], cond: Mapping[str, Any]) -> list[s
             out.append(f"the minimum shown {shown} is negative, but Re G^-1 >= 0 is proved")
         if cond.get("decision") == "disproved" and value is not None and low > value:
             out.append(f"the minimum shown {shown} is above Re G^-1 = {value} at the disproof's witness")
+        if form is not None:
+            out += _minimum_of_form(form, low, where.get("minimiser"), shown)
     return out
+
+
+def _minimum_of_form(form: tuple[flint.fmpq_poly, flint.fmpq_poly], low: Fraction, at: Any, shown: Any) -> list[str]:
+    """The minimum shown is ``Re G^-1 = N(c)/D(c)`` (the sign certificate's c-form, tied to
+    ``G^-1``) at the minimiser shown, and no value of ``Re G^-1`` on ``[-1, 1]`` is below it."""
+    num, den = form
+    try:
+        c = exact_q(at)
+    except (TypeError, ValueError, ZeroDivisionError):
+        return [f"the minimum shown {str(shown)[:40]} has no minimiser c in [-1, 1] to be read"]
+    if not -1 <= c <= 1:
+        return [f"the minimiser shown c = {str(at)[:40]} is not in [-1, 1]"]
+    q = flint.fmpq(c.numerator, c.denominator)
+    if den(q) == 0:
+        return []                                # a pole of Re G^-1 on the circle: no finite minimum there
+    value = num(q) / den(q)
+    if value != flint.fmpq(low.numerator, low.denominator):
+        return [f"the minimum shown {str(shown)[:40]} is not Re G^-1 = {value} at the minimiser shown c = {at}"]
+    if den.degree() > 0 and not _sign_fixed_on(den, Fraction(-1), Fraction(1)):
+        return []                                # Re G^-1 has poles on the circle: its infimum is not at a point
+    sign = 1 if den(0) > 0 else -1
+    if not _nonnegative_on((num - den * flint.fmpq(low.numerator, low.denominator)) * sign, Fraction(-1), Fraction(1)):
+        return [f"the minimum shown {str(shown)[:40]} is not the minimum: Re G^-1 is below it somewhere in c in [-1, 1]"]
+    return []
+
+
+def _odd_part(p: flint.fmpq_poly) -> flint.fmpq_poly:
+    """The product of the squarefree factors of ``p`` of odd multiplicity (Yun): where ``p``
+    changes sign."""
+    out, i = flint.fmpq_poly([1]), 1
+    g = p.gcd(p.derivative())
+    c = p / g
+    d = p.derivative() / g - c.derivative()
+    while c.degree() > 0:
+        a = c.gcd(d)
+        if i % 2 == 1:
+            out = out * a
+        c = c / a
+        d = d / a - c.derivative()
+        i += 1
+    return out
+
+
+def _sign_fixed_on(p: flint.fmpq_poly, a: Fraction, b: Fraction) -> bool:
+    """``p`` has no root in the closed interval ``[a, b]``."""
+    if p(flint.fmpq(a.numerator, a.denominator)) == 0 or p(flint.fmpq(b.numerator, b.denominator)) == 0:
+        return False
+    return Sturm(p).count_open(a, b) == 0
+
+
+def _nonnegative_on(p: flint.fmpq_poly, a: Fraction, b: Fraction) -> bool:
+    """``p >= 0`` on ``[a, b]``, exactly: no root of odd multiplicity inside and ``p >= 0`` at a
+    point that is no root."""
+    if p.is_zero():
+        return True
+    odd = _odd_part(p)
+    if odd.degree() > 0 and Sturm(odd).count_open(a, b) > 0:
+        return False
+    for k in range(2, p.degree() + 4):              # a point of (a, b) that is no root of p
+        x = a + (b - a) / k
+        value = p(flint.fmpq(x.numerator, x.denominator))
+        if value != 0:
+            return value > 0
+    return True
 
 
 def _numeric(report: Mapping[str, Any]) -> bool:
@@ -526,6 +661,24 @@ def audit_binding(entry: Mapping[str, Any]) -> list[str]:
 # ---------------------------------------------------------------------------------------------
 
 
+def factored_transfers(node: Any) -> list[str]:
+    """Transfer functions in ``z`` that carry a constant ``factor``: no report writes one (only a
+    network's entries in ``s`` do), and the poles and residues of the certificates are read
+    without it -- a factor would turn a negative residue positive unseen."""
+    stack: list[tuple[Any, str]] = [(node, "z")]       # (a part, the variable of the transfer around it)
+    while stack:
+        item, variable = stack.pop()
+        if isinstance(item, Mapping):
+            variable = item["variable"] if isinstance(item.get("variable"), str) else variable
+            if "factor" in item and "num" in item and variable == "z":
+                return ["a transfer function of z carries a 'factor' that no report writes (its residues and poles "
+                        "are read without it)"]
+            stack.extend((v, variable) for v in item.values())
+        elif isinstance(item, list):
+            stack.extend((v, variable) for v in item)
+    return []
+
+
 def witness_problems(node: Any, keys: Mapping[str, str] | None = None) -> list[str]:
     """Every displayed witness inside ``node`` that names a point of the circle twice: ``z``
     (``[re, im]``) on the unit circle, ``c = Re z``, ``omega_T`` the angle of ``z`` (or, without
@@ -546,6 +699,12 @@ def witness_problems(node: Any, keys: Mapping[str, str] | None = None) -> list[s
 def _one_point(witness: Mapping[str, Any], cos: str, angle_key: str) -> list[str]:
     z = witness.get("z")
     point = [exact_q(v) for v in z] if isinstance(z, list) and len(z) == 2 else None
+    if point is not None and (cos not in witness or angle_key not in witness):
+        # every point of the circle a report shows names its c and angle: under other keys than
+        # the report's notation gives, they would be read by no one
+        missing = [key for key in (cos, angle_key) if key not in witness]
+        return [f"the witness shows z but not {' and '.join(missing)} (the keys the report's notation gives "
+                "its point of the circle)"]
     c = exact_q(witness[cos]) if cos in witness and isinstance(witness[cos], str) and (point or angle_key in witness) \
         else None
     out = []

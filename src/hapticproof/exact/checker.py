@@ -624,6 +624,7 @@ class ReportCheck:
                              + ("; NOT BACKED: " + results[0].reason if results else ""))
                 unverifiable += 1
                 continue
+            unbound = [r for r in results if r.source in ("unbacked", "symbolic")]
             results = [r for r in results if r.source != "unbacked"]
             good = sum(r.ok and r.verified for r in certs)
             skipped = [r for r in certs if r.ok and not r.verified]
@@ -640,9 +641,11 @@ class ReportCheck:
                 text += "; " + "; ".join(r.reason for r in skipped[:2])
             if bad:
                 text += "; " + "; ".join(_LABELS.get(r.source, "") + r.reason for r in bad[:3])
+            if unbound:
+                text += "; NOT RE-VERIFIED: " + unbound[0].reason
             lines.append(text)
             verified += good == len(certs) and not bad and bool(certs or definition) and \
-                all(r.verified for r in results)
+                all(r.verified for r in results) and not unbound
         failed = self.failed
         unbacked = sum(r.source == "unbacked" for _, r in self.not_verified)
         skipped = len(self.not_verified) - unbacked
@@ -737,6 +740,7 @@ def check_report(report: Any) -> ReportCheck:
         audit_binding,
         claim_of,
         derive_binding,
+        factored_transfers,
         witness_problems,
     )
     from hapticproof.exact.judge import judge, judges
@@ -745,12 +749,30 @@ def check_report(report: Any) -> ReportCheck:
     if isinstance(report, str):
         report = json.loads(report)
     out = []
+    audit = isinstance(report, dict) and ("papers" in report or "equations" in report)
+    factored = _guarded(lambda: factored_transfers(report), "binding")
+    if factored:
+        out.append(("report", factored))
     for name, entry, keys in _entries(report):
         results = check_certificates(entry) + judge_results(entry, keys)
         results += _guarded(lambda e=entry: audit_binding(e) if isinstance(e, dict) and "verdict" in e else [], "binding")
         results += _guarded(lambda e=entry, k=keys: witness_problems(e, k), "display")
         claim = claim_of(entry)
-        if claim is not None and not any(r.source in ("certificate", "judge") for r in results):
+        if isinstance(entry, dict) and entry.get("decision") == "symbolic":
+            # a condition on the parameters claims an 'iff' the checker cannot test at numbers: it
+            # is re-derived (derive), never accepted as re-verified
+            results.append(CheckResult(True, "a symbolic condition on the parameters (not re-verifiable by the "
+                                             "checker: re-derive it)", verified=False, source="symbolic"))
+        if audit and claim is not None and any(r.source == "certificate" for r in results) and \
+                not any(r.source == "judge" and r.verified for r in results):
+            # certificates re-verify the exact decision; only a judge object binds it to the verdict
+            # on the printed display (wrong, typo, confirmed...): without one, a relabelled verdict
+            # would pass with the same certificates
+            results.append(CheckResult(True, f"the verdict {claim!r} compares the printed display with the exact "
+                                             "decision; no judge object re-judges that comparison (its certificates "
+                                             "alone do not say which verdict they back)", verified=False,
+                                       source="unbacked"))
+        elif claim is not None and not any(r.source in ("certificate", "judge") for r in results):
             if _vacuous_residues(report, name, claim, out):
                 results.append(CheckResult(True, "no pole on the boundary (the verified roots certificate of this report): "
                                                  "no residue to check", source="binding"))

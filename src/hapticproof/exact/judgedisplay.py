@@ -193,6 +193,33 @@ def _read_shown(text: Any, name: str) -> tuple[Any, Any] | None:
     return expr, next(iter(expr.free_symbols), None)
 
 
+#: the points at most at which a displayed form is compared (a longer form is compared there)
+MAX_FORM_POINTS = 400
+
+
+def _foreign_names(text: Any, name: str) -> set[str]:
+    """The names other than ``name`` a displayed expression uses (empty when it cannot be read)."""
+    from hapticproof.core.expr import read_expression
+
+    if not isinstance(text, str) or len(text) > MAX_SHOWN_CHARS or text in ("None", "True", "False"):
+        return set()
+    try:
+        expr = read_expression(text, None)
+    except Exception:  # noqa: BLE001 - a display the reader does not take is compared nowhere
+        return set()
+    return {s.name for s in expr.free_symbols} - {name}
+
+
+def _degree_in(expr: Any, symbol: Any) -> int:
+    """The degree of numerator plus denominator of ``expr`` as a rational function of ``symbol``."""
+    import sympy as sp
+
+    if symbol is None:
+        return 0
+    num, den = sp.fraction(sp.together(expr))
+    return sum(sp.Poly(part, symbol).degree() for part in (num, den))
+
+
 def _value_at(expr: Any, symbol: Any, point: Fraction) -> Fraction | None:
     import sympy as sp
 
@@ -228,10 +255,18 @@ def displayed_forms(report: Mapping[str, Any], definition: Mapping[str, Any]) ->
                     break
         notation = report.get("notation") if isinstance(report.get("notation"), Mapping) else {}
         cos = notation.get("cos", "c") if isinstance(notation.get("cos", "c"), str) else "c"
+        foreign = _foreign_names(report.get("hermitian_part"), cos)
+        if foreign:
+            problems.append(f"the Re G^-1 shown names {', '.join(sorted(foreign))[:60]}: a numeric report's Re G^-1 is a "
+                            f"function of {cos} = cos(omega T) alone")
         shown = _read_shown(report.get("hermitian_part"), cos)     # c under the scene's name for it
         if shown:
             expr, symbol = shown
-            for t in (Fraction(1, 2), Fraction(1, 3), Fraction(2), Fraction(3, 5), Fraction(5)):
+            # enough points that agreeing at all of them is an identity of the two rational functions
+            # of c (degrees of the shown form plus that of Re G^-1, at most that of G^-1)
+            needed = _degree_in(expr, symbol) + max(len(transfer["num"]), len(transfer["den"])) + 1
+            for k in range(min(needed, MAX_FORM_POINTS)):
+                t = Fraction(1, k + 2)
                 c = (1 - t * t) / (1 + t * t)
                 try:
                     own = eval_transfer(dict(transfer), Gaussian(c, 2 * t / (1 + t * t)))

@@ -238,7 +238,7 @@ def summarize_single_user(scene: SingleUserScene, with_profile: bool = False, fu
     wc = worst_case(scene)
     verdict = positive_real(scene)
     witness = dict(verdict.witness) if (verdict.witness and verdict.decision == Decision.DISPROVED) else None
-    definition = (definition_object(verdict, transfer_json(*transfer_polynomials(scene)))   # G^-1 itself, judged
+    definition = (definition_object(verdict, transfer_json(*transfer_polynomials(scene)), scene.naming())  # G^-1 itself, judged
                   if scene.is_numeric else None)
     decision, reason = verdict.decision.value, verdict.reason
     if definition is not None and not definition["judged"]["ok"]:
