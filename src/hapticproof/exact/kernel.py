@@ -453,6 +453,11 @@ def _short(value: Any) -> str:
 def sign_outcome(cert: SignCertificate, witness: dict[str, Any] | None, what: str) -> Outcome:
     if cert.holds:
         touching = len(cert.roots)
+        if cert.numerator is not None and cert.denominator is not None:
+            # zeros of the function, not of num*den: a pole (a root of the denominator) touches nothing
+            g = cert.numerator.gcd(cert.denominator)
+            zeros = cert.numerator / g if g.degree() > 0 else cert.numerator
+            touching = len(real_roots(zeros, cert.lo, cert.hi)) if zeros.degree() > 0 else 0
         reason = f"{what} >= 0 for all {cert.variable} in {_interval_text(cert)}"
         if touching:
             reason += f" (touches 0 at {touching} point{'s' if touching > 1 else ''})"
