@@ -155,3 +155,47 @@ def test_a_damping_called_c_is_the_judges_c_too(tmp_path):
     judge = report.results[0].evidence.facts["judge"]
     values = [point["values"]["c"] for point in judge["points"]]
     assert len(set(values)) > 1
+
+
+OWN_NAMES_PAPER = r"""\documentclass{article}
+\begin{document}
+\title{Damped walls}
+\section{Model}
+A haptic device with physical damping $c_d > 0$ is sampled with period $h$.
+It renders a virtual wall with stiffness $k \ge 0$ and virtual damping $c \ge 0$,
+\begin{equation}
+H(z) = k + c\,\frac{z-1}{hz}.
+\end{equation}
+\section{Passivity}
+The real part of the inverse transfer function on the unit circle is
+\begin{equation}
+\Re\, G^{-1}(e^{j\omega h}) = c_d - \frac{kh}{2} + c\cos(\omega h).
+\end{equation}
+The device is passive if and only if
+\begin{equation}
+c_d > \frac{kh}{2} + c .
+\end{equation}
+The device is passive if and only if
+\begin{equation}
+c_d > kh + c .
+\end{equation}
+The device is passive if and only if
+\begin{equation}
+c_d > \frac{kh}{2} - c\cos(\omega h) \quad \forall \omega .
+\end{equation}
+\end{document}
+"""
+
+
+def test_a_wall_paper_in_its_own_names_is_drafted_and_audited_unedited(tmp_path):
+    """The device damping c_d named by the prose, the period h, a frequency-wise condition with
+    \\forall: the draft gives the wall its roles and every display a claim; the audit confirms the
+    four right displays and repairs the lost half."""
+    (tmp_path / "p.tex").write_text(OWN_NAMES_PAPER)
+    assert _run("new-paper", "d.toml", "--from", "p.tex", cwd=tmp_path).returncode == 0
+    draft = (tmp_path / "d.toml").read_text()
+    assert 'roles = { device_damping = "c_d", period = "h" }' in draft and "# [[equations]]" not in draft
+    run = _run("audit", "--paper", "d.toml", "--format", "json", "-o", "a.json", cwd=tmp_path)
+    assert run.returncode == 0, run.stderr
+    verdicts = {e["id"]: e["verdict"] for e in json.loads((tmp_path / "a.json").read_text())["equations"]}
+    assert verdicts == {"1": "confirmed", "2": "confirmed", "3": "confirmed", "4": "typo", "5": "confirmed"}, verdicts

@@ -199,6 +199,9 @@ def tokenize(text: str, start: int = 0, stop: int | None = None) -> list[Token]:
                 elif name in ("\\left", "\\right"):
                     delim, k = read_delimiter(text, j, stop, name)
                     emit(name[1:], delim, k)
+                elif name == "\\forall":          # the quantifier reads as the words "for all"
+                    emit("text", "\\text", j, "for all")
+                    k = j
                 elif name in IGNORED:
                     space, k = True, j
                 elif name in SEPARATOR_COMMANDS:

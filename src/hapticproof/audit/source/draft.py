@@ -227,11 +227,18 @@ def expr_symbols(text: str) -> set:
     return read_expression(text, "z").free_symbols - {read_expression("z", "z")}
 
 
+#: "<word> damping $X ...$" in the prose: the device's damping unless the word says otherwise
+_DEVICE_DAMPING = re.compile(r"([A-Za-z]+)\s+damping\s+(?:of\s+|coefficient\s+)?\$\s*([A-Za-z](?:_\{?\w+\}?)?)")
+#: the words before "damping" that name a damping other than the device's
+_NOT_THE_DEVICE = frozenset({"virtual", "rendered", "wall", "environment", "controller", "coupling", "added", "simulated"})
+
+
 def _guessed_roles(source: Source, environment: set[str]) -> str | None:
     """The wall's roles in the paper's own names, as an inline TOML table: the period when
     ``H(z)`` has one ``T_...`` and no ``T``, or uses the one period the prose or the displays
     name ("sampled with period $h$", ``\\cos(\\omega h)``); the device damping when a display
-    ``G^{-1}(z) = X + ...`` starts with a name ``X`` that ``H`` does not use."""
+    ``G^{-1}(z) = X + ...`` starts with a name ``X`` that ``H`` does not use, or the prose calls a
+    name ``H`` does not use the device's damping ("physical damping $c_d > 0$")."""
     from hapticproof.audit.source.guess import period_names
 
     roles = {}
@@ -248,6 +255,13 @@ def _guessed_roles(source: Source, environment: set[str]) -> str | None:
             if name not in environment and name not in ("b", "z", "e", "j"):
                 roles["device_damping"] = name
             break
+    if "device_damping" not in roles:          # "a device with physical damping $c_d > 0$"
+        prose = "\n".join(d.prose for d in source.displays)
+        for m in _DEVICE_DAMPING.finditer(prose):
+            name = m.group(2).replace("{", "").replace("}", "")
+            if m.group(1).lower() not in _NOT_THE_DEVICE and name not in environment and name not in ("b", "z", "e", "j"):
+                roles["device_damping"] = name
+                break
     return "{ " + ", ".join(f'{k} = "{v}"' for k, v in sorted(roles.items())) + " }" if roles else None
 
 
@@ -405,6 +419,10 @@ def _scene_guess(display: Display, ident: str, context: str, designs: dict[str, 
     return Entry(display, ident, claim, why, scene, scene_why, names, guessed=claim, form=form)
 
 
+#: a display that defines a transfer function G (``G^{-1}(z) = ...``, ``\hat G_d(z) = ...``)
+_DEFINES_G = re.compile(r"^\s*(?:\\(?:hat|tilde|bar|mathbf)\s*\{?\s*)?G(?![A-Za-z])[^=<>]{0,40}=")
+
+
 def _entries(source: Source, designs: dict[str, tuple[str, str]]) -> list[Entry]:
     from hapticproof.audit.definitions.guesses import read_claims
 
@@ -416,6 +434,7 @@ def _entries(source: Source, designs: dict[str, tuple[str, str]]) -> list[Entry]
     seen: dict[str, int] = {}
     cache: dict[str, set[str]] = {}
     out = []
+    defines_g = any(_DEFINES_G.match(d.text) for d in source.displays)
     for display, context in zip(source.displays, contexts(source)):
         ident = display.id
         if ident in seen:
@@ -432,6 +451,10 @@ def _entries(source: Source, designs: dict[str, tuple[str, str]]) -> list[Entry]
             scene_claim = guess.claim in _SCENE_EXPRESSIONS and guess.scene is not None
             if rc.claim == "identity" and rc.unbound and guess.claim is not None:
                 out.append(guess)             # names the paper never defines: the scene's model says what they are
+                continue
+            if rc.claim == "condition" and rc.property == "positive-real" and not rc.about and not defines_g \
+                    and guess.claim is not None and guess.scene is not None:
+                out.append(guess)             # passivity of no object the paper defines: the guessed scene's model
                 continue
             out.append(Entry(display, ident, rc.claim, rc.why, scene=guess.scene if (rc.derived and scene_claim) else None,
                              scene_why=guess.scene_why if rc.derived and scene_claim else "",
