@@ -764,7 +764,7 @@ def check_report(report: Any) -> ReportCheck:
             results.append(CheckResult(True, "a symbolic condition on the parameters (not re-verifiable by the "
                                              "checker: re-derive it)", verified=False, source="symbolic"))
         if audit and claim is not None and any(r.source == "certificate" for r in results) and \
-                not any(r.source == "judge" and r.verified for r in results):
+                not any(r.source == "judge" and r.verified for r in results) and not _rechecked(entry):
             # certificates re-verify the exact decision; only a judge object binds it to the verdict
             # on the printed display (wrong, typo, confirmed...): without one, a relabelled verdict
             # would pass with the same certificates
@@ -796,6 +796,15 @@ def check_report(report: Any) -> ReportCheck:
             top.append(CheckResult(True, "verdict and witness re-derived from the conditions", source="display"))
         out.append(("verdict", top))
     return ReportCheck(out)
+
+
+def _rechecked(entry: Any) -> bool:
+    """An audit entry whose exact recheck at its witness binds its verdict (held against it by
+    :func:`~hapticproof.exact.acceptance.audit_binding`: a disproof is never shown confirmed)."""
+    evidence = entry.get("evidence") if isinstance(entry, dict) else None
+    facts = evidence.get("facts") if isinstance(evidence, dict) else None
+    return isinstance(facts, dict) and isinstance(facts.get("recheck"), dict) and \
+        facts["recheck"].get("decision") in ("proved", "disproved")
 
 
 def _vacuous_residues(report: Any, name: str, claim: str, done: list) -> bool:
