@@ -145,3 +145,25 @@ def test_an_audit_verdict_relabelled_over_its_certificates_is_not_accepted(tmp_p
 
 def test_the_papers_folder_is_not_needed_for_the_rest():
     assert Path(__file__).exists()
+
+
+def test_a_networks_witness_is_in_its_names_and_bound_to_its_certificate(tmp_path):
+    """A port parameter named x: the frequency variable x = w^2 is shown as xi; a shown witness
+    moved away from its certificate's point is refused, nested conditions included."""
+    (tmp_path / "z.txt").write_text("x - k*s/(s**2+3*s+2)\n")
+    report = _derive(["derive", "network", "--matrix", str(tmp_path / "z.txt"), "--param", "x=0.001", "--param", "k=2",
+                      "--no-search", "--format", "json"])
+    shown = report["conditions"][0]["conditions"][3]["evidence"]["witness"]
+    assert report["notation"] == {"x": "xi"} and set(shown) == {"xi", "omega"}
+    assert check_report(report).accepted
+    forged = copy.deepcopy(report)
+    forged["conditions"][0]["conditions"][3]["evidence"]["witness"]["xi"] = "4"
+    result = check_report(forged)
+    assert not result.accepted and "the displayed xi = 4 is not the certificate's 1" in result.summary()
+
+
+def test_latex_prose_keeps_inverses_and_options():
+    from hapticproof.core.texsafe import escape_tex_text
+
+    assert escape_tex_text("G^-1 is not positive real (--delay-margin)") == \
+        "G$^{-1}$ is not positive real (-{}-delay-margin)"

@@ -182,3 +182,16 @@ def test_discretize_pd_is_sympy_physics_control(method, gains):
 
     expected = sp.cancel(as_poly(num) * z ** (top - len(num) + 1) / (as_poly(den) * z ** (top - len(den) + 1)))
     assert telemodel.discretize_pd(method, K, B, T) == expected
+
+
+def test_numeric_latex_says_what_32_needs_not_holds_for_no_value(capsys):
+    from hapticproof.cli import main
+
+    base = ["derive", "teleoperator", "--role", "master_damping=c_m", "--role", "slave_damping=c_s", "--role", "period=h",
+            "--param", "K=20", "--param", "B=0.01", "--param", "h=0.001", "--param", "c_s=0.05", "--format", "latex",
+            "--fragment"]
+    for c_m, verdict in (("0.001", "not met"), ("0.05", "met")):
+        assert main([*base, "--param", f"c_m={c_m}"]) == 0
+        out = capsys.readouterr().out
+        assert f"(sufficient only): {verdict} by these values" in out and "holds for no value" not in out
+        assert r"c_{m} \ge \frac{1}{25},\quad c_{s} \ge \frac{1}{25}" in out

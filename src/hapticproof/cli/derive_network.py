@@ -180,13 +180,17 @@ def analyse(Z: sp.Matrix, ports: tuple[int, ...] | None, search: bool = True, de
 
 
 def _in_names(value: Any, names: Any) -> Any:
-    """The reasons and condition names of a numeric network's report in the scene's naming (the
-    certificates, read back by ``check``, keep the toolkit's own variable names)."""
+    """The reasons, condition names and shown witnesses of a numeric network's report in the
+    scene's naming (the certificates, read back by ``check``, keep the toolkit's own variable names)."""
     if isinstance(value, dict):
         out = {}
         for key, item in value.items():
-            if key in ("certificate", "definition", "evidence") and isinstance(item, dict):
+            if key == "evidence" and isinstance(item, dict) and isinstance(item.get("witness"), dict):
+                out[key] = {**item, "witness": names.witness(item["witness"])}     # shown: the scene's names
+            elif key in ("certificate", "definition", "evidence") and isinstance(item, dict):
                 out[key] = item
+            elif key == "witness" and isinstance(item, dict):
+                out[key] = names.witness(item)
             elif key in ("reason", "name", "summary") and isinstance(item, str):
                 out[key] = names.words(item)
             elif key == "conditions" and isinstance(item, dict):

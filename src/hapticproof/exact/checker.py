@@ -744,7 +744,7 @@ def check_report(report: Any) -> ReportCheck:
         witness_problems,
     )
     from hapticproof.exact.judge import judge, judges
-    from hapticproof.exact.judgedisplay import derive_display
+    from hapticproof.exact.judgedisplay import condition_display, derive_display
 
     if isinstance(report, str):
         report = json.loads(report)
@@ -757,6 +757,9 @@ def check_report(report: Any) -> ReportCheck:
         results = check_certificates(entry) + judge_results(entry, keys)
         results += _guarded(lambda e=entry: audit_binding(e) if isinstance(e, dict) and "verdict" in e else [], "binding")
         results += _guarded(lambda e=entry, k=keys: witness_problems(e, k), "display")
+        if not audit and isinstance(report, dict) and "verdict" not in report and isinstance(entry, dict):
+            # a report without a verdict of its own (a network's): each condition against its certificates
+            results += _guarded(lambda e=entry, k=keys: condition_display(e, k), "display")
         claim = claim_of(entry)
         if isinstance(entry, dict) and entry.get("decision") == "symbolic":
             # a condition on the parameters claims an 'iff' the checker cannot test at numbers: it

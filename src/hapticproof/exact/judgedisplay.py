@@ -13,7 +13,7 @@ from hapticproof.core.naming import witness_keys
 from hapticproof.exact.checkarith import CheckFailed, Gaussian, eval_transfer, exact_q
 from hapticproof.exact.judge import consistent_witness, displayed_number
 
-__all__ = ["derive_display", "finding_display", "boundary_display", "displayed_forms"]
+__all__ = ["derive_display", "finding_display", "boundary_display", "displayed_forms", "condition_display"]
 
 #: Displayed expressions longer than this are not re-read (a degree-2000 Re G^-1 is shown by
 #: its closed form and checked through the definition object alone).
@@ -55,7 +55,7 @@ def _same(a: Any, b: Any) -> bool:
     return na == nb
 
 
-def _condition_display(cond: Mapping[str, Any], keys: Mapping[str, str]) -> list[str]:
+def condition_display(cond: Mapping[str, Any], keys: Mapping[str, str]) -> list[str]:
     """A derive condition's decision and witness against its own certificates (the witness's
     circle keys as the report names them, ``keys``)."""
     name, decision = cond.get("name"), cond.get("decision")
@@ -74,7 +74,7 @@ def _condition_display(cond: Mapping[str, Any], keys: Mapping[str, str]) -> list
                 continue
             own = cert["witness"] if isinstance(cert.get("witness"), dict) else \
                 {"c": cert.get("witness"), "z": cert.get("witness_point")}
-            for key in ("c", "z"):
+            for key in ("c", "z", "x", "omega"):
                 shown = keys.get(key, key)
                 if shown in witness and own.get(key) is not None and not _same(witness[shown], own[key]):
                     problems.append(f"{name}: the displayed {shown} = {witness[shown]} is not the certificate's {own[key]}")
@@ -94,6 +94,14 @@ def _condition_display(cond: Mapping[str, Any], keys: Mapping[str, str]) -> list
         residues = [c for c in certs if c["certificate"] == "residue"]
         if residues and decision in ("proved", "disproved") and all(c["holds"] for c in residues) != (decision == "proved"):
             problems.append(f"{name}: the decision says {decision}, the residue certificates disagree")
+    # a network's conditions nest (Definition 3 inside the absolute stability, the conditions a
+    # verdict rests on): each is held against its own certificates the same way
+    nested = [cond.get("conditions"), (cond.get("rests_on") or {}).get("conditions")
+              if isinstance(cond.get("rests_on"), Mapping) else None]
+    for group in nested:
+        for sub in group if isinstance(group, list) else ():
+            if isinstance(sub, Mapping):
+                problems += condition_display(sub, keys)
     return problems
 
 
@@ -109,7 +117,7 @@ def derive_display(report: Mapping[str, Any]) -> list[str]:
     and their certificates, and its ``definition`` (when present) held against both."""
     conditions = report.get("conditions") or []
     keys = witness_keys(report.get("notation"))
-    problems = [p for cond in conditions for p in _condition_display(cond, keys)]
+    problems = [p for cond in conditions for p in condition_display(cond, keys)]
     if not conditions or "verdict" not in report:
         return problems
     expected = _combined([c.get("decision") for c in conditions])
