@@ -199,3 +199,20 @@ def test_a_wall_paper_in_its_own_names_is_drafted_and_audited_unedited(tmp_path)
     assert run.returncode == 0, run.stderr
     verdicts = {e["id"]: e["verdict"] for e in json.loads((tmp_path / "a.json").read_text())["equations"]}
     assert verdicts == {"1": "confirmed", "2": "confirmed", "3": "confirmed", "4": "typo", "5": "confirmed"}, verdicts
+
+
+def test_a_new_users_msd_paper_is_audited_unedited(tmp_path):
+    """A helper's own paper (period Delta, damping beta, a mass-spring-damper environment; 10
+    correct displays, 4 planted mistakes, answer key written by hand): G^{-1}, written bare inline
+    ("F = G^{-1} V") before it is applied, is a function; Res_{z=1} is evaluated; unedited, every
+    correct display that is checked is confirmed and every mistake that is checked is caught."""
+    source = Path(__file__).parent / "data" / "msd_paper.tex"
+    (tmp_path / "paper.tex").write_text(source.read_text())
+    assert _run("new-paper", "d.toml", "--from", "paper.tex", cwd=tmp_path).returncode == 0
+    assert '"G^{-1}" = \'function\'' in (tmp_path / "d.toml").read_text()
+    run = _run("audit", "--paper", "d.toml", "--format", "json", "-o", "a.json", cwd=tmp_path)
+    assert run.returncode == 0, run.stderr
+    verdicts = {e["id"]: e["verdict"] for e in json.loads((tmp_path / "a.json").read_text())["equations"]}
+    assert all(verdicts[i] == "confirmed" for i in ("1", "3", "4", "5", "6", "7", "8", "9")), verdicts
+    assert verdicts["10"] == verdicts["14"] == "typo" and verdicts["11"] == "conservative", verdicts
+    assert verdicts["12"] not in ("wrong", "typo", "inconsistent"), verdicts         # correct: never flagged

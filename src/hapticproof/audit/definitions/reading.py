@@ -209,6 +209,13 @@ class PaperReading:
         from hapticproof.audit.reader.names import normalise_name, sympy_name
         from hapticproof.audit.reader.printed import parse_printed
 
+        # a transfer function's name known as a plain symbol ("F = G^{-1} V" inline) is a function
+        # where this text applies it ("G^{-1}(z) = ..."): else it would read as a product with (z)
+        for name in [n for n in self.symbols if n not in self.functions and ("^{-1}" in n or n[:1] in "GHZY")]:
+            for m in re.finditer(re.escape(name), text):
+                if _applied(text[m.end():].lstrip()):
+                    self.functions.add(name)
+                    break
         complex_entries = True
         for _ in range(60):
             table = self._make_table(text, complex_entries)

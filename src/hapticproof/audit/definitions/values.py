@@ -356,9 +356,14 @@ def _unbound(expr: Any, env: Environment) -> set[str]:
         return out
     expr = sp.sympify(expr)
     for f in expr.atoms(AppliedUndef):
-        if env.lookup(f.func.__name__) is None:
+        if env.lookup(f.func.__name__) is None and not _is_residue(f):
             out.add(f.func.__name__)
     return out
+
+
+def _is_residue(e: Any) -> bool:
+    """``Res_{z = z0} F`` as the reader writes it: ``Res(F, z0)``."""
+    return isinstance(e, AppliedUndef) and e.func.__name__ == "Res" and len(e.args) == 2
 
 
 class _Evaluator:
@@ -387,6 +392,8 @@ class _Evaluator:
             return self._product(e)
         if e.is_Pow:
             return self._power(e)
+        if _is_residue(e):
+            return self._residue(e.args[0], e.args[1])
         if isinstance(e, AppliedUndef):
             return self._apply(e)
         if isinstance(e, (sp.cos, sp.sin)):
@@ -593,6 +600,20 @@ class _Evaluator:
         return Value.boundary(cos_k + j * (sin_k if k >= 0 else -sin_k), DISCRETE)
 
     # -- applications ------------------------------------------------------------------------------
+
+    def _residue(self, body: Any, point: Any) -> Value:
+        """``Res_{z=z0} F``: ``((z - z0) F)(z0)`` at a simple pole (a multiple pole is no value here)."""
+        value, at = self.value(body), self.value(point)
+        if value.kind != TRANSFER or not value.is_scalar or at.kind != PARAM:
+            raise Unsupported("a residue of a scalar transfer function at a point given by the parameters")
+        internal = VARIABLES[value.domain][1]
+        f, z0 = value.rows[0][0], at.rows[0][0]
+        simple = f * (RationalFunction.variable(internal) - z0)
+        try:
+            residue = simple.subs({internal: z0})
+        except ZeroDivisionError:
+            raise Unsupported("a residue at a multiple pole") from None
+        return Value(PARAM, ((residue,),))
 
     def _apply(self, e: AppliedUndef) -> Value:
         binding = self.env.lookup(e.func.__name__)

@@ -497,7 +497,12 @@ def _render(source: Source, entries: list[Entry], paper_id: str, title: str, dro
         for name, guess in entry.symbols.items():
             key = _canonical_key(name)
             if key in seen_names:
-                continue                      # T_s and T_{s} are one name
+                # T_s and T_{s} are one name; a name applied somewhere ("G^{-1}(z)") is a function
+                # even where another display writes it bare ("F = G^{-1} V")
+                first = seen_names[key]
+                if guess[0] == "function" and symbols[first][0] == "real":
+                    symbols[first] = guess
+                continue
             seen_names[key] = name
             symbols[name] = guess
     lines.append("[symbols]                            # every name the active displays use, with its assumption")
