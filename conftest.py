@@ -25,3 +25,25 @@ else:
     _hypothesis_settings.register_profile("deterministic", derandomize=True)
     _hypothesis_settings.register_profile("explore", derandomize=False)
     _hypothesis_settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "deterministic"))
+
+
+import re as _re
+
+import pytest as _pytest
+
+_CELL = _re.compile(r"Cell (\d+)$")
+
+
+@_pytest.hookimpl(trylast=True)
+def pytest_collection_modifyitems(items):
+    """A notebook's cells run in the notebook's order whatever a random-order plugin
+    (``pytest -p randomly``) did to the items: each notebook keeps the places its cells were
+    given, filled with its cells in order (a later cell needs what an earlier one computed)."""
+    places: dict[str, list[int]] = {}
+    for k, item in enumerate(items):
+        if str(getattr(item, "fspath", "")).endswith(".ipynb") and _CELL.search(item.name):
+            places.setdefault(str(item.fspath), []).append(k)
+    for positions in places.values():
+        cells = sorted((items[k] for k in positions), key=lambda item: int(_CELL.search(item.name).group(1)))
+        for k, cell in zip(positions, cells):
+            items[k] = cell

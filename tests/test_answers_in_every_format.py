@@ -34,7 +34,7 @@ def test_single_user_margin_and_range_are_displays(capsys, fragment):
         assert r"N_{\max} = 10" in shown and r"t_d \le N_{\max} T = \frac{1}{100}" in shown
         assert r"0 < K \le 38" in shown
     else:        # the document sets each display as breakable pieces under its label
-        assert r"\hplabel{delay margin (--delay-margin)}" in latex and r"\hplabel{passive range of K (--range K)}" in latex
+        assert r"\hplabel{delay margin (-{}-delay-margin)}" in latex and r"\hplabel{passive range of K (-{}-range K)}" in latex
         assert r"\hpfit{N_{\max}}" in latex and r"\hpfit{{}= \frac{1}{100}}" in latex and r"\hpfit{{}\le 38" in latex
     assert not re.search(r"^% (delay margin:|passive range of K \(others fixed\))", latex, flags=re.M)
 

@@ -167,3 +167,22 @@ def test_latex_prose_keeps_inverses_and_options():
 
     assert escape_tex_text("G^-1 is not positive real (--delay-margin)") == \
         "G$^{-1}$ is not positive real (-{}-delay-margin)"
+
+
+def test_a_boundary_reports_crossing_outcome_and_start_are_bound_to_its_loops(tmp_path):
+    path = tmp_path / "b.json"
+    with redirect_stdout(StringIO()), redirect_stderr(StringIO()):
+        assert main(["boundary", "single-user", "--param", "m=0.015", "--param", "b=0.02", "--param", "T=0.001",
+                     "--vary", "K", "--json", str(path), "--no-progress"]) == 0
+    report = json.loads(path.read_text())
+    assert check_report(report).accepted
+    edits = {
+        "crossing moved": lambda r: r["crossings"][0].__setitem__("value", 100.0),
+        "no crossing": lambda r: (r.__setitem__("outcome", "no-crossing"), r.__setitem__("crossings", [])),
+        "unstable at the start": lambda r: r.__setitem__("stable_at_start", False),
+        "another parameter": lambda r: r.__setitem__("parameter", "B"),
+    }
+    for name, edit in edits.items():
+        forged = copy.deepcopy(report)
+        edit(forged)
+        assert not check_report(forged).accepted, name

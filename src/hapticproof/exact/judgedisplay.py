@@ -181,6 +181,20 @@ def boundary_display(report: Mapping[str, Any]) -> list[str]:
     expected = (True, False) if report.get("direction") == "destabilising" else (False, True)
     if (left["stable"], right["stable"]) != expected:
         problems.append(f"the direction shown ({report.get('direction')}) is not what the two judged loops say")
+    if report.get("parameter") != obj.get("parameter"):
+        problems.append(f"the parameter shown ({str(report.get('parameter'))[:20]}) is not the judged one")
+    crossings = report.get("crossings")
+    if not isinstance(crossings, list) or not crossings or not isinstance(crossings[0], Mapping):
+        problems.append("the judged loops cross, but no crossing is shown")
+        return problems
+    first = crossings[0]
+    if first.get("value") != report["value"] or first.get("direction") != report.get("direction"):
+        problems.append("the first crossing shown is not the boundary judged (its value or direction differs)")
+    if left["stable"] != right["stable"] and report.get("outcome") not in ("crossing", "uncertified"):
+        problems.append(f"the outcome shown ({str(report.get('outcome'))[:20]}) denies the crossing the judged loops show")
+    if len(crossings) == 1 and isinstance(report.get("stable_at_start"), bool) and \
+            report["stable_at_start"] != left["stable"]:
+        problems.append("stable_at_start contradicts the one crossing: the judged loop before it says otherwise")
     return problems
 
 
