@@ -368,6 +368,9 @@ def _system_parts(scene: Any, name: str) -> tuple[list[Any], list[flint.fmpq_pol
     p = scene.symbol(name)
     free = set(model.parameters) - {p}
     free -= {s for s in free if s.name == "n"}
+    if p not in model.parameters and name not in dict(scene.params):
+        shown = sorted(map(str, set(model.parameters) - {s for s in model.parameters if s.name == "n"}))
+        raise SceneError(f"{name} is not a parameter of this scene (its parameters: {', '.join(shown) or 'none'})")
     if free:
         raise SceneError(f"the passive range of {name} needs numbers for {', '.join(sorted(map(str, free)))}")
     if p not in model.parameters:

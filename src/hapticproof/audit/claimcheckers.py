@@ -327,9 +327,10 @@ def _circle_compare(state: State, printed: Any, derived: Any, shown: Any, symbol
         form_p = None
     form_d = theta_form_on_circle(derived)
     if form_p is not None and form_p.equals(form_d):
-        how = (f"for every integer delay n: equal as rational functions of e^{{j {theta}/{form_p.L}}} and e^{{j n {theta}}}, "
+        root = f"e^{{j {theta}}}" if form_p.L == 1 else f"e^{{j {theta}/{form_p.L}}}"   # (z = e^{j theta/L})
+        how = (f"for every integer delay n: equal as rational functions of {root} and e^{{j n {theta}}}, "
                f"which are independent for {theta}/pi irrational (structural)" if symbolic_delay
-               else f"identically on the unit circle (equal as rational functions of e^{{j {theta}/{form_p.L}}})")
+               else f"identically on the unit circle (equal as rational functions of {root})")
         facts: dict[str, Any] = {"printed_form": ("equals the derived", sp.sstr(derived))}
         if not state.repairing:
             judge = _circle_judge_equal(state, printed, in_theta, derived, symbolic_delay, form_p.L)

@@ -340,7 +340,11 @@ class Naming:
     def latex(self, expr: Any, names: Mapping[sp.Symbol, str] | None = None, cos: bool = False) -> str:
         """LaTeX of ``expr`` in this naming; ``cos`` prints ``c`` as ``\\cos(\\omega T)``;
         ``names`` (symbol -> LaTeX: a paper's printed names) come first."""
-        return to_latex(expr, {**self.latex_names(), **(names or {})}, cos_name=self.cos_latex if cos else None)
+        # with cos: c is cos(omega T) and theta (a symbolic delay's angle) omega T, both in the scene's names
+        # (theta is no user's name: refused as a parameter, so every symbol of that name is the angle)
+        angle = {sym: self.theta_latex for sym in getattr(sp.sympify(expr), "free_symbols", ())
+                 if getattr(sym, "name", "") == "theta"} if cos and not isinstance(expr, str) else {}
+        return to_latex(expr, {**self.latex_names(), **angle, **(names or {})}, cos_name=self.cos_latex if cos else None)
 
     # -- the toolkit's words ---------------------------------------------------------------------
     def word_map(self) -> dict[str, str]:
