@@ -118,7 +118,8 @@ def circle_judge(claim: str, display: Any, frequency: str, period: Any, points: 
     for p in points:
         rows.append({"values": {str(getattr(k, "name", k)): str(v) for k, v in p["values"].items()},
                      "t": str(p["t"]), "L": p["L"], **({"n": p["n"]} if "n" in p else {}), "transfer": p["transfer"]})
-    out = {"judge": "circle-identity", "claim": claim, "object": "Re G^-1(e^{j omega T})", "display": tree,
+    shown_period = period.name if isinstance(period, sp.Symbol) else "T"      # the paper's period in the object's name
+    out = {"judge": "circle-identity", "claim": claim, "object": f"Re G^-1(e^{{j {frequency} {shown_period}}})", "display": tree,
            "frequency": frequency, "period": period_tree, "points": rows}
     if inverse is not None:
         out.update(inverse=inverse, variable="z")
