@@ -311,7 +311,8 @@ def _latex_items(data: dict[str, Any]) -> list[tuple[str, str]]:
         # (no \not: the reports typeset only the commands they know)
         shown = (rf"{M}({c}) \succeq 0 \text{{ for every }} {c} \in [-1, 1]" + at if condition in (sp.true, True)
                  else rf"{M}({c}) \succeq 0 \text{{ fails}}" + at)
-        items.append((f"worst case over frequency ({data['worst_case_method']})", shown))
+        items.append((f"worst case over frequency ({data['worst_case_method']}; {names.helper('cos')} = {names.cos_text})",
+                      shown))
     if "sufficient_condition" in data:
         items.append(("sufficient condition (any graph, Loewner order)", names.latex(data["sufficient_condition"])))
     return items

@@ -575,7 +575,7 @@ _TEXT_SPECIALS = {
 _TEXT_RELATIONS = (("<=>", r"$\Leftrightarrow$"), ("<=", r"$\leq$"), (">=", r"$\geq$"), ("!=", r"$\neq$"),
                    ("=>", r"$\Rightarrow$"), ("->", r"$\rightarrow$"),
                    # G^-1 as an inverse, not a circumflex; an option's -- as two hyphens, not a dash
-                   ("^-1", r"$^{-1}$"), ("--", "-{}-"))
+                   ("^-1", r"$^{-1}$"), ("^-H", r"$^{-H}$"), ("--", "-{}-"))
 _UNICODE = {
     "\u2264": r"$\leq$", "\u2265": r"$\geq$", "\u2260": r"$\neq$", "\u2212": "-", "\u00d7": r"$\times$",
     "\u2192": r"$\rightarrow$", "\u21d2": r"$\Rightarrow$", "\u21d4": r"$\Leftrightarrow$", "\u2248": r"$\approx$",
