@@ -104,3 +104,16 @@ def test_an_unknown_option_points_to_the_help_of_its_own_command(capsys):
         assert stop.value.code == 2
         err = capsys.readouterr().err.strip()
         assert len(err.splitlines()) == 1 and "unrecognized arguments" in err and err.endswith(f"(see: {prog} --help)")
+
+
+def test_a_scene_file_without_system_takes_the_commands(tmp_path, capsys):
+    """``derive single-user --scene FILE`` names the kind: a file of parameters alone is read as it,
+    and a file of another kind is one line."""
+    from hapticproof.cli import main
+
+    (tmp_path / "p.toml").write_text("[params]\nK = 2\nB = 0\nb = 0.02\nT = 0.001\n")
+    assert main(["derive", "single-user", "--scene", str(tmp_path / "p.toml"), "--format", "json"]) == 0
+    assert json.loads(capsys.readouterr().out)["verdict"] == "proved"
+    (tmp_path / "t.toml").write_text('system = "teleoperator"\n')
+    assert main(["derive", "single-user", "--scene", str(tmp_path / "t.toml")]) == 2
+    assert "describes a teleoperator scene, not single-user" in capsys.readouterr().err

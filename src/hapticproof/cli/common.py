@@ -250,7 +250,7 @@ def scene_from_args(args: argparse.Namespace, system: str) -> Any:
         if isinstance(getattr(args, option, None), str):
             check_output(getattr(args, option), f"--{option}", inputs=input_files(args))
     if getattr(args, "scene", None):
-        base = read_scene(args.scene)
+        base = read_scene(args.scene, system=system)
         if base.system != system:
             raise InputFormatError(f"{args.scene} describes a {base.system} scene, not {system}")
         fields = {name: getattr(base, name) for name in _FIELDS}
@@ -348,7 +348,7 @@ def scene_from_any_args(args: argparse.Namespace, systems: tuple[str, ...] = LOO
     roles: dict[str, Any] = {}
     system = getattr(args, "system", None)
     if getattr(args, "scene", None):
-        base = read_scene(args.scene)
+        base = read_scene(args.scene, system=system)
         if system is not None and base.system != system:
             raise InputFormatError(f"{args.scene} describes a {base.system} scene, not {system}")
         system = base.system

@@ -888,15 +888,19 @@ def read_toml(text: str, where: str, error: type[Exception] | None = None) -> di
     return _read_toml(text, where, error or SceneFileError)
 
 
-def loads(text: str, where: str = "scene", base: str | Path | None = None):
+def loads(text: str, where: str = "scene", base: str | Path | None = None, system: str | None = None):
     """A scene from the text of a scene file (``base``: the folder its ``matrix`` file is in;
-    default the current folder)."""
+    default the current folder; ``system``: the kind the command line names, for a file that
+    does not say)."""
     table = read_toml(text, where)
+    if system is not None and isinstance(table, dict) and "system" not in table:
+        table = {"system": system, **table}
     return scene_from_table(table, where=where, base=base, text=text)
 
 
-def read_scene(path: str | Path):
-    """A scene from a scene file (``-``: standard input)."""
+def read_scene(path: str | Path, system: str | None = None):
+    """A scene from a scene file (``-``: standard input); ``system`` is the kind a file that does
+    not say is read as (``derive single-user --scene FILE``)."""
     from hapticproof.core.files import FileAccessError, read_text
 
     try:
@@ -904,8 +908,8 @@ def read_scene(path: str | Path):
     except FileAccessError as err:
         raise SceneFileError(str(err)) from None
     if str(path) == "-":
-        return loads(text, "<stdin>")
-    return loads(text, str(path), base=Path(path).parent)
+        return loads(text, "<stdin>", system=system)
+    return loads(text, str(path), base=Path(path).parent, system=system)
 
 
 # ---------------------------------------------------------------------------------------------
