@@ -383,15 +383,18 @@ class Naming:
             return text
         return re.sub(r"(?<![A-Za-z0-9_\\])[A-Za-z_][A-Za-z0-9_]*", lambda m: table.get(m.group(0), m.group(0)), text)
 
-    def changed(self) -> dict[str, str]:
+    def changed(self, omit: Iterable[str] = ()) -> dict[str, str]:
         """What this naming prints differently from the papers' names: a role's field or a helper's
-        key -> its printed name (a JSON report's ``notation``; empty for the defaults).
+        key -> its printed name (a JSON report's ``notation``; empty for the defaults); ``omit``
+        leaves out helpers a system never prints (a wall has no error-coordinate damping).
 
         >>> Naming.choose({"c_d"}, roles=(("period", "T", "h"),)).changed()
         {'period': 'h', 'cos': 'gamma', 'coupling': 'eta'}
+        >>> Naming.choose({"c_d"}, roles=(("period", "T", "h"),)).changed(omit=("coupling",))
+        {'period': 'h', 'cos': 'gamma'}
         """
         out = {field: name for field, default, name in self.roles if name != default}
-        out.update({key: name for key, name in self.helpers if name != HELPERS[key].default})
+        out.update({key: name for key, name in self.helpers if name != HELPERS[key].default and key not in omit})
         return out
 
     def unmark(self, text: str) -> str:

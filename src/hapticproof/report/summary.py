@@ -36,6 +36,11 @@ from hapticproof.exact.unitcircle import CRational
 __all__ = ["SceneSummary", "summarize_single_user"]
 
 
+#: helpers a single-user report never prints: the teleoperator's leak and error-coordinate
+#: damping, the m-user Hermitian matrix and Laplacian eigenvalue
+_NOT_A_WALLS = ("leak", "coupling", "matrix", "eigenvalue")
+
+
 @dataclass(frozen=True)
 class SceneSummary:
     """The derived conditions of one scene, ready to print as text, LaTeX or JSON."""
@@ -80,8 +85,8 @@ class SceneSummary:
             "minimiser": self.minimiser,
             "minimum": self.minimum,
         }
-        if names.changed():
-            out["notation"] = names.changed()
+        if names.changed(omit=_NOT_A_WALLS):
+            out["notation"] = names.changed(omit=_NOT_A_WALLS)
         if self.skipped:
             out["skipped"] = {k: {"reason": why, "option": how} for k, (why, how) in self.skipped.items()}
         if self.definition is not None:
