@@ -2,6 +2,11 @@
 
 from __future__ import annotations
 
+import json
+from contextlib import redirect_stderr, redirect_stdout
+from io import StringIO
+from typing import Any
+
 from hapticproof.cli import main
 
 
@@ -17,3 +22,19 @@ def one_line_error(capsys, *argv: str) -> str:
     code, _, err = run(capsys, *argv)
     assert code == 2 and err.count("\n") == 1 and err.startswith("hapticproof: error: ") and "Traceback" not in err, err
     return err
+
+
+def json_of(*argv: Any) -> Any:
+    """The JSON a command writes to standard output (it must succeed), without capsys (for a
+    module-scoped fixture): ``json_of("derive", "single-user", ..., "--format", "json")``."""
+    buffer = StringIO()
+    with redirect_stdout(buffer), redirect_stderr(StringIO()):
+        assert main([str(a) for a in argv]) == 0
+    return json.loads(buffer.getvalue())
+
+
+def check_file(capsys, tmp_path, report: Any) -> tuple[int, str, str]:
+    """``hapticproof check`` of ``report`` saved as JSON: (exit code, stdout, stderr)."""
+    path = tmp_path / "r.json"
+    path.write_text(json.dumps(report), encoding="utf-8")
+    return run(capsys, "check", str(path))

@@ -9,6 +9,7 @@ from __future__ import annotations
 import copy
 import json
 import os
+import sys
 from contextlib import redirect_stderr, redirect_stdout
 from io import StringIO
 from pathlib import Path
@@ -18,6 +19,9 @@ import pytest
 from hapticproof.cli import main
 from hapticproof.exact.checker import check_report
 
+sys.path.insert(0, str(Path(__file__).parent))
+from clirun import json_of  # noqa: E402
+
 #: a scene in the user's names whose damping is called c: the circle's cos is gamma, the angle omega*h
 RENAMED = ["derive", "single-user", "--role", "period=h", "--environment", "k + c*(z-1)/(h*z)", "--param", "k=2",
            "--param", "c=-1", "--param", "h=1/100", "--param", "b=1/10", "--format", "json"]
@@ -26,21 +30,14 @@ IRRATIONAL = ["derive", "single-user", "--environment", "K*z/(z**2 - z + 1/3)", 
               "--param", "T=1", "--format", "json"]
 
 
-def _derive(argv) -> dict:
-    buffer = StringIO()
-    with redirect_stdout(buffer), redirect_stderr(StringIO()):
-        assert main(argv) == 0
-    return json.loads(buffer.getvalue())
-
-
 @pytest.fixture(scope="module")
 def renamed() -> dict:
-    return _derive(RENAMED)
+    return json_of(*RENAMED)
 
 
 @pytest.fixture(scope="module")
 def irrational() -> dict:
-    return _derive(IRRATIONAL)
+    return json_of(*IRRATIONAL)
 
 
 def _witnesses(node):
@@ -118,7 +115,7 @@ def test_a_factor_on_g_inverse_is_refused(renamed):
 
 
 def test_symbolic_conditions_are_never_accepted_as_re_verified():
-    report = _derive(["derive", "single-user", "--format", "json"])
+    report = json_of("derive", "single-user", "--format", "json")
     for cond in report["conditions"]:
         cond["decision"] = "symbolic"
     report["worst_case"] = "b >= 0"
@@ -151,8 +148,8 @@ def test_a_networks_witness_is_in_its_names_and_bound_to_its_certificate(tmp_pat
     """A port parameter named x: the frequency variable x = w^2 is shown as xi; a shown witness
     moved away from its certificate's point is refused, nested conditions included."""
     (tmp_path / "z.txt").write_text("x - k*s/(s**2+3*s+2)\n")
-    report = _derive(["derive", "network", "--matrix", str(tmp_path / "z.txt"), "--param", "x=0.001", "--param", "k=2",
-                      "--no-search", "--format", "json"])
+    report = json_of("derive", "network", "--matrix", tmp_path / "z.txt", "--param", "x=0.001", "--param", "k=2",
+                     "--no-search", "--format", "json")
     shown = report["conditions"][0]["conditions"][3]["evidence"]["witness"]
     assert report["notation"] == {"x": "xi"} and set(shown) == {"xi", "omega"}
     assert check_report(report).accepted

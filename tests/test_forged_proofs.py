@@ -9,13 +9,15 @@ from __future__ import annotations
 
 import copy
 import json
-from contextlib import redirect_stderr, redirect_stdout
-from io import StringIO
+import sys
+from pathlib import Path
 
 import pytest
 
-from hapticproof.cli import main
 from hapticproof.exact.checker import check_report
+
+sys.path.insert(0, str(Path(__file__).parent))
+from clirun import check_file, json_of  # noqa: E402
 
 SIGN = "Re G^-1 >= 0 for all w"
 
@@ -37,30 +39,15 @@ MULTI_BAD = ["derive", "multi-user", "--users", "3", "--param", "b=1/1000", "--p
              "--param", "K=3", "--param", "B=0", "--param", "T=1/1000", "--format", "json"]
 
 
-def _derive(argv) -> dict:
-    buffer = StringIO()
-    with redirect_stdout(buffer), redirect_stderr(StringIO()):
-        assert main(argv) == 0
-    return json.loads(buffer.getvalue())
-
-
 @pytest.fixture(scope="module")
 def reports():
-    return {name: _derive(argv) for name, argv in (("band", BAND), ("residue", NEGATIVE_RESIDUE),
+    return {name: json_of(*argv) for name, argv in (("band", BAND), ("residue", NEGATIVE_RESIDUE),
                                                    ("double", DOUBLE_POLE), ("passive", PASSIVE),
                                                    ("multi", MULTI), ("multi_bad", MULTI_BAD))}
 
 
-def _check(capsys, tmp_path, report) -> tuple[int, str, str]:
-    path = tmp_path / "r.json"
-    path.write_text(json.dumps(report), encoding="utf-8")
-    status = main(["check", str(path)])
-    captured = capsys.readouterr()
-    return status, captured.out, captured.err
-
-
 def _refused(capsys, tmp_path, report, expected: str) -> None:
-    status, out, err = _check(capsys, tmp_path, report)
+    status, out, err = check_file(capsys, tmp_path, report)
     assert status == 1, out[-800:]
     assert "report accepted" not in out and expected in out + err, (expected, out[-800:], err)
     assert len(err.strip().splitlines()) == 1 and err.startswith("report "), err
@@ -82,7 +69,7 @@ def _proved(report: dict) -> dict:
 
 def test_genuine_reports_of_each_kind_are_accepted(capsys, tmp_path, reports):
     for name in ("band", "residue", "double", "passive", "multi", "multi_bad"):
-        status, out, err = _check(capsys, tmp_path, reports[name])
+        status, out, err = check_file(capsys, tmp_path, reports[name])
         assert status == 0 and out.rstrip().endswith("report accepted"), (name, out[-800:], err)
     assert reports["band"]["verdict"] == "disproved" and reports["multi"]["verdict"] == "proved"
 
@@ -167,7 +154,7 @@ def walls(tmp_path_factory):
     assert "printed = 'b > KT + B'" in text
     path = tmp_path_factory.mktemp("walls") / "walls.toml"
     path.write_text(text.replace("printed = 'b > KT + B'", "printed = 'b \\geq \\frac{KT}{2} + B'"), encoding="utf-8")
-    report = _derive(["audit", "--paper", str(path), "--format", "json"])
+    report = json_of("audit", "--paper", str(path), "--format", "json")
     return {e["id"]: e for e in report["equations"]}, {k: v for k, v in report.items() if k != "equations"}
 
 
@@ -184,7 +171,7 @@ def test_genuine_judged_entries_are_accepted(capsys, tmp_path, walls):
     assert entries["2"]["verdict"] == "confirmed" and _judge(entries["2"])["judge"] == "circle-identity"
     assert entries["3"]["verdict"] == "confirmed" and _judge(entries["3"])["claim"] == "holds-passive"
     for key in ("2", "3", "4"):
-        status, out, err = _check(capsys, tmp_path, _one(walls, entries[key]))
+        status, out, err = check_file(capsys, tmp_path, _one(walls, entries[key]))
         assert status == 0 and out.rstrip().endswith("report accepted"), (key, out[-800:], err)
     assert "points of the checker's choosing" in json.dumps(entries["2"]["evidence"]["facts"]["checker"])
 
@@ -208,7 +195,7 @@ def test_an_identity_judged_at_no_point_or_the_authors_points_is_refused(capsys,
     _refused(capsys, tmp_path, _one(walls, forged), "at a point the checker chose")
     # without the scene's G^-1 the checker cannot choose points: never success
     del _judge(forged)["inverse"]
-    status, out, err = _check(capsys, tmp_path, _one(walls, forged))
+    status, out, err = check_file(capsys, tmp_path, _one(walls, forged))
     assert status == 1 and "cannot test it at points of its own choosing" in out + err, out[-600:]
 
 

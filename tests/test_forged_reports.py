@@ -14,6 +14,7 @@ import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
+from clirun import check_file, json_of  # noqa: E402
 from forgeries import NOT_PASSIVE, PASSIVE, forged_audits, forged_walls
 
 from hapticproof.cli import main
@@ -22,48 +23,21 @@ from hapticproof.exact.checker import check_report
 ROOT = Path(__file__).resolve().parents[1]
 
 
-def _json(capsys, argv) -> dict:
-    assert main(argv) == 0
-    return json.loads(capsys.readouterr().out)
-
-
 @pytest.fixture(scope="module")
 def walls():
-    from contextlib import redirect_stderr, redirect_stdout
-    from io import StringIO
-
-    out = []
-    for argv in (NOT_PASSIVE, PASSIVE):
-        buffer = StringIO()
-        with redirect_stdout(buffer), redirect_stderr(StringIO()):
-            assert main(argv) == 0
-        out.append(json.loads(buffer.getvalue()))
+    out = [json_of(*argv) for argv in (NOT_PASSIVE, PASSIVE)]
     assert out[0]["verdict"] == "disproved" and out[1]["verdict"] == "proved"
     return out
 
 
 @pytest.fixture(scope="module")
 def audit():
-    from contextlib import redirect_stderr, redirect_stdout
-    from io import StringIO
-
-    buffer = StringIO()
-    with redirect_stdout(buffer), redirect_stderr(StringIO()):
-        assert main(["audit", "--paper", str(ROOT / "examples" / "hve-single-user.toml"), "--format", "json"]) == 0
-    return json.loads(buffer.getvalue())
-
-
-def _check(capsys, tmp_path, report) -> tuple[int, str, str]:
-    path = tmp_path / "r.json"
-    path.write_text(json.dumps(report), encoding="utf-8")
-    status = main(["check", str(path)])
-    captured = capsys.readouterr()
-    return status, captured.out, captured.err
+    return json_of("audit", "--paper", ROOT / "examples" / "hve-single-user.toml", "--format", "json")
 
 
 def test_genuine_wall_reports_are_accepted(capsys, tmp_path, walls):
     for report in walls:
-        status, out, err = _check(capsys, tmp_path, report)
+        status, out, err = check_file(capsys, tmp_path, report)
         assert status == 0 and out.rstrip().endswith("report accepted") and err == "", out[-600:]
 
 
@@ -71,7 +45,7 @@ def test_each_forged_wall_report_is_refused(capsys, tmp_path, walls):
     forgeries = forged_walls(*walls)
     assert len(forgeries) == 14
     for what, report, expected in forgeries:
-        status, out, err = _check(capsys, tmp_path, report)
+        status, out, err = check_file(capsys, tmp_path, report)
         assert status == 1, (what, out[-800:])
         assert "report accepted" not in out and expected in out + err, (what, expected, out[-800:], err)
         assert len(err.strip().splitlines()) == 1 and err.startswith("report "), (what, err)
@@ -82,7 +56,7 @@ def test_each_forged_audit_is_refused(capsys, tmp_path, audit):
     forgeries = forged_audits(audit)
     assert len(forgeries) >= 4
     for what, report, expected in forgeries:
-        status, out, err = _check(capsys, tmp_path, report)
+        status, out, err = check_file(capsys, tmp_path, report)
         assert status == 1 and expected in out + err, (what, expected, out[-800:], err)
         assert len(err.strip().splitlines()) == 1, (what, err)
 
@@ -90,16 +64,16 @@ def test_each_forged_audit_is_refused(capsys, tmp_path, audit):
 def test_an_unbacked_verdict_is_not_success(capsys, tmp_path, audit):
     """The template's audit: two confirmed entries carry no certificate or judge object, so the
     report is listed in full but not accepted; the judged entry alone is."""
-    status, out, err = _check(capsys, tmp_path, audit)
+    status, out, err = check_file(capsys, tmp_path, audit)
     unbacked = [e for e in audit["equations"] if not e["evidence"].get("facts", {}).get("judge")
                 and "certificate" not in json.dumps(e["evidence"])]
     if unbacked:
         assert status == 1 and "NOT BACKED" in out and err.startswith("report not accepted:")
     backed = dict(audit, equations=[e for e in audit["equations"] if e not in unbacked])
-    status, out, err = _check(capsys, tmp_path, backed)
+    status, out, err = check_file(capsys, tmp_path, backed)
     assert status == 0 and out.rstrip().endswith("report accepted"), out[-800:]
     undecided = dict(audit, equations=[dict(e, verdict="undecided", evidence={"method": "instances"}) for e in unbacked])
-    assert _check(capsys, tmp_path, undecided)[0] == 0          # a verdict that claims nothing needs nothing
+    assert check_file(capsys, tmp_path, undecided)[0] == 0          # a verdict that claims nothing needs nothing
 
 
 def test_a_certificate_above_the_work_limit_is_bounded_and_not_success(capsys, tmp_path, walls, monkeypatch):
@@ -121,7 +95,7 @@ def test_a_certificate_above_the_work_limit_is_bounded_and_not_success(capsys, t
     work = []
     real_spend = checkarith.spend
     monkeypatch.setattr(checkarith, "spend", lambda units: (work.append(units), real_spend(units)))
-    status, out, _ = _check(capsys, tmp_path, report)
+    status, out, _ = check_file(capsys, tmp_path, report)
     assert status == 1 and "work limit" in out
     assert checkarith.max_work() <= sum(work) < checkarith.max_work() + max(work)   # stopped at the budget
 
@@ -133,9 +107,9 @@ def test_a_crafted_boundary_report_never_reaches_the_native_library(capsys, tmp_
                  "--vary", "K", "--json", str(tmp_path / "b.json")]) == 0
     capsys.readouterr()
     report = json.loads((tmp_path / "b.json").read_text(encoding="utf-8"))
-    assert _check(capsys, tmp_path, report)[0] == 0
+    assert check_file(capsys, tmp_path, report)[0] == 0
     report["judge"]["sides"][0]["loop"]["shape"]["inputs"] = inputs
-    status, out, err = _check(capsys, tmp_path, report)
+    status, out, err = check_file(capsys, tmp_path, report)
     assert status == 1 and "size" in out and "Traceback" not in err
 
 
@@ -198,5 +172,5 @@ def test_type_edited_reports_are_refused_never_a_traceback(capsys, tmp_path, wal
     for value in (None, "x", [], -1):
         forged = copy.deepcopy(walls[0])
         forged["conditions"][3]["evidence"]["facts"] = value
-        status, _, err = _check(capsys, tmp_path, forged)
+        status, _, err = check_file(capsys, tmp_path, forged)
         assert status in (1, 2) and "Traceback" not in err and len(err.strip().splitlines()) == 1, err
