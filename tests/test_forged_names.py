@@ -183,3 +183,15 @@ def test_a_boundary_reports_crossing_outcome_and_start_are_bound_to_its_loops(tm
         forged = copy.deepcopy(report)
         edit(forged)
         assert not check_report(forged).accepted, name
+
+
+def test_a_purely_imaginary_pole_shown_by_its_decimals_is_read():
+    """Poles at +-j/sqrt(2) are shown as '0.7071...*I' (no real part): a genuine report is accepted,
+    one with the pole moved is refused."""
+    report = json_of("derive", "single-user", "--environment", "K*z/(z**2 + 1/2)", "--param", "K=1", "--param", "b=10",
+                     "--param", "T=1", "--format", "json")
+    assert any(isinstance(p["z"], dict) and p["z"]["approx"].startswith("0.7071") for p in report["poles"])
+    assert check_report(report).accepted, check_report(report).summary()[-400:]
+    forged = copy.deepcopy(report)
+    next(p for p in forged["poles"] if isinstance(p["z"], dict))["z"]["approx"] = "-0.6*I"
+    assert not check_report(forged).accepted
