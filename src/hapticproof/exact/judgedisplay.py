@@ -198,38 +198,30 @@ def boundary_display(report: Mapping[str, Any]) -> list[str]:
     return problems
 
 
-def _read_shown(text: Any, name: str) -> tuple[Any, Any] | None:
-    """A displayed expression read (never evaluated) by the toolkit's expression reader, with
-    its one symbol ``name`` (``None`` for a constant); ``None`` when it is not a numeric
-    expression of ``name`` alone."""
+def _read_display(text: Any, variable: str | None = None) -> Any:
+    """A displayed expression read (never evaluated) by the toolkit's expression reader, ``None``
+    when it is no short text the reader takes."""
     from hapticproof.core.expr import read_expression
 
     if not isinstance(text, str) or len(text) > MAX_SHOWN_CHARS or text in ("None", "True", "False"):
         return None
     try:
-        expr = read_expression(text, "z" if name == "z" else None)
+        return read_expression(text, variable)
     except Exception:  # noqa: BLE001 - a display the reader does not take is not compared
         return None
-    if any(s.name != name for s in expr.free_symbols):
+
+
+def _read_shown(text: Any, name: str) -> tuple[Any, Any] | None:
+    """A displayed expression with its one symbol ``name`` (``None`` for a constant); ``None``
+    when it is not a numeric expression of ``name`` alone."""
+    expr = _read_display(text, "z" if name == "z" else None)
+    if expr is None or any(s.name != name for s in expr.free_symbols):
         return None
     return expr, next(iter(expr.free_symbols), None)
 
 
 #: the points at most at which a displayed form is compared (a longer form is compared there)
 MAX_FORM_POINTS = 400
-
-
-def _foreign_names(text: Any, name: str) -> set[str]:
-    """The names other than ``name`` a displayed expression uses (empty when it cannot be read)."""
-    from hapticproof.core.expr import read_expression
-
-    if not isinstance(text, str) or len(text) > MAX_SHOWN_CHARS or text in ("None", "True", "False"):
-        return set()
-    try:
-        expr = read_expression(text, None)
-    except Exception:  # noqa: BLE001 - a display the reader does not take is compared nowhere
-        return set()
-    return {s.name for s in expr.free_symbols} - {name}
 
 
 def _degree_in(expr: Any, symbol: Any) -> int:
@@ -277,13 +269,13 @@ def displayed_forms(report: Mapping[str, Any], definition: Mapping[str, Any]) ->
                     break
         notation = report.get("notation") if isinstance(report.get("notation"), Mapping) else {}
         cos = notation.get("cos", "c") if isinstance(notation.get("cos", "c"), str) else "c"
-        foreign = _foreign_names(report.get("hermitian_part"), cos)
+        herm = _read_display(report.get("hermitian_part"))         # c under the scene's name for it
+        foreign = {s.name for s in herm.free_symbols} - {cos} if herm is not None else set()
         if foreign:
             problems.append(f"the Re G^-1 shown names {', '.join(sorted(foreign))[:60]}: a numeric report's Re G^-1 is a "
                             f"function of {cos} = cos(omega T) alone")
-        shown = _read_shown(report.get("hermitian_part"), cos)     # c under the scene's name for it
-        if shown:
-            expr, symbol = shown
+        if herm is not None and not foreign:
+            expr, symbol = herm, next(iter(herm.free_symbols), None)
             # enough points that agreeing at all of them is an identity of the two rational functions
             # of c (degrees of the shown form plus that of Re G^-1, at most that of G^-1)
             needed = _degree_in(expr, symbol) + max(len(transfer["num"]), len(transfer["den"])) + 1
