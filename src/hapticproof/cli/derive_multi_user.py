@@ -359,8 +359,9 @@ def run(args: argparse.Namespace) -> int:
                 shown[key] = names.renamed(shown[key])      # the toolkit's c, s_theta under the scene's names
         if "principal_minors" in shown:
             shown["principal_minors"] = {k: names.renamed(v) for k, v in shown["principal_minors"].items()}
-        if names.changed(omit=("leak", "coupling")):          # (no teleoperator quantity in an m-user report)
-            shown["notation"] = names.changed(omit=("leak", "coupling"))
+        notation = names.changed(omit=("leak", "coupling"))    # (no teleoperator quantity in an m-user report)
+        if notation:
+            shown["notation"] = notation
         if "skipped" in shown:
             shown["skipped"] = {k: {"reason": why, "option": how} for k, (why, how) in shown["skipped"].items()}
         out = to_jsonable(shown)

@@ -85,8 +85,9 @@ class SceneSummary:
             "minimiser": self.minimiser,
             "minimum": self.minimum,
         }
-        if names.changed(omit=_NOT_A_WALLS):
-            out["notation"] = names.changed(omit=_NOT_A_WALLS)
+        notation = names.changed(omit=_NOT_A_WALLS)
+        if notation:
+            out["notation"] = notation
         if self.skipped:
             out["skipped"] = {k: {"reason": why, "option": how} for k, (why, how) in self.skipped.items()}
         if self.definition is not None:

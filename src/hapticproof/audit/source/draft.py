@@ -242,9 +242,10 @@ def _guessed_roles(source: Source, environment: set[str]) -> str | None:
     from hapticproof.audit.source.guess import period_names
 
     roles = {}
+    prose = "\n".join(d.prose for d in source.displays)
     periods = sorted(n for n in environment if re.fullmatch(r"T_?\w*", n) and n != "T")
     if "T" not in environment and len(periods) != 1:     # the period the prose or the displays name
-        named = period_names("\n".join(d.prose for d in source.displays), "\n".join(d.text for d in source.displays))
+        named = period_names(prose, "\n".join(d.text for d in source.displays))
         periods = [n for n in (p.replace("{", "").replace("}", "") for p in named) if n in environment]
     if "T" not in environment and len(periods) == 1:
         roles["period"] = periods[0]
@@ -256,7 +257,6 @@ def _guessed_roles(source: Source, environment: set[str]) -> str | None:
                 roles["device_damping"] = name
             break
     if "device_damping" not in roles:          # "a device with physical damping $c_d > 0$"
-        prose = "\n".join(d.prose for d in source.displays)
         for m in _DEVICE_DAMPING.finditer(prose):
             name = m.group(2).replace("{", "").replace("}", "")
             if m.group(1).lower() not in _NOT_THE_DEVICE and name not in environment and name not in ("b", "z", "e", "j"):
