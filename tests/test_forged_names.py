@@ -195,3 +195,33 @@ def test_a_purely_imaginary_pole_shown_by_its_decimals_is_read():
     forged = copy.deepcopy(report)
     next(p for p in forged["poles"] if isinstance(p["z"], dict))["z"]["approx"] = "-0.6*I"
     assert not check_report(forged).accepted
+
+
+def test_the_minimum_checks_sign_decision_agrees_with_an_oracle_from_the_factorisation():
+    """``p >= 0`` on [-1, 1] as the checker decides it (odd-multiplicity roots by Sturm) against an
+    oracle that knows the roots by construction: the sign of the product at every root inside and
+    at the midpoint of every gap, exactly (roots of every multiplicity, on the ends, outside)."""
+    import random
+    from fractions import Fraction
+
+    import flint
+
+    from hapticproof.exact.acceptance import _nonnegative_on
+
+    rng = random.Random(30)
+    for _ in range(300):
+        roots = [(Fraction(rng.randint(-12, 12), rng.choice([4, 5, 8])), rng.randint(1, 3)) for _ in range(rng.randint(0, 4))]
+        scale = Fraction(rng.choice([-3, -1, 1, 2]), rng.choice([1, 7]))
+
+        def value(x: Fraction) -> Fraction:
+            out = scale
+            for r, m in roots:
+                out *= (x - r) ** m
+            return out
+        poly = flint.fmpq_poly([flint.fmpq(scale.numerator, scale.denominator)])
+        for r, m in roots:
+            poly *= flint.fmpq_poly([flint.fmpq(-r.numerator, r.denominator), 1]) ** m
+        inside = sorted({r for r, _ in roots if -1 <= r <= 1} | {Fraction(-1), Fraction(1)})
+        points = inside + [(a + b) / 2 for a, b in zip(inside, inside[1:])]
+        truth = all(value(x) >= 0 for x in points)
+        assert _nonnegative_on(poly, Fraction(-1), Fraction(1)) == truth, (roots, scale)
