@@ -134,6 +134,7 @@ def derive(scene: Any, minors: str = "auto", full: bool = False) -> dict[str, An
                       if scene.users <= MAX_JUDGED_SIZE else None)
         if definition is not None:
             out["definition"] = definition
+            out["scene"] = _scene_values(scene)
             if not definition["judged"]["ok"]:   # the decision and the definition disagree
                 out["reason"] = (f"the definition-level judge disagrees with '{out['verdict']}' "
                                  f"({definition['judged']['reason']}); the decision said: {out['reason']}")
@@ -143,6 +144,18 @@ def derive(scene: Any, minors: str = "auto", full: bool = False) -> dict[str, An
     if scene.equal_delays and not scene.is_numeric:
         out["sufficient_condition"] = sufficient_condition(scene)
     return out
+
+
+def _scene_values(scene: Any) -> dict[str, Any]:
+    """``T``, ``b``, ``z_a`` and ``H(z) = Kmat + Bmat (z-1)/(Tz)`` of a numeric scene, as ``check``
+    rebuilds ``G^{-1}`` from them."""
+    from hapticproof.exact.kernel import scene_json
+    from hapticproof.systems.multiuser import damping_matrix, stiffness_matrix
+
+    T, m = scene.T, scene.users
+    Kmat, Bmat = stiffness_matrix(scene), damping_matrix(scene)
+    H = [[([-Bmat[i, j], T * Kmat[i, j] + Bmat[i, j]], [0, T]) for j in range(m)] for i in range(m)]
+    return scene_json(T, scene.b, scene.z_a, H)
 
 
 def derive_by_modes(scene: Any, minors: str = "auto") -> dict[str, Any]:

@@ -745,6 +745,7 @@ def check_report(report: Any) -> ReportCheck:
     )
     from hapticproof.exact.judge import judge, judges
     from hapticproof.exact.judgedisplay import condition_display, derive_display
+    from hapticproof.exact.scenebinding import scene_binding
 
     if isinstance(report, str):
         report = json.loads(report)
@@ -791,6 +792,7 @@ def check_report(report: Any) -> ReportCheck:
             top.append(CheckResult(result.ok, result.reason, verified=result.judged, source="judge"))
         problems = [r for r in _guarded(lambda: derive_display(report), "display")]
         problems += _guarded(lambda: derive_binding(report), "binding")
+        problems += _guarded(lambda: scene_binding(report), "binding")
         problems += _guarded(lambda: witness_problems({"witness": report.get("witness")},
                                                        witness_keys(report.get("notation"))), "display")
         problems += _guarded(lambda: witness_problems({"definition": report.get("definition")}), "display")
@@ -814,7 +816,7 @@ def _vacuous_residues(report: Any, name: str, claim: str, done: list) -> bool:
     """A residue condition proved without a certificate because there is no pole on the
     boundary: backed by a roots certificate of the same report, re-verified above, that counts
     no boundary root."""
-    if claim != "proved" or "esidue" not in name or not isinstance(report, dict) or "conditions" not in report:
+    if claim != "proved" or not ("esidue" in name or name.startswith("Res")) or not isinstance(report, dict) or "conditions" not in report:
         return False
     for _, results in done:
         for result in results:

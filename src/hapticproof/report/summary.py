@@ -28,8 +28,9 @@ from hapticproof.report.readable import brief, full_text, witness_text
 from hapticproof.systems.models import inverse_transfer
 from hapticproof.exact.conditions import Condition
 from hapticproof.analysis.positivereal import (SYMBOLIC_CFORM_LIMIT, conditions, definition_object, hermitian, poles,
-                                              positive_real, residues, symbolic_c_degree, transfer_polynomials, worst_case)
-from hapticproof.exact.kernel import transfer_json
+                                              numeric_scene, positive_real, residues, symbolic_c_degree,
+                                              transfer_polynomials, worst_case)
+from hapticproof.exact.kernel import scene_json, transfer_json
 from hapticproof.systems.singleuser import SingleUserScene
 from hapticproof.exact.unitcircle import CRational
 
@@ -66,6 +67,8 @@ class SceneSummary:
     definition: dict | None = None
     #: the scene's names (:class:`~hapticproof.core.naming.Naming`): every view prints through them
     names: Naming = DEFAULT
+    #: the values ``G^{-1}`` is built from (:func:`~hapticproof.exact.kernel.scene_json`), for ``check``
+    scene: dict | None = None
 
     def to_json(self) -> dict[str, Any]:
         names = self.names
@@ -92,6 +95,8 @@ class SceneSummary:
             out["skipped"] = {k: {"reason": why, "option": how} for k, (why, how) in self.skipped.items()}
         if self.definition is not None:
             out["definition"] = self.definition
+        if self.scene is not None:
+            out["scene"] = self.scene
         if self.stages:
             out["stages_seconds"] = self.stages
         return to_jsonable(out)
@@ -189,6 +194,12 @@ def _readable(expr: sp.Expr) -> sp.Expr:
     return sp.Mul(sp.expand(num), sp.Pow(sp.expand(den), -1), evaluate=False)
 
 
+def _scene_values(scene: SingleUserScene) -> dict[str, Any]:
+    """``T``, ``b``, ``z_a`` and ``H(z)`` of a numeric scene, as ``check`` rebuilds ``G^{-1}`` from them."""
+    values = numeric_scene(scene)
+    return scene_json(values.T, [values.b], [values.z_a], [[values.H]])
+
+
 def _skipped_text(summary: SceneSummary, name: str) -> str:
     why, how = summary.skipped.get(name, ("not computed", "--full"))
     return f"not computed: {why} [{how} computes it]"
@@ -271,6 +282,7 @@ def summarize_single_user(scene: SingleUserScene, with_profile: bool = False, fu
         skipped=skipped,
         definition=definition,
         names=names,
+        scene=_scene_values(scene) if scene.is_numeric else None,
     )
 
 
