@@ -152,7 +152,7 @@ def upward_imports(graph: Graph) -> list[tuple[str, str]]:
 
 #: The independent checker: the certificate checks, their exact arithmetic and the
 #: definition-level judge. They import only ``core`` and each other -- nothing of the kernel.
-CHECKER = tuple(f"{PACKAGE}.exact.{name}" for name in ("checker", "checkarith", "judge", "judgedisplay", "judgepoints", "scenebinding",
+CHECKER = tuple(f"{PACKAGE}.exact.{name}" for name in ("checker", "checkarith", "judge", "judgedisplay", "judgepoints", "scenebinding", "shownmatrix", "shownnetwork",
                                                               "acceptance"))
 
 

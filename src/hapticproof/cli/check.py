@@ -60,6 +60,8 @@ def run(args: argparse.Namespace) -> int:
             name, first = failed[0]
             more = f" (and {len(failed) - 1} more)" if len(failed) > 1 else ""
             print(f"report refused: {for_terminal(name)}: {for_terminal(first.reason)}{more}", file=sys.stderr)
+        elif not result.not_verified:
+            print("report not accepted: no certificate or judge object in it was re-verified", file=sys.stderr)
         else:
             missing = result.not_verified
             name, first = next(((n, r) for n, r in missing if r.source != "unbacked"), missing[0])

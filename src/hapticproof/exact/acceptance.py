@@ -47,6 +47,7 @@ from hapticproof.exact.checkarith import (
     CheckSkipped,
     Gaussian,
     budget,
+    certificates,
     charpoly_coefficients,
     exact_q,
     has_root_outside,
@@ -57,11 +58,16 @@ from hapticproof.exact.checkarith import (
     Sturm,
 )
 
-__all__ = ["CLAIMLESS", "angle", "audit_binding", "claim_of", "definition_proof", "derive_binding", "factored_transfers",
+__all__ = ["CLAIMLESS", "angle", "audit_binding", "claim_of", "decision_problems", "definition_proof", "derive_binding", "factored_transfers",
+           "rational_of", "residue_matrix", "unbound_verdict",
            "same_transfer", "witness_problems"]
 
 #: Verdicts and decisions that claim nothing (no evidence needed to show them).
 CLAIMLESS = frozenset({"undecided", "symbolic"})
+
+#: Fields only a derive report of a wall or of m users shows (about its ``G^{-1}``).
+_DERIVED_KEYS = frozenset({"G_inverse", "hermitian_part", "approximation", "residues", "poles", "worst_case", "minimiser",
+                           "minimum", "users", "delays", "delay", "residue_at_1", "worst_case_condition", "worst_c"})
 
 #: The condition of a scalar derive report that a sign certificate decides.
 _SIGN_CONDITION = "Re G^-1 >= 0 for all w"
@@ -92,19 +98,6 @@ def _walk(node: Any, key: str) -> Iterator[Any]:
     elif isinstance(node, list):
         for value in node:
             yield from _walk(value, key)
-
-
-def _certificates(node: Any) -> Iterator[Mapping[str, Any]]:
-    """Every certificate object (a dict whose ``certificate`` names a kind) inside a JSON value."""
-    if isinstance(node, Mapping):
-        if is_kind(node.get("certificate")):
-            yield node
-            return
-        for value in node.values():
-            yield from _certificates(value)
-    elif isinstance(node, list):
-        for value in node:
-            yield from _certificates(value)
 
 
 def _exact_list(coeffs: Any) -> list[Fraction]:
@@ -172,8 +165,9 @@ def derive_binding(report: Mapping[str, Any]) -> list[str]:
     conditions = report.get("conditions")
     if verdict in ("proved", "disproved") and not conditions:
         return [f"the verdict {verdict!r} is shown with no condition to back it (its conditions were removed)"]
-    if "G_inverse" in report and verdict in ("proved", "disproved") and _numeric(report) and \
-            not (isinstance(definition, Mapping) and definition.get("judge") == "positive-real"):
+    if _DERIVED_KEYS & set(report) and verdict in ("proved", "disproved") and \
+            not (isinstance(definition, Mapping) and definition.get("judge") == "positive-real") and \
+            unbound_verdict(report) is None:
         return [(f"the verdict {verdict!r} carries no positive-real definition object: nothing ties it to G^-1 "
                  "(a report whose definition was removed)")]
     if not isinstance(definition, Mapping) or not isinstance(definition.get("transfer"), Mapping):
@@ -185,7 +179,7 @@ def derive_binding(report: Mapping[str, Any]) -> list[str]:
         if not isinstance(cond, Mapping):
             continue
         name = str(cond.get("name"))
-        for cert in _certificates(cond):
+        for cert in certificates(cond):
             kind = cert["certificate"]
             named = "transfer" in cert and kind != "infinity" or kind == "infinity" and scalar
             if named and not same_transfer(cert.get("transfer"), transfer):
@@ -193,7 +187,7 @@ def derive_binding(report: Mapping[str, Any]) -> list[str]:
             if kind == "roots" and cert.get("domain") == "disk" and not _about_poles(cert, cond, poles):
                 problems.append(f"{name}: the roots certificate is not about the denominator of the report's G^-1")
         if scalar and name == _SIGN_CONDITION and cond.get("decision") in ("proved", "disproved"):
-            signs = [c for c in _certificates(cond) if c["certificate"] in ("sign", "chebyshev-sign")]
+            signs = [c for c in certificates(cond) if c["certificate"] in ("sign", "chebyshev-sign")]
             if not signs:
                 problems.append(f"{name}: no sign certificate decides it")
             for cert in signs:
@@ -208,6 +202,26 @@ def derive_binding(report: Mapping[str, Any]) -> list[str]:
     if verdict == "proved" or definition.get("decision") == "proved":
         problems += definition_proof(report)
     return problems
+
+
+def unbound_verdict(report: Mapping[str, Any]) -> str | None:
+    """Why a derive report's verdict is about a ``G^{-1}`` the checker holds no object of, when
+    the report says so itself: a symbolic scene (its ``G_inverse`` reads with parameters) or an
+    m-user scene decided by its modes. Such a verdict is never accepted as re-verified (re-derive
+    it); ``None`` otherwise (a numeric report must carry its definition object)."""
+    if isinstance(report.get("definition"), Mapping) or report.get("verdict") not in ("proved", "disproved"):
+        return None
+    if report.get("by_modes") is True and isinstance(report.get("modes"), list):
+        return "an m-user scene decided by its modes carries no G^-1 matrix to bind its verdict to: re-derive it (--full)"
+    shown = report.get("G_inverse")
+    try:
+        rational_of(shown, max_degree())
+    except ValueError as err:
+        if str(err) == "it has parameters":
+            return "a symbolic scene's verdict (its G^-1 has parameters): not re-verifiable by the checker, re-derive it"
+    except (TypeError, ArithmeticError, RecursionError):
+        pass
+    return None
 
 
 def shown_poles(report: Mapping[str, Any], transfer: Mapping[str, Any]) -> list[str]:
@@ -280,7 +294,7 @@ def shown_poles(report: Mapping[str, Any], transfer: Mapping[str, Any]) -> list[
         except (TypeError, ValueError, ZeroDivisionError, AttributeError):
             problems.append(f"the residue shown at the simple pole z0 = {z0} cannot be read")
             continue
-        own = _residue_matrix([transfer], transfer, z0)[0][0]
+        own = residue_matrix([transfer], transfer, z0)[0][0]
         if value not in (own, own * z0):
             problems.append(f"the residue shown at z0 = {z0} is {residue.get('residue')}, G^-1 has Res/z0 = {own}")
         expected = "proved" if own >= 0 else "disproved"
@@ -390,7 +404,7 @@ def definition_proof(report: Mapping[str, Any]) -> list[str]:
     for cond in report.get("conditions") or []:
         if not isinstance(cond, Mapping) or cond.get("decision") != "proved":
             continue
-        for cert in _certificates(cond):
+        for cert in certificates(cond):
             kind = cert["certificate"]
             if not cert.get("holds") is True or not same_transfer(cert.get("transfer"), transfer):
                 continue
@@ -435,7 +449,7 @@ def _poles_of_proof(transfer: Mapping[str, Any]) -> list[str]:
         if not remainder.is_zero():
             continue
         rest = quotient
-        residue = _residue_matrix(cells, transfer, z0)
+        residue = residue_matrix(cells, transfer, z0)
         m = len(residue)
         if any(residue[i][j] != residue[j][i] for i in range(m) for j in range(m)):
             problems.append(f"Res/z0 >= 0 at unit-circle poles: the residue matrix at z0 = {z0} is not Hermitian")
@@ -447,7 +461,7 @@ def _poles_of_proof(transfer: Mapping[str, Any]) -> list[str]:
     return problems
 
 
-def _residue_matrix(cells: list, transfer: Mapping[str, Any], z0: Fraction) -> list[list[Fraction]]:
+def residue_matrix(cells: list, transfer: Mapping[str, Any], z0: Fraction) -> list[list[Fraction]]:
     """``Res_{z0} G^{-1} / z0`` entry by entry (a 1 x 1 matrix of a scalar ``G^{-1}``)."""
     point = flint.fmpq(z0.numerator, z0.denominator)
     factor = flint.fmpq_poly([-point, 1])
@@ -477,13 +491,15 @@ def _shown_minimum(report: Mapping[str, Any], cond: Mapping[str, Any]) -> list[s
         value = exact_q(((cond.get("evidence") or {}).get("facts") or {}).get("value"))
     except (TypeError, ValueError, ZeroDivisionError):
         value = None
-    form = next(((json_poly(c["numerator"]), json_poly(c["denominator"])) for c in _certificates(cond)
+    form = next(((json_poly(c["numerator"]), json_poly(c["denominator"])) for c in certificates(cond)
                  if c["certificate"] == "sign" and "numerator" in c and "denominator" in c), None)
     for where in (report, cond):
         shown = where.get("minimum")
         try:
             low = exact_q(shown)
         except (TypeError, ValueError, ZeroDivisionError):     # none, or a ball of a long delay's worst case
+            if shown is not None and not (isinstance(shown, str) and _BALL.fullmatch(shown)):
+                out.append(f"the minimum shown {str(shown)[:40]!r} is neither an exact number nor a ball")
             continue
         if cond.get("decision") == "proved" and low < 0:
             out.append(f"the minimum shown {shown} is negative, but Re G^-1 >= 0 is proved")
@@ -492,6 +508,10 @@ def _shown_minimum(report: Mapping[str, Any], cond: Mapping[str, Any]) -> list[s
         if form is not None:
             out += _minimum_of_form(form, low, where.get("minimiser"), shown)
     return out
+
+
+#: A ball ``[mid +/- rad]`` (a long delay's worst case, by interval arithmetic).
+_BALL = re.compile(r"\[?-?\d+(?:\.\d+)?(?:e[-+]?\d+)? \+/- \d+(?:\.\d+)?(?:e[-+]?\d+)?\]?")
 
 
 def _minimum_of_form(form: tuple[flint.fmpq_poly, flint.fmpq_poly], low: Fraction, at: Any, shown: Any) -> list[str]:
@@ -562,13 +582,13 @@ def _numeric(report: Mapping[str, Any]) -> bool:
     """A report about a numeric ``G^{-1}`` (which then has its definition object): a certificate
     names a transfer function with numbers, or the ``G_inverse`` shown has no parameter. (A
     symbolic ``G^{-1}`` has no definition object; its decisions rest on their certificates.)"""
-    if any("transfer" in cert for cert in _certificates(report.get("conditions"))):
+    if any("transfer" in cert for cert in certificates(report.get("conditions"))):
         return True
     shown = report.get("G_inverse")
     if isinstance(shown, list):
         return False                    # a matrix shown entry by entry: its certificates say whether it is numeric
     try:
-        _rational_of(shown, 10**6)
+        rational_of(shown, 10**6)
     except (ValueError, TypeError, ArithmeticError, RecursionError):
         return False
     return True
@@ -581,7 +601,7 @@ def _shown_inverse(report: Mapping[str, Any], transfer: Mapping[str, Any]) -> li
         return []
     shown = report["G_inverse"]
     try:
-        num, den = _rational_of(shown, max(len(transfer["num"]), len(transfer["den"])))
+        num, den = rational_of(shown, max(len(transfer["num"]), len(transfer["den"])))
     except (ValueError, TypeError, ArithmeticError, RecursionError) as err:
         return [f"the G^-1 shown cannot be read as a rational function of z ({str(err)[:120]})"]
     tn, td = json_poly(transfer["num"]), json_poly(transfer["den"])
@@ -590,9 +610,10 @@ def _shown_inverse(report: Mapping[str, Any], transfer: Mapping[str, Any]) -> li
     return []
 
 
-def _rational_of(text: Any, degree: int) -> tuple[flint.fmpq_poly, flint.fmpq_poly]:
-    """``text`` read (never evaluated) by the toolkit's expression reader as ``num/den`` in ``z``
-    with rational coefficients, its degree bounded by that of the transfer function."""
+def rational_of(text: Any, degree: int, variable: str = "z") -> tuple[flint.fmpq_poly, flint.fmpq_poly]:
+    """``text`` read (never evaluated) by the toolkit's expression reader as ``num/den`` in
+    ``variable`` (``z`` or ``s``) with rational coefficients, its degree bounded by that of the
+    transfer function."""
     import sympy as sp
 
     from hapticproof.core.errors import HapticproofError
@@ -603,10 +624,10 @@ def _rational_of(text: Any, degree: int) -> tuple[flint.fmpq_poly, flint.fmpq_po
         raise ValueError("not a short expression")
     try:
         with raised(degree=max(current().degree, degree + 8)):
-            expr = read_expression(text, "z")
+            expr = read_expression(text, variable)
     except HapticproofError as err:
         raise ValueError(str(err)) from None
-    z = sp.Symbol("z")
+    z = sp.Symbol(variable)
     if expr.free_symbols - {z}:
         raise ValueError("it has parameters")
     num, den = sp.fraction(sp.together(expr))
@@ -639,11 +660,15 @@ def audit_binding(entry: Mapping[str, Any]) -> list[str]:
     kind, claim = obj.get("judge"), obj.get("claim")
     claims = {"condition": ("holds-passive", "holds-not-passive", "fails-passive"), "circle-identity": ("equal", "differ")}
     if kind not in claims:
-        return []
+        return [f"the judge object ({str(kind)[:40]!r}) judges no printed display: it does not back the verdict "
+                f"{str(entry.get('verdict'))[:40]!r}"]
     if claim not in claims[kind]:
         return [f"the judge object's claim {str(claim)[:40]!r} is not one the {kind} judge knows"]
     shown = evidence.get("witness")
     counterexample = claim in ("holds-not-passive", "fails-passive", "differ")
+    verdict = entry.get("verdict")
+    if verdict == "confirmed" and counterexample or verdict in ("wrong", "typo") and not counterexample:
+        return [f"the verdict {verdict!r} is not what the judge object's claim {claim!r} says"]
     if counterexample and not shown:
         return [f"the judge holds a counterexample ({claim}) but the entry shows no witness"]
     if not counterexample and shown:
@@ -831,3 +856,78 @@ def angle(text: Any) -> Any:
     if peek() is not None:
         raise ValueError("the angle is not an expression")
     return value
+
+
+# ---------------------------------------------------------------------------------------------
+# a decision against its own evidence, at every depth
+# ---------------------------------------------------------------------------------------------
+
+
+def _owncertificates(node: Any) -> Iterator[Mapping[str, Any]]:
+    """The certificates a decision carries itself (not those of the decisions nested in it)."""
+    if isinstance(node, Mapping):
+        if is_kind(node.get("certificate")):
+            yield node
+        for key, value in node.items():
+            if not (isinstance(value, Mapping) and "decision" in value) and key != "conditions":
+                yield from _owncertificates(value)
+    elif isinstance(node, list):
+        for value in node:
+            if not (isinstance(value, Mapping) and "decision" in value):
+                yield from _owncertificates(value)
+
+
+def _nested_decisions(node: Mapping[str, Any]) -> list[str]:
+    """The decisions of the conditions a decision is the conjunction of (``conditions`` beside it
+    or among its facts)."""
+    facts = node.get("evidence", {}).get("facts") if isinstance(node.get("evidence"), Mapping) else None
+    for conditions in (node.get("conditions"), facts.get("conditions") if isinstance(facts, Mapping) else None):
+        if isinstance(conditions, list) and conditions and all(isinstance(c, Mapping) and "decision" in c for c in conditions):
+            return [c["decision"] for c in conditions]
+    return []
+
+
+def decision_problems(node: Any, where: str = "report") -> list[str]:
+    """Every ``decision`` in a report held against its own evidence, at any depth: a ``proved``
+    decision whose own certificate does not hold, a ``disproved`` one whose certificates all hold,
+    a conjunction ``proved`` with a condition not proved (or ``disproved`` with none disproved),
+    and a ``scaled_residue`` shown beside a residue certificate that says another value.
+
+    >>> cert = {"certificate": "sign", "holds": False}
+    >>> decision_problems({"decision": "proved", "evidence": {"facts": {"certificate": cert}}})
+    ["report: the decision 'proved' is shown, but its own sign certificate does not hold"]
+    """
+    out: list[str] = []
+    if isinstance(node, list):
+        for value in node:
+            out += decision_problems(value, where)
+        return out
+    if not isinstance(node, Mapping):
+        return out
+    name = str(node.get("name", where))[:60]
+    decision = node.get("decision")
+    if decision in ("proved", "disproved"):
+        certs = list(_owncertificates({k: v for k, v in node.items() if k != "decision"}))
+        holding = [c["holds"] for c in certs if isinstance(c.get("holds"), bool)]
+        if decision == "proved" and False in holding:
+            kind = next(c["certificate"] for c in certs if c.get("holds") is False)
+            out.append(f"{name}: the decision 'proved' is shown, but its own {kind} certificate does not hold")
+        if decision == "disproved" and holding and all(holding) and len(holding) == len(certs):   # (roots: no 'holds')
+            out.append(f"{name}: the decision 'disproved' is shown, but every certificate of its own holds")
+        nested = _nested_decisions(node)
+        if decision == "proved" and any(d != "proved" for d in nested):
+            out.append(f"{name}: the decision 'proved' is shown, but not every condition of it is proved")
+        if decision == "disproved" and nested and "disproved" not in nested:
+            out.append(f"{name}: the decision 'disproved' is shown, but none of its conditions is disproved")
+    facts = node.get("facts")
+    if isinstance(facts, Mapping) and "scaled_residue" in facts and isinstance(facts.get("certificate"), Mapping) and \
+            "scaled" in facts["certificate"]:
+        try:
+            if exact_q(facts["scaled_residue"]) != exact_q(facts["certificate"]["scaled"]):
+                out.append(f"{name}: the residue shown ({str(facts['scaled_residue'])[:30]}) is not its certificate's")
+        except (TypeError, ValueError, ZeroDivisionError):
+            out.append(f"{name}: the residue shown cannot be read")
+    for key, value in node.items():
+        if isinstance(value, (Mapping, list)) and key != "definition":
+            out += decision_problems(value, name if "name" in node else where)
+    return out

@@ -21,11 +21,12 @@ from __future__ import annotations
 import os
 import re
 from fractions import Fraction
+from collections.abc import Iterator, Mapping
 from typing import Any
 
 import flint
 
-__all__ = ["MAX_DEGREE", "MAX_WORK", "CheckFailed", "CheckSkipped", "is_kind", "max_degree", "max_work", "budget", "spend",
+__all__ = ["MAX_DEGREE", "MAX_WORK", "CheckFailed", "CheckSkipped", "certificates", "is_kind", "max_degree", "max_work", "budget", "spend",
            "size_of",
            "exact_q", "json_poly", "as_fmpq", "value_at",
            "Gaussian", "horner", "eval_transfer", "normalise", "Sturm", "determinant", "bilinear", "axis_gcd",
@@ -118,6 +119,24 @@ def max_matrix() -> int:
 # ---------------------------------------------------------------------------------------------
 # exact numbers
 # ---------------------------------------------------------------------------------------------
+
+
+def certificates(node: Any) -> Iterator[dict]:
+    """Every certificate object (a dict with a ``certificate`` kind, :func:`is_kind`) inside a
+    JSON value.
+
+    >>> [c["certificate"] for c in certificates({"a": [{"certificate": "sign"}, {"certificate": "a note."}]})]
+    ['sign']
+    """
+    if isinstance(node, Mapping):
+        if is_kind(node.get("certificate")):
+            yield node
+            return
+        for value in node.values():
+            yield from certificates(value)
+    elif isinstance(node, list):
+        for value in node:
+            yield from certificates(value)
 
 
 def exact_q(text: Any) -> Fraction:

@@ -49,7 +49,7 @@ from typing import Any
 import flint
 
 from hapticproof.core.naming import witness_keys
-from hapticproof.exact.checkarith import MAX_DEGREE, is_kind
+from hapticproof.exact.checkarith import MAX_DEGREE, certificates, is_kind
 from hapticproof.exact.checkarith import CheckFailed as _Fail
 from hapticproof.exact.checkarith import CheckSkipped as _Skip
 from hapticproof.exact.checkarith import Gaussian as _G
@@ -324,9 +324,42 @@ def _check_roots(cert: dict) -> list[str]:
     stable = (_routh_hurwitz(core) if core.degree() > 0 else True) and mirrored == 0
     if stable != (cert["outside"] == 0):
         raise _Fail("Routh-Hurwitz disagrees with the certificate on roots outside")
+    _check_root_counts(cert, p)
     notes.append(f"{boundary} boundary roots ({'simple' if simple else 'not simple'}); "
                  + ("no root outside (Routh-Hurwitz)" if stable else "a root outside (Routh-Hurwitz fails, no axis roots left)"))
     return notes
+
+
+def _check_root_counts(cert: dict, p: flint.fmpq_poly) -> None:
+    """The counts add up to the degree, and each boundary root listed by its value is a root of
+    that multiplicity on the boundary (``|z| = 1``; ``s = 0`` on the axis)."""
+    counts = [cert.get(key) for key in ("inside", "outside", "boundary_count")]
+    if not all(isinstance(n, int) and not isinstance(n, bool) and n >= 0 for n in counts):
+        raise _Fail("the root counts (inside, outside, boundary_count) are not non-negative integers")
+    if sum(counts) != p.degree():
+        raise _Fail(f"inside + outside + boundary = {sum(counts)}, but the polynomial has degree {p.degree()}")
+    listed = 0
+    for root in cert["boundary"]:
+        multiplicity = root["multiplicity"]
+        if not isinstance(multiplicity, int) or isinstance(multiplicity, bool) or multiplicity < 1:
+            raise _Fail(f"a boundary root's multiplicity {str(multiplicity)[:20]!r} is not a positive integer")
+        try:
+            value = _q(root["root"])
+        except (TypeError, ValueError, ZeroDivisionError):
+            listed += 2 * multiplicity                  # a conjugate pair, shown by its cosine or its factor
+            continue
+        listed += multiplicity
+        on = abs(value) == 1 if cert["domain"] == "disk" else value == 0
+        if not on:
+            raise _Fail(f"the boundary root {value} is not on the boundary")
+        order, q = 0, p
+        x = flint.fmpq_poly([-flint.fmpq(value.numerator, value.denominator), 1])
+        while not q.is_zero() and (q % x).is_zero():
+            q, order = q // x, order + 1
+        if order != multiplicity:
+            raise _Fail(f"{value} is a root of multiplicity {order}, the certificate shows {multiplicity}")
+    if listed != cert["boundary_count"]:
+        raise _Fail(f"the boundary roots listed count {listed}, the certificate claims {cert['boundary_count']}")
 
 
 def _check_residue(cert: dict) -> list[str]:
@@ -592,6 +625,8 @@ class ReportCheck:
     """Per-entry results of :func:`check_report`."""
 
     entries: list[tuple[str, list[CheckResult]]]
+    #: every entry shows a verdict that claims nothing (``undecided``): no evidence is needed
+    claims_nothing: bool = False
 
     @property
     def failed(self) -> list[tuple[str, CheckResult]]:
@@ -611,7 +646,12 @@ class ReportCheck:
         """Every verdict backed by evidence the checker re-verified and bound to it: nothing
         failed, refused or unbacked, and nothing left unverified (an unverifiable ``proved`` is
         never success)."""
-        return self.ok and not self.not_verified
+        return self.ok and not self.not_verified and (self.evidenced or self.claims_nothing)
+
+    @property
+    def evidenced(self) -> bool:
+        """Some certificate or judge object was re-verified (a report of nothing proves nothing)."""
+        return any(r.ok and r.verified and r.source in ("certificate", "judge") for _, results in self.entries for r in results)
 
     def summary(self) -> str:
         lines = []
@@ -658,27 +698,15 @@ class ReportCheck:
                         "report NOT accepted (" + ", ".join(part for part in (
                             f"{len(failed)} failed or refused" if failed else "",
                             f"{unbacked} verdict(s) without evidence" if unbacked else "",
-                            f"{skipped} not re-verified" if skipped else "") if part) + ")"))
+                            f"{skipped} not re-verified" if skipped else "",
+                            "no certificate or judge object re-verified" if not (self.evidenced or self.claims_nothing)
+                            else "") if part) + ")"))
         return "\n".join(lines)
 
 
 #: how a failure of each source is shown in the summary
 _LABELS = {"display": "REFUSED (display): ", "binding": "REFUSED (not bound to its object): ",
            "unbacked": "NOT BACKED: "}
-
-
-def certificates(node: Any) -> Iterator[dict]:
-    """Every certificate object (a dict with a ``certificate`` kind, :func:`is_kind`) inside a
-    JSON value."""
-    if isinstance(node, dict):
-        if is_kind(node.get("certificate")):
-            yield node
-            return
-        for value in node.values():
-            yield from certificates(value)
-    elif isinstance(node, list):
-        for value in node:
-            yield from certificates(value)
 
 
 def check_certificates(node: Any) -> list[CheckResult]:
@@ -737,21 +765,27 @@ def check_report(report: Any) -> ReportCheck:
     "the verdict shown is 'disproved', its conditions give 'proved'"
     """
     from hapticproof.exact.acceptance import (
+        CLAIMLESS,
         audit_binding,
         claim_of,
+        decision_problems,
         derive_binding,
         factored_transfers,
+        unbound_verdict,
         witness_problems,
     )
     from hapticproof.exact.judge import judge, judges
-    from hapticproof.exact.judgedisplay import condition_display, derive_display
+    from hapticproof.exact.judgedisplay import boundary_display, condition_display, derive_display
     from hapticproof.exact.scenebinding import scene_binding
+    from hapticproof.exact.shownmatrix import matrix_displays
+    from hapticproof.exact.shownnetwork import network_displays
 
     if isinstance(report, str):
         report = json.loads(report)
     out = []
     audit = isinstance(report, dict) and ("papers" in report or "equations" in report)
     factored = _guarded(lambda: factored_transfers(report), "binding")
+    factored += _guarded(lambda: decision_problems(report), "binding")
     if factored:
         out.append(("report", factored))
     for name, entry, keys in _entries(report):
@@ -784,6 +818,15 @@ def check_report(report: Any) -> ReportCheck:
                 results.append(CheckResult(True, f"the verdict {claim!r} carries no certificate or judge object to "
                                                  "re-verify", verified=False, source="unbacked"))
         out.append((name, results))
+    if not out:
+        out.append(("report", [CheckResult(False, "nothing to check: the report carries no condition, certificate or "
+                                                  "judge object", source="binding")]))
+    if isinstance(report, dict) and "conditions" in report and "parameter" in report:
+        # a boundary shown beside conditions: its judge object is looked for at the top level too
+        out.append(("boundary", _guarded(lambda: boundary_display(report), "display")))
+    if isinstance(report, dict) and "matrix" in report and "conditions" in report:
+        out.append(("network", _guarded(lambda: network_displays(report), "display")))
+    out = [(name, results) for name, results in out if results or name not in ("boundary", "network")]
     if isinstance(report, dict) and "conditions" in report and "verdict" in report:
         top = []
         definition = report.get("definition")
@@ -792,7 +835,11 @@ def check_report(report: Any) -> ReportCheck:
             top.append(CheckResult(result.ok, result.reason, verified=result.judged, source="judge"))
         problems = [r for r in _guarded(lambda: derive_display(report), "display")]
         problems += _guarded(lambda: derive_binding(report), "binding")
+        unbound = unbound_verdict(report)
+        if unbound:
+            top.append(CheckResult(True, unbound, verified=False, source="symbolic"))
         problems += _guarded(lambda: scene_binding(report), "binding")
+        problems += _guarded(lambda: matrix_displays(report), "display")
         problems += _guarded(lambda: witness_problems({"witness": report.get("witness")},
                                                        witness_keys(report.get("notation"))), "display")
         problems += _guarded(lambda: witness_problems({"definition": report.get("definition")}), "display")
@@ -800,7 +847,10 @@ def check_report(report: Any) -> ReportCheck:
         if not problems:
             top.append(CheckResult(True, "verdict and witness re-derived from the conditions", source="display"))
         out.append(("verdict", top))
-    return ReportCheck(out)
+    shown = [entry for _, entry, _ in _entries(report)]
+    claimless = bool(shown) and all(isinstance(e, dict) and (e.get("verdict", e.get("decision")) in CLAIMLESS)
+                                    for e in shown)
+    return ReportCheck(out, claims_nothing=claimless)
 
 
 def _rechecked(entry: Any) -> bool:

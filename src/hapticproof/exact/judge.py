@@ -56,6 +56,7 @@ from hapticproof.exact.checkarith import (
     axis_gcd,
     bilinear,
     budget,
+    spend,
     charpoly_coefficients,
     count_with_multiplicity,
     eval_transfer,
@@ -840,7 +841,7 @@ def _condition(obj: Mapping[str, Any]) -> str:
                 continue
             if sign == -1:
                 return f"the printed condition holds at the witness and Re G^-1 < 0 at {_show(z)} ({where})"
-        return "not judged: no point with Re G^-1 < 0 was given or found (a pole condition may fail)"
+        raise _NotJudged("no point with Re G^-1 < 0 was given or found (a pole condition may fail)")
     checked = 0
     for where, z in _disk_points(flint.fmpq_poly([1])):
         try:
@@ -962,7 +963,11 @@ def _stability(obj: Mapping[str, Any]) -> str:
         _check_loop(side["loop"])
     for side in sides:
         decided = None
+        shape = side["loop"]["shape"]
+        states = shape["plant"][0] + shape["inputs"] + shape["controller"]
         for bits in (256, 1024, 4096):
+            # a matrix exponential and a characteristic polynomial of the closed loop: ~N^3 x bits
+            spend(states ** 3 * bits // 4)
             with _precision(bits):
                 M = _closed_loop(side["loop"])
                 chi = M.charpoly()

@@ -132,6 +132,14 @@ def derive_display(report: Mapping[str, Any]) -> list[str]:
         return problems
     if report["verdict"] != expected:
         problems.append(f"the verdict shown is {report['verdict']!r}, its conditions give {expected!r}")
+    summary = report.get("decision")               # a teleoperator's: the decision beside its verdict
+    if isinstance(summary, Mapping) and summary.get("decision") != report["verdict"]:
+        problems.append(f"the decision shown ({str(summary.get('decision'))[:20]}) is not the verdict {report['verdict']!r}")
+    p5 = next((c for c in conditions if str(c.get("name", "")).startswith("(P5)")), None)
+    if report.get("condition") in ("True", "False") and p5 is not None and p5.get("decision") in ("proved", "disproved") \
+            and (report["condition"] == "True") != (p5["decision"] == "proved"):
+        # a teleoperator's condition is (P5), h >= L(c) for all c, decided with its certificate
+        problems.append(f"the condition shown ({report['condition']}) contradicts {p5['name']!r} ({p5['decision']})")
     first = next((c for c in conditions if c.get("decision") == "disproved"), None)
     shown = report.get("witness")
     if first is not None and shown is not None:       # (a report that shows no witness shows none wrongly)
@@ -169,8 +177,11 @@ def finding_display(entry: Mapping[str, Any], keys: Mapping[str, str] | None = N
 def boundary_display(report: Mapping[str, Any]) -> list[str]:
     """A boundary's displayed value, tolerance and direction against the two loops it carries."""
     obj = report.get("judge")
-    if not isinstance(obj, dict) or obj.get("judge") != "stability" or report.get("value") is None:
+    if report.get("value") is None or "parameter" not in report:
         return []
+    if not isinstance(obj, dict) or obj.get("judge") != "stability":
+        return [f"a boundary {str(report['parameter'])[:20]}* = {str(report['value'])[:30]} is shown with no stability "
+                "judge object (no loops judged on either side of it)"]
     problems = []
     (left, right) = obj["sides"]
     value, tol = float(report["value"]), float(report["tolerance"])
