@@ -134,8 +134,9 @@ class DelayMargin:
         a, R, M0 = (value.get(k) for k in (f["a"], f["R"], "M_0"))
         if a is None or R is None or M0 is None:
             return None
-        return (f"G^-1 = {f['a']} + z^-n F(z), {f['a']} = {f['b']} - z_a = {a}, {f['R']} = Res(F, 1) = {R}, "
-                f"{f['F_0']} = F - {f['R']}/(z - 1), M_0 = {M0} >= max|{f['F_0']}| on |z| = 1")
+        excess = next(k for k in self.proof if k.startswith(f"{f['a']} = "))
+        return (f"G^-1 = {f['a']} + z^-n {f['F']}(z), {excess} = {a}, {f['R']} = Res({f['F']}, 1) = {R}, "
+                f"{f['F_0']} = {f['F']} - {f['R']}/(z - 1), M_0 = {M0} >= max|{f['F_0']}| on |z| = 1")
 
 
 def _short(text: str, limit: int = 240) -> str:
@@ -240,11 +241,24 @@ def _decide_single(ns: Any, n: int, names: Any = DEFAULT) -> Outcome:
     return Outcome(out.decision, out.evidence, names.words(out.reason), minimiser=out.minimiser, minimum=out.minimum)
 
 
+def _path_name(names: Any) -> str:
+    """The name of ``F = z^n (G^-1 - a)`` in the bound's proof: ``F`` unless the scene uses it
+    (a stiffness called F), then ``Psi`` or ``F_p`` (only this proof writes it: no helper of every report)."""
+    from hapticproof.core.naming import clashes
+
+    taken = set(getattr(names, "taken", ())) | {name for key, name in getattr(names, "helpers", ()) if key != "rest"}
+    return next((c for c in ("F", "Psi", "F_p") if not any(clashes(c, u) for u in taken)), "F_path")
+
+
 def _formula_names(names: Any) -> dict[str, str]:
     """The toolkit's symbols of the bound's proof in the scene's naming: ``a = b - z_a``, ``R``,
     ``F_0``, ``c``, ``w``, the period, ``M``, ``lambda``."""
     return {"a": names.helper("excess"), "b": names.role("device_damping", "b"), "R": names.helper("residue"),
-            "F_0": names.helper("rest"), "c": names.helper("cos"), "w": names.w, "T": names.period,
+            "F_0": names.helper("rest"),
+            "F": _path_name(names),
+            # the rest of F after its pole at 1 is F_0; when F is the user's, it follows its path's name
+            **({"F_0": f"{_path_name(names)}_0"} if _path_name(names) != "F" and names.helper("rest") == "F_0" else {}),
+            "c": names.helper("cos"), "w": names.w, "T": names.period,
             "M": names.helper("matrix"), "lambda": names.helper("eigenvalue")}
 
 
@@ -319,7 +333,8 @@ def _single_margin_of(ns: Any, max_delay: int, clock: _Clock, names: Any) -> Del
     if route is None:
         return _scan(decide, 0, None, max_delay, T, "exact", clock, {}, None, names=names)
     a, R, M0, F01 = route["a"], route["R"], route["M0"], route["F0_1"]
-    proof = {f"{f['a']} = {f['b']} - z_a": to_rational(a), f"{f['R']} = Res(F, 1)": to_rational(R),
+    excess = f"{f['a']} = {f['b']}" + (" - z_a" if ns.z_a != 0 else "")      # (no z_a in a passive operator's scene)
+    proof = {excess: to_rational(a), f"{f['R']} = Res({f['F']}, 1)": to_rational(R),
              f"M_0 >= max|{f['F_0']}|": to_rational(M0), f"{f['F_0']}(1)": to_rational(F01)}
     if route["certificate"] is not None:
         cert = route["certificate"]
@@ -332,7 +347,7 @@ def _single_margin_of(ns: Any, max_delay: int, clock: _Clock, names: Any) -> Del
         if a >= M0:
             first = decide(0)
             if first.decision == Decision.PROVED:
-                return DelayMargin(Decision.PROVED, None, T, "bound", f"Re G^-1 >= {f['a']} - max|F| >= 0 for every n "
+                return DelayMargin(Decision.PROVED, None, T, "bound", f"Re G^-1 >= {f['a']} - max|{f['F']}| >= 0 for every n "
                                    "(no pole on the circle)", decided=(0,), proof=proof, seconds=clock.elapsed())
         return _scan(decide, 0, None, max_delay, T, "exact", clock, proof, None, names=names)
     low = math.floor(to_rational((a - M0) / R - flint.fmpq(1, 2)))

@@ -435,8 +435,8 @@ def absolute_stability(Z: Any, ports: Sequence[int] | None = None, search: bool 
                                 poles.evidence, positive_real=pr, certificate=found.certificate if found else None, search=found)
     if pr.decision == Decision.PROVED:
         return StabilityVerdict(Decision.PROVED, "positive real",
-                                "Z is positive real: Z + T is positive real for every passive termination T, so the "
-                                "network is absolutely stable (for any grouping of the ports)", pr.evidence, positive_real=pr)
+                                "Z is positive real: with any passive termination at its ports it stays positive real, so "
+                                "the network is absolutely stable (for any grouping of the ports)", pr.evidence, positive_real=pr)
     if n == 2 and len(blocks) == 2:
         result = llewellyn(Zr)
         found = find(result, pr) if result.decision == Decision.DISPROVED else None

@@ -271,9 +271,10 @@ def zwidth(scene: Any, *, stiffness: str | None = None, damping: str | None = No
     device damping, period and delay are numbers; its mass gives the stability overlay).
 
     ``stiffness`` and ``damping`` are the axes, ``NAME=start:stop:count`` (``start:stop:count``
-    names the wall's ``K`` and ``B``); without them the stiffness runs from 0 to past both
-    boundaries at zero damping (81 values; 41 for another environment, whose stability is decided
-    point by point) and the damping from 0 to the device damping (41; 21).
+    names the wall's ``K`` and ``B``); without them the stiffness runs from its first positive grid
+    value to past both boundaries at zero damping (80 values; 40 for another environment, whose
+    stability is decided point by point; at ``K = 0`` the device drifts, never stable) and the
+    damping from 0 to the device damping (41; 21).
     """
     from hapticproof.analysis.designmap import MapSpec, compute
     from hapticproof.analysis.passiverange import passive_range
@@ -301,7 +302,10 @@ def zwidth(scene: Any, *, stiffness: str | None = None, damping: str | None = No
         top = values[scene.role("device_damping")]
         b_axis = _axis(f"{b_name}=0:{top}:{41 if wall else 21}", b_name)
     if k_axis is None:
-        k_axis = _axis(f"{k_name}=0:{_stiffness_top(scene, k_name, b_name)}:{81 if wall else 41}", k_name)
+        # from the first positive stiffness: at K = 0 the device drifts (an eigenvalue at z = 1, not
+        # stable), a line of the map but no width of the Z-width
+        top, count = _stiffness_top(scene, k_name, b_name), 80 if wall else 40
+        k_axis = _axis(f"{k_name}={top / count}:{top}:{count}", k_name)
     spec = MapSpec.build("passivity", k_axis, b_axis, scene)
     passivity = compute(spec, workers=workers, scheduler=scheduler, progress=progress)
     mass = scene.role("mass")

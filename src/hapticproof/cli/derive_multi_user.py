@@ -377,8 +377,7 @@ def run(args: argparse.Namespace) -> int:
             shown["notation"] = notation
         if "skipped" in shown:
             shown["skipped"] = {k: {"reason": why, "option": how} for k, (why, how) in shown["skipped"].items()}
-        out = to_jsonable(shown)
-        out.update(extra)
+        out = names.claims({**to_jsonable(shown), **extra})
         text = json.dumps(out, indent=2)
     elif fmt == "latex":
         text = _latex(data, args.fragment, answers)

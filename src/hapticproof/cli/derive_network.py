@@ -216,8 +216,8 @@ def _condition_lines(entry: dict[str, Any], indent: str = "  ") -> list[str]:
 def _text(report: dict[str, Any]) -> str:
     lines = [f"n-port: {report['size']} x {report['size']}, ports {report['ports']}", ""]
     conds = report["symmetrization_conditions"]
-    lines.append(f"Youla symmetrization conditions (A: triple products, B: port blocks symmetric): "
-                 f"{len(conds)} not identically satisfied")
+    lines.append("Youla symmetrization conditions (A: triple products, B: port blocks symmetric): "
+                 + (f"{len(conds)} not identically satisfied" if conds else "all hold identically"))
     for c in conds:
         lines.append(f"  {c['kind']} {tuple(c['indices'])}: {sp.sstr(c['equation_in_s'].lhs)} = 0")
     if "note" in report:
@@ -309,7 +309,7 @@ def run(args: argparse.Namespace) -> int:
         # speak the scene's names when its parameters take those (a parameter x = 9, say)
         report = {**_in_names(report, names), "notation": names.changed()}
     if args.format == "json":
-        text = json.dumps(to_jsonable(report), indent=2)
+        text = json.dumps(names.claims(to_jsonable(report)), indent=2)
     elif args.format == "latex":
         text = _latex(report, args.fragment)
     else:

@@ -129,17 +129,17 @@ def run(args: argparse.Namespace) -> int:
         if scene.discretize is not None:
             out["continuous_design"] = {"H_s": sp.sstr(scene.environment), "discretize": scene.discretize,
                                         "H_z": sp.sstr(model.H)}
-        out.update(extra)
+        out.update(summary.names.claims(extra))
         if notes:
             out["exact_loop_notes"] = notes
         text = json.dumps(out, indent=2)
     elif args.format == "latex":
-        text = summary.dumps("latex", fragment=args.fragment, answers=answers)
+        text = summary.dumps("latex", fragment=args.fragment, answers=answers, remarks=notes)
     else:
         text = "\n".join(head + [summary.to_text(verbose=args.verbose)] + lines + notes)
     write_output(args.output, text)
-    if notes and args.format == "latex":
-        print("\n".join(notes), file=sys.stderr)     # the document is the derivation; the note is for the reader
+    if notes and args.format == "latex" and args.fragment:
+        print("\n".join(notes), file=sys.stderr)     # a fragment is the derivation only; the note is for the reader
     return 0
 
 

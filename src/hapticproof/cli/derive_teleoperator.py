@@ -108,8 +108,7 @@ def run(args: argparse.Namespace) -> int:
             out["notation"] = names.changed()
         if spec.discretize is not None:
             out["continuous_design"] = {"C_s": sp.sstr(spec.controller), "discretize": spec.discretize}
-        out = to_jsonable(out)
-        out.update(extra)
+        out = names.claims({**to_jsonable(out), **extra})
         write_output(args.output, json.dumps(out, indent=2))
         return 0
     cos = names.helper("cos")

@@ -566,8 +566,9 @@ def write_atomic(path: str | Path, data: str | bytes, option: str = "--output") 
 
 
 def write_output(path: str | Path | None, data: str | bytes, option: str = "--output") -> Path | None:
-    """The one writer of every output: ``-`` or ``None`` is standard output (text gets a final
-    newline; returns ``None``), anything else a file through :func:`write_atomic`.
+    """The one writer of every output: ``-`` or ``None`` is standard output, anything else a file
+    through :func:`write_atomic`; text gets a final newline either way (a file the same as the
+    output it replaces); returns the file written (``None`` for standard output).
 
     >>> write_output("-", "to standard output")
     to standard output
@@ -580,6 +581,8 @@ def write_output(path: str | Path | None, data: str | bytes, option: str = "--ou
         else:
             sys.stdout.write(data if data.endswith("\n") else data + "\n")
         return None
+    if isinstance(data, str) and data and not data.endswith("\n"):
+        data += "\n"
     return write_atomic(path, data, option)
 
 

@@ -434,6 +434,25 @@ class Naming:
         the toolkit's own texts (a numeric scene's reasons hold numbers and the toolkit's words)."""
         return value if self.is_default else _unmark_value(self, value, text=self.words)
 
+    def claims(self, value: Any) -> Any:
+        """A JSON value with the ``claim`` of every certificate in it in this naming's words
+        (``h - L(c) >= 0`` -> ``eta - L(gamma) >= 0``): the claim is written for a reader, the
+        rest of a certificate is data for the checker and keeps the toolkit's keys.
+
+        >>> Naming.choose({"c_d"}).claims({"a": [{"certificate": "sign", "claim": "Re G^-1(c) >= 0", "variable": "c"}]})
+        {'a': [{'certificate': 'sign', 'claim': 'Re G^-1(gamma) >= 0', 'variable': 'c'}]}
+        """
+        if self.is_default:
+            return value
+        if isinstance(value, dict):
+            out = {k: self.claims(v) for k, v in value.items()}
+            if isinstance(value.get("certificate"), str) and isinstance(value.get("claim"), str):
+                out["claim"] = self.words(value["claim"])
+            return out
+        if isinstance(value, list):
+            return [self.claims(v) for v in value]
+        return value
+
     def legend(self) -> dict[str, str]:
         """The helpers printed under another name -> what they stand for (for a report's notation
         line; empty for the defaults)."""

@@ -83,7 +83,15 @@ def to_latex(
     if isinstance(obj, (sp.And, sp.Or)):
         joiner = r", \quad " if isinstance(obj, sp.And) else r" \ \text{or}\ "
         return joiner.join(to_latex(arg, names, cos_name) for arg in obj.args)
-    return sp.latex(obj, symbol_names=symbol_map, mat_str="bmatrix", mat_delim="")
+    text = sp.latex(obj, symbol_names=symbol_map, mat_str="bmatrix", mat_delim="")
+    if r"\operatorname{min}_{c}" in text or r"\operatorname{sup}_{c}" in text:
+        # the worst case over the circle: over the angle when c is printed as cos(omega T), else
+        # over c under its printed name (gamma when c is taken)
+        over = cos_name[len("\\cos("):-1] if cos_name and cos_name.startswith("\\cos(") and cos_name.endswith(")") \
+            else symbol_map.get(C_SYM, "c")
+        for extremum in ("min", "sup"):
+            text = text.replace(rf"\operatorname{{{extremum}}}_{{c}}", rf"\{extremum}_{{{over}}}")
+    return text
 
 
 def shorten_numbers(text: str, digits: int = 40, verbose: bool = False) -> str:

@@ -99,7 +99,7 @@ class SceneSummary:
             out["scene"] = self.scene
         if self.stages:
             out["stages_seconds"] = self.stages
-        return to_jsonable(out)
+        return names.claims(to_jsonable(out))
 
     def to_text(self, verbose: bool = False) -> str:
         names = self.names
@@ -147,9 +147,10 @@ class SceneSummary:
         rows = [lhs + " &" + (rhs if rhs.startswith("=") else " " + rhs) for _, lhs, rhs in self.latex_rows()]
         return "\\begin{aligned}\n" + " \\\\\n".join(rows) + "\n\\end{aligned}"
 
-    def latex_document(self, answers: Sequence[tuple[str, str]] = ()) -> str:
+    def latex_document(self, answers: Sequence[tuple[str, str]] = (), remarks: Sequence[str] = ()) -> str:
         """A complete LaTeX document: the scene, the labelled derived displays, the answers asked
-        for (``(label, display)``: the delay margin, passive ranges), the decision."""
+        for (``(label, display)``: the delay margin, passive ranges), the decision, and
+        ``remarks`` (plain text: where the exact loop disagrees with the model)."""
         items = [(label, lhs + (" " if rhs.startswith("=") else " ") + rhs) for label, lhs, rhs in self.latex_rows()]
         items += list(answers)
         notes = [("verdict", f"{self.verdict} ({self.reason})")]
@@ -159,7 +160,9 @@ class SceneSummary:
         if self.witness is not None:
             notes.append(("witness", witness_text(self.witness, names) + f" ({cos} = {names.cos_text})"))
         if self.minimiser is not None:
-            notes.append(("minimiser", f"{cos} = {self.minimiser}, minimum = {names.text(self.minimum)}"))
+            notes.append(("minimiser", f"{cos} = {self.minimiser} ({cos} = {names.cos_text}), "
+                                       f"minimum = {names.text(self.minimum)}"))
+        notes += [("exact loop", remark) for remark in remarks]
         intro = tex.escape_text(f"{self.system} scene, {self.approximation} difference, delay n = {self.delay}.")
         return tex.derivation_document(f"hapticproof derive {self.system}", items, notes, intro=intro)
 
@@ -170,15 +173,16 @@ class SceneSummary:
         return f"SceneSummary({self.system}, {self.approximation}, delay {self.delay}: {self.verdict})"
 
     def dumps(self, fmt: str, fragment: bool = False, verbose: bool = False,
-              answers: Sequence[tuple[str, str]] = ()) -> str:
+              answers: Sequence[tuple[str, str]] = (), remarks: Sequence[str] = ()) -> str:
         """``json``, ``latex`` (a complete document; ``fragment``: one amsmath display and one per
-        answer) or text; ``answers`` are ``(label, display)`` of the answers asked for."""
+        answer) or text; ``answers`` are ``(label, display)`` of the answers asked for, ``remarks``
+        plain notes of a LaTeX document."""
         if fmt == "json":
             return json.dumps(self.to_json(), indent=2)
         if fmt == "latex":
             if fragment:
                 return "\n".join([tex.display(self.to_latex())] + ([tex.derivation_fragment(answers)] if answers else []))
-            return self.latex_document(answers)
+            return self.latex_document(answers, remarks)
         return self.to_text(verbose=verbose)
 
 

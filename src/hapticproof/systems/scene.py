@@ -515,6 +515,16 @@ class Scene:
             # the wall K + B(z-1)/(Tz)): one name, one meaning; the period belongs in both
             design = self.environment_z()
             used = {s.name for s in sp.sympify(design).free_symbols} if design is not None else set()
+            builtin = self.environment if self.system == "single-user" else self.controller
+            if builtin in (None, "pd", "filtered-pd"):
+                # the built-in wall or PD controller: its stiffness and damping (and filter) are
+                # its own, so not even the period may take their names
+                own = {self.symbol(key).name for key in ("K", "B", "a") if key != "a" or builtin == "filtered-pd"}
+                for name, field in role_names(self.system, self.roles, self.users).items():
+                    if field == "period" and name in own:
+                        raise SceneError(f"roles: period = {name!r}, but {name} is already a parameter of the built-in "
+                                         f"{'wall K + B(z-1)/(Tz)' if self.system == 'single-user' else 'controller'}: "
+                                         "one name, one meaning (give the role another name)")
             for name, field in role_names(self.system, self.roles, self.users).items():
                 if name in used and field != "period":
                     what = "environment H(z)" if self.system == "single-user" else "controller C(z)"
