@@ -9,6 +9,10 @@ E  an audit verdict backed by a judge that judged nothing, or by a judge of anot
 F  a residue decision against its certificate, a roots certificate's counts, an unreadable minimum;
 G  a boundary with its judge object removed;
 H  a boundary whose loops are too large to judge in bounded work.
+
+And the fifth attack's classes (a delay read under another key, displays the reader cannot read,
+worst cases and minima, m-user graphs, crossings after the first, Youla's symmetrization and a
+destabilising termination): ``test_fifth_attack_*``.
 """
 
 from __future__ import annotations
@@ -34,6 +38,8 @@ def reports(tmp_path_factory) -> dict:
     folder = tmp_path_factory.mktemp("nets")
     (folder / "two.txt").write_text("9/(s+3), -1/(s+1)\n-1/(s+1), 1/(s+3)\n", encoding="utf-8")
     (folder / "unstable.txt").write_text("1/(s-1)\n", encoding="utf-8")
+    (folder / "three.txt").write_text("1/(s+1), 0, 0\n0, 2/(s+2), 1/(s+5)\n0, 1/(s+5), 1 - 2/(s+1) + 10/(s+10000)\n",
+                                      encoding="utf-8")
     return {
         "wall": json_of("derive", *PASSIVE_WALL, "--format", "json"),
         "leaky wall": json_of("derive", "single-user", "--param", "K=2", "--param", "B=1/1000", "--param",
@@ -44,6 +50,10 @@ def reports(tmp_path_factory) -> dict:
                                   *USERS[1:], "--param", "b=1/50", "--format", "json"),
         "two-port": json_of("derive", "network", "--matrix", folder / "two.txt", "--format", "json"),
         "unstable port": json_of("derive", "network", "--matrix", folder / "unstable.txt", "--format", "json"),
+        "three-port": json_of("derive", "network", "--matrix", folder / "three.txt", "--format", "json"),
+        "path users": json_of("derive", "multi-user", "--users", "3", "--graph", "path", *USERS[1:], "--param",
+                              "b=1/10000", "--format", "json"),
+        "symbolic wall": json_of("derive", "single-user", "--format", "json"),
         "teleoperator": json_of("derive", "teleoperator", "--param", "K=10", "--param", "B=1/500", "--param", "T=1/1000",
                                 "--param", "b_m=1/20", "--param", "b_s=1/25", "--format", "json"),
         "boundary": json_of("boundary", *PASSIVE_WALL[:1], "--param", "m=3/200", "--param", "b=1/50", "--param",
@@ -63,6 +73,9 @@ def _forged(report, change):
 
 def test_the_genuine_reports_are_accepted(reports):
     for name, report in reports.items():
+        if name == "symbolic wall":         # symbolic conditions: never accepted as re-verified (re-derive them)
+            assert not _accepted(report) and not check_report(report).failed
+            continue
         assert _accepted(report), (name, check_report(report).summary())
 
 
@@ -170,3 +183,60 @@ def test_a_boundary_too_large_to_judge_is_not_accepted(reports):
                                            "d": [["1"] * n] * n},
                             "shape": {"plant": [n, n], "inputs": n, "outputs": n, "controller": n}, "rigid": False}
     assert not _accepted(_forged(reports["boundary"], huge))
+
+
+def test_fifth_attack_delays_and_displays(reports):
+    wall, leaky = reports["wall"], reports["leaky wall"]
+    # the delay shown is the delay: no alias under another key
+    assert not _accepted(_forged(wall, lambda r: r.update(delay="30", delays="0")))
+    for shown in (5, ["c"], "Re G^-1 = c/1000 - 1/100", "c/1000 \u2212 1/100", "c/1000 + sqrt(2)/100"):
+        assert not _accepted(_forged(wall, lambda r, v=shown: r.update(hermitian_part=v))), shown
+    assert not _accepted(_forged(leaky, lambda r: r.update(worst_case="true")))
+    assert not _accepted(_forged(wall, lambda r: r.update(worst_case="b >= B + K*T/8")))
+    assert not _accepted(_forged(leaky, lambda r: r.update(minimum="[5 +/- 1]")))
+    assert not _accepted(_forged(wall, lambda r: (r.pop("minimum"), r.update(minimiser="0"))))
+    # a symbolic report made to claim nothing still shows its (wrong) worst case: not success
+    symbolic = reports["symbolic wall"]
+
+    def undecided(r):
+        for cond in r["conditions"]:
+            cond["decision"] = "undecided"
+        r.update(verdict="undecided", worst_case="b >= B + K*T/8")
+    assert not _accepted(_forged(symbolic, undecided))
+
+
+def test_fifth_attack_m_users(reports):
+    path, leaky = reports["path users"], reports["leaky users"]
+    assert _accepted(path), check_report(path).summary()
+    assert not _accepted(_forged(path, lambda r: r.update(edges=[])))
+    assert not _accepted(_forged(leaky, lambda r: r.update(graph="path", edges=[[1, 2]])))  # two users: complete
+    assert not _accepted(_forged(leaky, lambda r: r.update(worst_c="1/2")))
+
+    def minimiser(r):
+        for cond in r["conditions"]:
+            if "minimiser" in cond:
+                cond["minimiser"] = "1/3"
+    assert not _accepted(_forged(leaky, minimiser))
+    assert not _accepted(_forged(reports["unequal delays"], lambda r: r.update(hermitian_is_real=True)))
+
+
+def test_fifth_attack_boundary_crossings(reports):
+    boundary = reports["boundary"]
+    second = {**boundary["crossings"][0], "value": 100.0, "direction": "restabilising"}
+    assert not _accepted(_forged(boundary, lambda r: r["crossings"].append(second)))
+    assert not _accepted(_forged(boundary, lambda r: r["crossings"][0].update(tolerance=5.0)))
+    assert not _accepted(_forged(boundary, lambda r: r["crossings"][0].update(certified=False)))
+
+
+def test_fifth_attack_youla_and_terminations(reports):
+    three = reports["three-port"]
+    assert three["absolute_stability"]["decision"] == "disproved" and "certificate" in three["absolute_stability"]
+    assert not _accepted(_forged(three, lambda r: r["zprime_positive_real"].update(decision="proved")))
+    assert not _accepted(_forged(three, lambda r: r["symmetrization"].update(decision="disproved")))
+    assert not _accepted(_forged(three, lambda r: r["symmetrization"].update(Z_prime=[["1"] * 3] * 3)))
+    assert not _accepted(_forged(three, lambda r: r["absolute_stability"].update(method="positive real")))
+    assert not _accepted(_forged(three, lambda r: r["absolute_stability"]["certificate"].update(rhp_roots=["5+0j"])))
+    # a passive termination of a positive-real port destabilises nothing
+    three_pr = _forged(three, lambda r: r["absolute_stability"]["certificate"].update(
+        terminations=[[["0"]], [["0"]], [["0"]]]))
+    assert not _accepted(three_pr)

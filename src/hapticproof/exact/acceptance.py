@@ -303,6 +303,10 @@ def shown_poles(report: Mapping[str, Any], transfer: Mapping[str, Any]) -> list[
                             f"Res/z0 = {own} makes it {expected!r}")
     worst = report.get("worst_case")
     sign = next((c for c in report.get("conditions") or [] if isinstance(c, Mapping) and c.get("name") == _SIGN_CONDITION), None)
+    if worst is not None and worst not in ("True", "False", True, False) and sign is not None and \
+            sign.get("decision") in ("proved", "disproved"):
+        problems.append(f"the worst case shown ({str(worst)[:40]!r}) is no truth value: the worst case of a numeric "
+                        "G^-1 is True or False")
     if worst in ("True", "False", True, False) and sign is not None and sign.get("decision") in ("proved", "disproved"):
         if (str(worst) == "True") != (sign.get("decision") == "proved"):
             problems.append(f"the worst case shown ({worst}) contradicts the decision of {_SIGN_CONDITION} "
@@ -500,6 +504,10 @@ def _shown_minimum(report: Mapping[str, Any], cond: Mapping[str, Any]) -> list[s
         except (TypeError, ValueError, ZeroDivisionError):     # none, or a ball of a long delay's worst case
             if shown is not None and not (isinstance(shown, str) and _BALL.fullmatch(shown)):
                 out.append(f"the minimum shown {str(shown)[:40]!r} is neither an exact number nor a ball")
+            elif shown is not None and form is not None:
+                out += _ball_of_form(form, shown, where.get("minimiser"))
+            elif form is not None and where.get("minimiser") is not None:
+                out += _minimiser_of_form(form, where.get("minimiser"))
             continue
         if cond.get("decision") == "proved" and low < 0:
             out.append(f"the minimum shown {shown} is negative, but Re G^-1 >= 0 is proved")
@@ -535,6 +543,42 @@ def _minimum_of_form(form: tuple[flint.fmpq_poly, flint.fmpq_poly], low: Fractio
     sign = 1 if den(0) > 0 else -1
     if not _nonnegative_on((num - den * flint.fmpq(low.numerator, low.denominator)) * sign, Fraction(-1), Fraction(1)):
         return [f"the minimum shown {str(shown)[:40]} is not the minimum: Re G^-1 is below it somewhere in c in [-1, 1]"]
+    return []
+
+
+def _minimiser_of_form(form: tuple[flint.fmpq_poly, flint.fmpq_poly], at: Any) -> list[str]:
+    """A minimiser shown without its minimum: ``Re G^-1`` there is its minimum over ``[-1, 1]``."""
+    num, den = form
+    try:
+        c = exact_q(at)
+    except (TypeError, ValueError, ZeroDivisionError):
+        return [f"the minimiser shown {str(at)[:40]!r} is no exact c"]
+    q = flint.fmpq(c.numerator, c.denominator)
+    if not -1 <= c <= 1 or den(q) == 0:
+        return [] if -1 <= c <= 1 else [f"the minimiser shown c = {str(at)[:40]} is not in [-1, 1]"]
+    value = num(q) / den(q)
+    return _minimum_of_form(form, Fraction(int(value.p), int(value.q)), at, at)
+
+
+def _ball_of_form(form: tuple[flint.fmpq_poly, flint.fmpq_poly], shown: str, at: Any) -> list[str]:
+    """A minimum shown as a ball ``[m +/- r]``: ``Re G^-1 >= m - r`` on ``[-1, 1]`` (exact), and at
+    the minimiser shown (when it is exact) it is at most ``m + r``."""
+    mid, _, rad = shown.strip("[]").partition("+/-")
+    m, r = Fraction(mid.strip()), Fraction(rad.strip())
+    num, den = form
+    if den.degree() > 0 and not _sign_fixed_on(den, Fraction(-1), Fraction(1)):
+        return []                                # poles on the circle: no finite minimum to bound
+    sign = 1 if den(0) > 0 else -1
+    low = m - r
+    if not _nonnegative_on((num - den * flint.fmpq(low.numerator, low.denominator)) * sign, Fraction(-1), Fraction(1)):
+        return [f"the minimum shown {shown[:40]} is not a bound of Re G^-1: it is below {low} somewhere in [-1, 1]"]
+    try:
+        c = exact_q(at)
+    except (TypeError, ValueError, ZeroDivisionError):
+        return []                                # an irrational minimiser (a ball too): the lower bound is all
+    q = flint.fmpq(c.numerator, c.denominator)
+    if -1 <= c <= 1 and den(q) != 0 and num(q) / den(q) > flint.fmpq((m + r).numerator, (m + r).denominator):
+        return [f"the minimum shown {shown[:40]} is below Re G^-1 at the minimiser shown c = {at}"]
     return []
 
 
@@ -623,7 +667,9 @@ def rational_of(text: Any, degree: int, variable: str = "z") -> tuple[flint.fmpq
     if not isinstance(text, str) or len(text) > 20_000:
         raise ValueError("not a short expression")
     try:
-        with raised(degree=max(current().degree, degree + 8)):
+        # the report's own G^-1 bounds the degree and the powers of z its display may hold (a
+        # delay of 2000 samples is written z**2000)
+        with raised(degree=max(current().degree, degree + 8), exponent=max(current().exponent, degree + 8)):
             expr = read_expression(text, variable)
     except HapticproofError as err:
         raise ValueError(str(err)) from None

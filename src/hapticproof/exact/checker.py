@@ -747,6 +747,11 @@ def judge_results(node: Any, keys: Mapping[str, str] | None = None) -> list[Chec
             reason = f"{type(err).__name__}: {str(err)[:120]}"
             problems = [f"what the entry displays cannot be held against its evidence ({reason})"]
         out += [CheckResult(False, problem, source="display") for problem in problems]
+        crossings = node.get("crossings")
+        if isinstance(node.get("judge"), dict) and isinstance(crossings, list) and len(crossings) > 1:
+            # the judge holds the loops around the first crossing only
+            out.append(CheckResult(True, f"{len(crossings) - 1} crossing(s) after the first are shown but not judged "
+                                         "(no loops on their sides)", verified=False, source="symbolic"))
     return out
 
 
@@ -848,8 +853,9 @@ def check_report(report: Any) -> ReportCheck:
             top.append(CheckResult(True, "verdict and witness re-derived from the conditions", source="display"))
         out.append(("verdict", top))
     shown = [entry for _, entry, _ in _entries(report)]
-    claimless = bool(shown) and all(isinstance(e, dict) and (e.get("verdict", e.get("decision")) in CLAIMLESS)
-                                    for e in shown)
+    # (an audit only: a derive report of undecided conditions still shows its G^-1 and worst case)
+    claimless = audit and bool(shown) and all(isinstance(e, dict) and (e.get("verdict", e.get("decision")) in CLAIMLESS)
+                                              for e in shown)
     return ReportCheck(out, claims_nothing=claimless)
 
 

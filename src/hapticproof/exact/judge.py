@@ -243,18 +243,6 @@ def _holds(tree: list, env: Mapping[str, Any]) -> bool | None:
     return {">": sign > 0, ">=": sign >= 0, "<": sign < 0, "<=": sign <= 0, "=": sign == 0}.get(op)
 
 
-class _precision:
-    def __init__(self, bits: int):
-        self.bits = bits
-
-    def __enter__(self) -> None:
-        self.saved = flint.ctx.prec
-        flint.ctx.prec = max(self.bits, self.saved)
-
-    def __exit__(self, *exc: Any) -> None:
-        flint.ctx.prec = self.saved
-
-
 # ---------------------------------------------------------------------------------------------
 # positive realness from the definition
 # ---------------------------------------------------------------------------------------------

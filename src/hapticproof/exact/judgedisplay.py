@@ -201,6 +201,10 @@ def boundary_display(report: Mapping[str, Any]) -> list[str]:
     first = crossings[0]
     if first.get("value") != report["value"] or first.get("direction") != report.get("direction"):
         problems.append("the first crossing shown is not the boundary judged (its value or direction differs)")
+    for key in ("tolerance", "certified"):
+        if key in first and first.get(key) != report.get(key):
+            problems.append(f"the first crossing's {key} ({str(first.get(key))[:20]}) is not the boundary's "
+                            f"({str(report.get(key))[:20]})")
     if left["stable"] != right["stable"] and report.get("outcome") not in ("crossing", "uncertified"):
         problems.append(f"the outcome shown ({str(report.get('outcome'))[:20]}) denies the crossing the judged loops show")
     if len(crossings) == 1 and isinstance(report.get("stable_at_start"), bool) and \
@@ -281,6 +285,9 @@ def displayed_forms(report: Mapping[str, Any], definition: Mapping[str, Any]) ->
         notation = report.get("notation") if isinstance(report.get("notation"), Mapping) else {}
         cos = notation.get("cos", "c") if isinstance(notation.get("cos", "c"), str) else "c"
         herm = _read_display(report.get("hermitian_part"))         # c under the scene's name for it
+        if herm is None and report.get("hermitian_part") is not None:
+            problems.append("the Re G^-1 shown cannot be read as an expression in "
+                            f"{cos} (a number, a list, an equation, a foreign character): it is not compared, so not accepted")
         foreign = {s.name for s in herm.free_symbols} - {cos} if herm is not None else set()
         if foreign:
             problems.append(f"the Re G^-1 shown names {', '.join(sorted(foreign))[:60]}: a numeric report's Re G^-1 is a "
@@ -298,7 +305,7 @@ def displayed_forms(report: Mapping[str, Any], definition: Mapping[str, Any]) ->
                 except CheckFailed:
                     continue
                 value = _value_at(expr, symbol, c)
-                if value is not None and value != own.re:
+                if value != own.re:                    # (None: not a rational there -- sqrt(2), pi -- so not Re G^-1)
                     problems.append(f"the Re G^-1 shown is not the real part of the report's G^-1 on the circle: "
                                     f"at c = {c} it gives {value}, Re G^-1 is {own.re}")
                     break

@@ -34,7 +34,8 @@ from typing import Any
 
 import flint
 
-from hapticproof.exact.checkarith import as_fmpq, exact_q, json_poly, max_degree
+from hapticproof.core.limits import current
+from hapticproof.exact.checkarith import as_fmpq, exact_q, json_poly
 
 __all__ = ["integrator", "scene_binding"]
 
@@ -54,7 +55,7 @@ def integrator(approximation: str, T: Fraction) -> tuple[flint.fmpq_poly, flint.
 
 def _delays(report: Mapping[str, Any], users: int) -> list[int]:
     """The delays in samples the report shows: ``delays`` (one per user, or one for all) or ``delay``."""
-    shown = report.get("delays", report.get("delay"))
+    shown = report.get("delay" if users == 1 and "users" not in report else "delays")   # the field the report shows
     values = shown if isinstance(shown, list) else [shown]
     if len(values) == 1:
         values = values * users
@@ -63,8 +64,8 @@ def _delays(report: Mapping[str, Any], users: int) -> list[int]:
     out = []
     for value in values:
         n = exact_q(value if not isinstance(value, bool) else "x")
-        if n.denominator != 1 or n < 0 or n > max_degree():
-            raise ValueError(f"the delay {value!r} is not a number of samples from 0 to {max_degree()}")
+        if n.denominator != 1 or n < 0 or n > current().delay:
+            raise ValueError(f"the delay {value!r} is not a number of samples from 0 to {current().delay} (the delay limit)")
         out.append(int(n))
     return out
 
@@ -84,9 +85,25 @@ def _rational(entry: Any) -> tuple[flint.fmpq_poly, flint.fmpq_poly]:
     num, den = json_poly(entry["num"]), json_poly(entry["den"])
     if den.is_zero():
         raise ValueError("a transfer function has a zero denominator")
-    if max(num.degree(), den.degree()) > max_degree():
-        raise ValueError(f"a transfer function's degree is above the checker's limit {max_degree()}")
+    if max(num.degree(), den.degree()) > current().delay + current().degree:
+        # (a delay of n samples makes G^-1 of degree n + deg H + 1: products of such polynomials are cheap)
+        raise ValueError("a transfer function's degree is above the delay and degree limits")
     return num, den
+
+
+def _graph(edges: list[list[int]], m: int) -> str:
+    """The coupling graph's kind by its edges (1-based pairs): as ``derive`` names it."""
+    shown = {tuple(e) for e in edges}
+    path = {(i, i + 1) for i in range(1, m)}
+    if shown == {(i, j) for i in range(1, m + 1) for j in range(i + 1, m + 1)}:
+        return "complete"
+    if shown == path:
+        return "path"
+    if m >= 3 and shown == path | {(1, m)}:
+        return "ring"
+    if shown == {(1, i) for i in range(2, m + 1)}:
+        return "star"
+    return "other"
 
 
 def scene_binding(report: Mapping[str, Any]) -> list[str]:
@@ -119,6 +136,15 @@ def scene_binding(report: Mapping[str, Any]) -> list[str]:
     decided = _entries(definition["transfer"])
     if not (len(b) == len(z_a) == len(H) == len(decided) == users):
         return [f"the scene shown has {len(H)} users' values, its G^-1 {len(decided)} rows, the report {users} users"]
+    coupled = sorted([i + 1, j + 1] for i in range(users) for j in range(i + 1, users)
+                     if not (json_poly(H[i][j]["num"]).is_zero() and json_poly(H[j][i]["num"]).is_zero()))
+    if system == "multi-user" and "graph" in report and report["graph"] != _graph(coupled, users):
+        return [f"the graph shown ({str(report['graph'])[:20]}) is not that of the scene's couplings ({_graph(coupled, users)})"]
+    if system == "multi-user" and "edges" in report:
+        edges = report["edges"]
+        if not isinstance(edges, list) or sorted(list(e) for e in edges if isinstance(e, (list, tuple))) != coupled \
+                or len(edges) != len(coupled):
+            return [f"the edges shown are not the couplings of the scene's H(z) ({coupled})"]
     i_num, i_den = integrator(str(approximation), T)
     for i in range(users):
         shift = flint.fmpq_poly([0] * delays[i] + [1])

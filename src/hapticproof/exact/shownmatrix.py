@@ -101,17 +101,27 @@ def _det(rows: list[list[Gaussian]]) -> Gaussian:
 
 
 def _worst_case(report: Mapping[str, Any]) -> list[str]:
-    """``worst_case_condition`` is the decision of the condition a ``psd`` certificate decides."""
+    """``worst_case_condition`` is the decision of the condition a ``psd`` certificate decides;
+    ``worst_c`` (and that condition's ``minimiser``) the ``c`` of its counterexample, none when
+    it is proved."""
     shown = report.get("worst_case_condition")
-    if shown is None:
-        return []
+    notation = report.get("notation") if isinstance(report.get("notation"), Mapping) else {}
+    cos = str(notation.get("cos", "c"))
     for cond in report.get("conditions") or []:
         if isinstance(cond, Mapping) and cond.get("decision") in ("proved", "disproved") and \
                 any(c.get("certificate") == "psd" for c in certificates(cond)):
             expected = "True" if cond["decision"] == "proved" else "False"
-            if shown != expected:
+            if shown is not None and shown != expected:
                 return [f"the worst case shown ({str(shown)[:20]}) is not the decision of {str(cond.get('name'))[:60]!r} "
                         f"({cond['decision']})"]
+            witness = (cond.get("evidence") or {}).get("witness") if isinstance(cond.get("evidence"), Mapping) else None
+            at = witness.get(cos) if isinstance(witness, Mapping) else None
+            for where, value in (("worst_c", report.get("worst_c")), ("minimiser", cond.get("minimiser"))):
+                if value is None:
+                    continue
+                if at is None or exact_q(str(value)) != exact_q(str(at)):
+                    return [f"the {where} shown ({str(value)[:20]}) is not the {cos} of the counterexample of "
+                            f"{str(cond.get('name'))[:60]!r} ({at})"]
     return []
 
 
@@ -165,7 +175,7 @@ def matrix_displays(report: Mapping[str, Any]) -> list[str]:
         return out
     # M's entries have degree <= 2 deg G in t, a k x k minor <= 2k deg G; the shown side its own
     bound = max(2 * (len(k) - 1 if k[0] == "minor" else 1) * degree + d for k, (_, d) in shown_forms.items())
-    points = 0
+    points, complex_part = 0, False
     for t in count():
         if points > bound:
             break
@@ -181,6 +191,7 @@ def matrix_displays(report: Mapping[str, Any]) -> list[str]:
             continue
         M = [[g[i][j] + g[j][i].conj() for j in range(m)] for i in range(m)]
         points += 1
+        complex_part = complex_part or any(M[i][j].im != 0 for i in range(m) for j in range(m))
         for key, value in values.items():
             if key[0] == "minor":
                 if not (_det([[M[a][b] for b in key[1:]] for a in key[1:]]) - value).is_zero():
@@ -189,4 +200,7 @@ def matrix_displays(report: Mapping[str, Any]) -> list[str]:
             elif not (M[key[0]][key[1]] - value).is_zero():
                 return [f"the Hermitian part shown is not G^-1 + G^-H of the report: entry ({key[0] + 1}, {key[1] + 1}) "
                         f"differs at {notation.get('cos', 'c')} = {c}"]
+    if "hermitian_is_real" in report and report["hermitian_is_real"] is complex_part:
+        out.append(f"hermitian_is_real is shown {report['hermitian_is_real']}, but G^-1 + G^-H is "
+                   f"{'complex' if complex_part else 'real'} on the circle")
     return out
