@@ -20,7 +20,7 @@ from hapticproof.cli.terminal import colour_verdict, progress_bar, summary_line,
 
 __all__ = ["register", "FAIL_STATUS", "fail_on_verdicts", "failing"]
 
-FORMATS = ("table", "markdown", "json", "tex", "html")
+FORMATS = ("table", "markdown", "json", "tex", "latex", "html")     # (latex: derive's word for tex)
 #: The exit status of an audit that found a verdict ``--fail-on`` names (2 is a user's mistake).
 FAIL_STATUS = 1
 
@@ -44,7 +44,8 @@ def register(sub: argparse._SubParsersAction) -> None:
                         help="audit only equations of section S and its subsections (repeatable; "
                         "e.g. -s 1 -s 2 -s 3.1 for the HVE paper's single-user part)")
     parser.add_argument("--format", "-f", choices=FORMATS, default="table",
-                        help="table (default), markdown, json, tex (a LaTeX document) or html (one self-contained page)")
+                        help="table (default), markdown, json, tex or latex (a LaTeX document) or html (one "
+                        "self-contained page)")
     parser.add_argument("--output", "-o", metavar="FILE", help="write to FILE instead of stdout (- is stdout)")
     parser.add_argument("--wide", action="store_true", help="table: full details instead of one shortened line each")
     parser.add_argument("--jobs", "-j", type=int, metavar="N",
@@ -68,6 +69,8 @@ def run(args: argparse.Namespace) -> int:
     from hapticproof.audit.pool import audit_reports
     from hapticproof.audit.registry import get_paper, papers
 
+    if args.format == "latex":
+        args.format = "tex"
     check_output(args.output, "--output", inputs=input_files(args))     # before any work
     fail_on = fail_on_verdicts(args.fail_on)
     if fail_on and args.mutate:

@@ -669,13 +669,27 @@ def anchor(paper: str, equation: str, single: bool = True) -> str:
     return f"eq-{eq}" if single else f"{re.sub(r'[^A-Za-z0-9_.-]+', '-', paper)}-eq-{eq}"
 
 
+def detail_text(text: str) -> str:
+    r"""A finding's detail: prose whose quoted LaTeX (a repair ``'+ \frac{KT}{2}' -> '- \frac{KT}{2}'``)
+    is typeset as mathematics when it is sound (:func:`prose_with_math`), the rest escaped.
+
+    >>> print(detail_text("one edit: '+ \\frac{K T}{2}' -> '- \\frac{K T}{2}' at position 7"))
+    one edit: $+ \frac{K T}{2}$ $\rightarrow$ $- \frac{K T}{2}$ at position 7
+    """
+    if "$" in text:
+        return escape_text(text)
+    # a quotation, not a prime (Z'): opened after a space or a bracket, holding a LaTeX command
+    quoted = re.sub(r"(?<![^\s(\[])'([^'\n]*\\[A-Za-z][^'\n]*)'(?=[\s,;:.)\]]|$)", lambda m: "$" + m.group(1) + "$", text)
+    return prose_with_math(quoted)
+
+
 def equation_block(result: Any, anchor_id: str = "", show_printed: bool = True, evidence: bool = True) -> str:
     """One audited equation: heading with the verdict badge, the detail, then the labelled
     printed, derived and corrected displays and the evidence (method, witness)."""
     where = ", ".join(x for x in (result.kind, f"Section {result.section}" if result.section else "") if x)
     head = (r"\hpequation{" + anchor_id + "}{(" + escape_text(result.id) + r")\quad\normalsize\mdseries "
             + escape_text(where) + "}{" + verdict_badge(result.verdict.value) + "}")
-    body = [head, escape_text(result.detail)]
+    body = [head, detail_text(result.detail)]
     if result.assumptions:
         body.append(r"\par{\small\textit{Assumptions:} " + escape_text(result.assumptions) + "}")
     if show_printed:
