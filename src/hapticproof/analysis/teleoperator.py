@@ -80,7 +80,7 @@ circle in the original transfer function).
 
 >>> d = passivity(TeleoperatorScene.pd(K=-5, B=0, T="0.001", b_m="0.03", b_s="0.05"))
 >>> d.decision.value, d.reason                                        # issue 18: a negative spring
-('disproved', 'the teleoperator is not passive: (P3) C(1) >= 0: C(1) = Res(H, 1) = -5 < 0: the discrete spring stores C(1) e^2/2 < 0 after a slow displacement')
+('disproved', 'the teleoperator is not passive: (P3) C(1) >= 0: C(1) = -5 < 0: the discrete spring stores C(1) e^2/2 < 0 after a slow displacement')
 >>> passivity(TeleoperatorScene.pd(K=2, B=0, T=sp.Rational(1, 3), b_m=10, b_s=sp.Rational(3, 7))).decision.value
 'proved'
 >>> sp.expand(bounds(TeleoperatorScene.pd(alpha=1)).master)            # eq. (34)
@@ -350,7 +350,7 @@ def _numeric_conditions(scene: TeleoperatorScene) -> list[Condition]:
             verb = ">= 0" if dc > 0 else "< 0"
             p3 = Outcome(res.decision, Evidence(res.evidence.method, witness=None if dc > 0 else {"C(1)": to_rational(dc)},
                                                 facts=res.evidence.facts),
-                         f"C(1) = Res(H, 1) = {sp.sstr(to_rational(dc))} {verb}" +
+                         f"C(1) = {sp.sstr(to_rational(dc))} {verb}" +
                          ("" if dc > 0 else ": the discrete spring stores C(1) e^2/2 < 0 after a slow displacement"))
     out += [Condition(_name("P2"), p2), Condition(_name("P3"), p3)]
     bad, good = [], []
