@@ -824,7 +824,7 @@ def trusted_radii(scenes: Sequence[Scene]) -> np.ndarray:
 
 def loop_json(scene: Scene) -> dict[str, Any]:
     """The exact loop of a scene as JSON (exact fractions as strings), for the judge of
-    :mod:`hapticproof.exact.judge`: ``dx/dt = a x + bu u`` held over ``T``, sampled ``y = c x``,
+    :mod:`hapticproof.exact.judge`: ``dx/dt = a x + bu u`` held over the ``period``, sampled ``y = c x``,
     the discrete controller ``(A, B, C, D)`` from ``y`` to ``u``, and whether a rigid
     translation mode (an exact eigenvalue 1 no gain moves) is to be set aside."""
     loop = scene.loop("exact")
@@ -833,7 +833,8 @@ def loop_json(scene: Scene) -> dict[str, Any]:
         return [[str(Fraction(v)) for v in row] for row in m.tolist()] if m.size else [[] for _ in range(m.shape[0])]
 
     ctrl = loop.ctrl
-    return {"T": str(Fraction(loop.T)), "a": rows(loop.a), "bu": rows(loop.bu), "c": rows(loop.c),
+    # (the sampling period under a neutral key: a report of a scene whose period is h names no T)
+    return {"period": str(Fraction(loop.T)), "a": rows(loop.a), "bu": rows(loop.bu), "c": rows(loop.c),
             "controller": {"a": rows(ctrl.a), "b": rows(ctrl.b), "c": rows(ctrl.c), "d": rows(ctrl.d)},
             "shape": {"plant": list(loop.a.shape), "inputs": loop.bu.shape[1], "outputs": loop.c.shape[0],
                       "controller": ctrl.a.shape[0]},

@@ -878,7 +878,7 @@ def _check_loop(loop: Mapping[str, Any]) -> None:
             continue
         if not isinstance(rows, list) or len(rows) != r or any(not isinstance(row, list) or len(row) != c for row in rows):
             raise CheckFailed(f"the loop's matrix {name} is not {r} x {c}")
-    exact_q(loop["T"])
+    exact_q(loop["period"])
 
 
 def _closed_loop(loop: Mapping[str, Any]) -> flint.arb_mat:
@@ -887,7 +887,7 @@ def _closed_loop(loop: Mapping[str, Any]) -> flint.arb_mat:
     the controller ``eta+ = A eta + B y``, ``u = C eta + D y`` with ``y = c x``."""
     n, m = loop["shape"]["plant"][0], loop["shape"]["inputs"]
     p, k = loop["shape"]["outputs"], loop["shape"]["controller"]
-    T = exact_q(loop["T"])
+    T = exact_q(loop["period"])
     a, bu, c = _arb_rows(loop["a"], (n, n)), _arb_rows(loop["bu"], (n, m)), _arb_rows(loop["c"], (p, n))
     ctrl = loop["controller"]
     A, B, C, D = (_arb_rows(ctrl["a"], (k, k)), _arb_rows(ctrl["b"], (k, p)), _arb_rows(ctrl["c"], (m, k)),
