@@ -74,10 +74,10 @@ def _edits(report):
     else:
         yield "delays", edited(lambda r: r.update(delays=[d + 1 for d in r["delays"]]))
         yield "users", edited(lambda r: r.update(users=r["users"] + 1))
-    yield "period", edited(lambda r: r["scene"].update(T="1/999"))
-    yield "damping", edited(lambda r: r["scene"]["b"].__setitem__(0, "1/49"))
-    yield "z_a", edited(lambda r: r["scene"]["z_a"].__setitem__(0, "1/7"))
-    yield "environment", edited(lambda r: r["scene"]["H"][0][0]["num"].append("1"))
+    yield "period", edited(lambda r: r["scene"].update(period="1/999"))
+    yield "damping", edited(lambda r: r["scene"]["damping"].__setitem__(0, "1/49"))
+    yield "z_a", edited(lambda r: r["scene"]["shortage"].__setitem__(0, "1/7"))
+    yield "environment", edited(lambda r: r["scene"]["environment"][0][0]["num"].append("1"))
     yield "scene removed", edited(lambda r: r.pop("scene"))
 
 
@@ -99,8 +99,9 @@ def test_the_refusal_names_what_differs(reports):
 def test_type_edited_scenes_are_refused_in_one_line(reports):
     """A scene block of the wrong shape or type is a refusal, never a traceback."""
     base = reports["two-users"]
-    for change in (lambda s: s.update(T=None), lambda s: s.update(b="1"), lambda s: s.update(H=[[1]]),
-                   lambda s: s.update(H=[]), lambda s: s["H"][0].pop(), lambda s: s.update(T="-1/1000")):
+    for change in (lambda s: s.update(period=None), lambda s: s.update(damping="1"), lambda s: s.update(environment=[[1]]),
+                   lambda s: s.update(environment=[]), lambda s: s["environment"][0].pop(),
+                   lambda s: s.update(period="-1/1000")):
         forged = copy.deepcopy(base)
         change(forged["scene"])
         assert not _accepted(forged)

@@ -270,18 +270,20 @@ def transfer_json(num: Any, den: Any, variable: str = "z") -> dict[str, Any]:
 
 def scene_json(T: Any, b: Any, z_a: Any, H: list[list[tuple[Any, Any]]]) -> dict[str, Any]:
     """The values a ``derive`` report's ``G^{-1}(z) = diag(b - z_a) + D(z) H(z) I(z)`` is built
-    from (``T``, the devices' ``b`` and ``z_a``, the environment ``H(z)`` entry by entry as
-    ``(num, den)`` in ``z``), so that ``check`` rebuilds ``G^{-1}`` from the scene the report
-    names, with the approximation and the delays it shows.
+    from -- the ``period`` T, the devices' ``damping`` b and operators' ``shortage`` of passivity
+    z_a, the ``environment`` H(z) entry by entry as ``(num, den)`` in ``z`` -- so that ``check``
+    rebuilds ``G^{-1}`` from the scene the report names, with the approximation and the delays it
+    shows.
 
-    >>> scene_json(1, [2], [0], [[([1, 3], [0, 1])]])["H"]
+    >>> scene_json(1, [2], [0], [[([1, 3], [0, 1])]])["environment"]
     [[{'num': ['1', '3'], 'den': ['0', '1']}]]
     """
     def poly(coeffs: Any) -> list[str]:
         return poly_json(coeffs) if isinstance(coeffs, flint.fmpq_poly) else [q_str(c) for c in coeffs]
 
-    return {"T": q_str(T), "b": [q_str(v) for v in b], "z_a": [q_str(v) for v in z_a],
-            "H": [[{"num": poly(num), "den": poly(den)} for num, den in row]
+    # neutral keys: a scene whose period is h and damping c_d shows no T and no b
+    return {"period": q_str(T), "damping": [q_str(v) for v in b], "shortage": [q_str(v) for v in z_a],
+            "environment": [[{"num": poly(num), "den": poly(den)} for num, den in row]
                   for row in H]}
 
 

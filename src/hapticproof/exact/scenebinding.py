@@ -15,7 +15,7 @@ the report shows, from the definitions (HVE paper, Section 3.1.1 and eqs. 21-22,
 
 and holds it against the definition's transfer function exactly (as rational functions).
 
->>> scene = {"T": "1/1000", "b": ["1/50"], "z_a": ["0"], "H": [[{"num": ["20"], "den": ["1"]}]]}
+>>> scene = {"period": "1/1000", "damping": ["1/50"], "shortage": ["0"], "environment": [[{"num": ["20"], "den": ["1"]}]]}
 >>> report = {"system": "single-user", "approximation": "forward", "delay": "0", "scene": scene, "G_inverse": "",
 ...           "definition": {"transfer": {"variable": "z", "num": ["0", "1/50"], "den": ["-1", "1"]}}}
 >>> scene_binding(report)
@@ -125,14 +125,15 @@ def scene_binding(report: Mapping[str, Any]) -> list[str]:
         return [f"the report is not a {system} report (it shows no {' or '.join(shape)}): its G^-1 is of another system"]
     scene = report.get("scene")
     if not isinstance(scene, Mapping):
-        return ["the report shows no scene values (T, b, z_a, H): nothing ties its G^-1 to the scene it names "
+        return ["the report shows no scene values (period, damping, shortage, environment): nothing ties its G^-1 to "
+                "the scene it names "
                 "(a report of an older version, or one whose scene was removed: re-derive it)"]
     approximation = report.get("approximation")
     delays = _delays(report, users)
-    T = exact_q(scene["T"])
+    T = exact_q(scene["period"])
     if T <= 0:
         return [f"the sampling period shown is {T}, not positive"]
-    b, z_a, H = scene["b"], scene["z_a"], _entries({"entries": scene["H"]})
+    b, z_a, H = scene["damping"], scene["shortage"], _entries({"entries": scene["environment"]})
     decided = _entries(definition["transfer"])
     if not (len(b) == len(z_a) == len(H) == len(decided) == users):
         return [f"the scene shown has {len(H)} users' values, its G^-1 {len(decided)} rows, the report {users} users"]
