@@ -124,6 +124,7 @@ def test_a_teleoperator_decision_is_held_against_its_own_evidence(reports):
     assert not _accepted(_forged(tel, flip_p5))
     assert not _accepted(_forged(tel, lambda r: r["decision"].update(decision="disproved")))
     assert not _accepted(_forged(tel, lambda r: r.update(condition="False")))
+    assert not _accepted(_forged(tel, lambda r: r.update(error_coordinate_damping="1")))
 
 
 def test_nested_residues_roots_and_minimum(reports):

@@ -9,6 +9,8 @@ from collections.abc import Iterator, Mapping
 from fractions import Fraction
 from typing import Any
 
+import flint
+
 from hapticproof.core.naming import witness_keys
 from hapticproof.exact.checkarith import CheckFailed, Gaussian, eval_transfer, exact_q
 from hapticproof.exact.judge import consistent_witness, displayed_number
@@ -140,6 +142,8 @@ def derive_display(report: Mapping[str, Any]) -> list[str]:
             and (report["condition"] == "True") != (p5["decision"] == "proved"):
         # a teleoperator's condition is (P5), h >= L(c) for all c, decided with its certificate
         problems.append(f"the condition shown ({report['condition']}) contradicts {p5['name']!r} ({p5['decision']})")
+    if p5 is not None and "error_coordinate_damping" in report:
+        problems += _error_damping(report["error_coordinate_damping"], p5)
     first = next((c for c in conditions if c.get("decision") == "disproved"), None)
     shown = report.get("witness")
     if first is not None and shown is not None:       # (a report that shows no witness shows none wrongly)
@@ -172,6 +176,27 @@ def finding_display(entry: Mapping[str, Any], keys: Mapping[str, str] | None = N
         problems.append("the display shown is not the one judged (the entry's 'printed' was changed)")
     problems += consistent_witness(evidence.get("witness"), obj, keys)
     return problems
+
+
+def _error_damping(shown: Any, p5: Mapping[str, Any]) -> list[str]:
+    """A teleoperator's error-coordinate damping ``h`` is ``T H(z) = h + T C(z)/(z - 1)`` at
+    ``z = oo``: the value at infinity of the transfer function (P5)'s certificate decides."""
+    from hapticproof.exact.checkarith import certificates, json_poly
+
+    transfer = next((c["transfer"] for c in certificates(p5) if isinstance(c.get("transfer"), Mapping)
+                     and "num" in c["transfer"]), None)
+    if transfer is None:
+        return []
+    num, den = json_poly(transfer["num"]), json_poly(transfer["den"])
+    if den.is_zero() or num.degree() > den.degree():
+        return ["the transfer function of (P5) is not proper"]
+    value = num.coeffs()[-1] / den.coeffs()[-1] if num.degree() == den.degree() else 0
+    try:
+        if exact_q(str(shown)) != Fraction(int(flint.fmpq(value).p), int(flint.fmpq(value).q)):
+            return [f"the error-coordinate damping shown ({str(shown)[:30]}) is not that of (P5)'s certificate ({value})"]
+    except (TypeError, ValueError, ZeroDivisionError):
+        return [f"the error-coordinate damping shown ({str(shown)[:30]}) cannot be read"]
+    return []
 
 
 def boundary_display(report: Mapping[str, Any]) -> list[str]:
