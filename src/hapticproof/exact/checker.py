@@ -876,7 +876,8 @@ def _vacuous_residues(report: Any, name: str, claim: str, done: list) -> bool:
         return False
     for _, results in done:
         for result in results:
-            if result.source == "certificate" and result.ok and result.verified and result.reason.startswith("0 boundary roots"):
+            if result.source == "certificate" and result.ok and result.verified and \
+                    (result.reason.startswith("0 boundary roots") or result.reason == "constant"):   # (a constant: no roots)
                 return True
     return False
 
