@@ -179,9 +179,10 @@ def test_a_boundary_too_large_to_judge_is_not_accepted(reports):
     def huge(r):
         for side in r["judge"]["sides"]:
             n = 64
-            side["loop"] = {"period": "1/1000", "a": [["1"] * n] * n, "bu": [["1"] * n] * n, "c": [["1"] * n] * n,
-                            "controller": {"a": [["1"] * n] * n, "b": [["1"] * n] * n, "c": [["1"] * n] * n,
-                                           "d": [["1"] * n] * n},
+            side["loop"] = {"period": "1/1000", "state": [["1"] * n] * n, "input": [["1"] * n] * n,
+                            "output": [["1"] * n] * n,
+                            "controller": {"state": [["1"] * n] * n, "input": [["1"] * n] * n,
+                                           "output": [["1"] * n] * n, "feedthrough": [["1"] * n] * n},
                             "shape": {"plant": [n, n], "inputs": n, "outputs": n, "controller": n}, "rigid": False}
     assert not _accepted(_forged(reports["boundary"], huge))
 

@@ -824,8 +824,9 @@ def trusted_radii(scenes: Sequence[Scene]) -> np.ndarray:
 
 def loop_json(scene: Scene) -> dict[str, Any]:
     """The exact loop of a scene as JSON (exact fractions as strings), for the judge of
-    :mod:`hapticproof.exact.judge`: ``dx/dt = a x + bu u`` held over the ``period``, sampled ``y = c x``,
-    the discrete controller ``(A, B, C, D)`` from ``y`` to ``u``, and whether a rigid
+    :mod:`hapticproof.exact.judge`: ``dx/dt = a x + bu u`` held over the ``period``, sampled ``y = c x``
+    (``state``, ``input``, ``output``), the discrete controller ``(A, B, C, D)`` from ``y`` to ``u``
+    (``state``, ``input``, ``output``, ``feedthrough``), and whether a rigid
     translation mode (an exact eigenvalue 1 no gain moves) is to be set aside."""
     loop = scene.loop("exact")
 
@@ -834,8 +835,10 @@ def loop_json(scene: Scene) -> dict[str, Any]:
 
     ctrl = loop.ctrl
     # (the sampling period under a neutral key: a report of a scene whose period is h names no T)
-    return {"period": str(Fraction(loop.T)), "a": rows(loop.a), "bu": rows(loop.bu), "c": rows(loop.c),
-            "controller": {"a": rows(ctrl.a), "b": rows(ctrl.b), "c": rows(ctrl.c), "d": rows(ctrl.d)},
+    # (the matrices under descriptive keys too: no single letter that reads as a scene's b or c)
+    return {"period": str(Fraction(loop.T)), "state": rows(loop.a), "input": rows(loop.bu), "output": rows(loop.c),
+            "controller": {"state": rows(ctrl.a), "input": rows(ctrl.b), "output": rows(ctrl.c),
+                           "feedthrough": rows(ctrl.d)},
             "shape": {"plant": list(loop.a.shape), "inputs": loop.bu.shape[1], "outputs": loop.c.shape[0],
                       "controller": ctrl.a.shape[0]},
             "rigid": loop.rigid is not None}

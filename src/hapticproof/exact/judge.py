@@ -871,9 +871,10 @@ def _check_loop(loop: Mapping[str, Any]) -> None:
             raise CheckFailed(f"the loop's {name} size {str(size)[:20]} is not a whole number from 0 to {MAX_LOOP_SIZE}")
     n, m, p, k = sizes["plant"], sizes["inputs"], sizes["outputs"], sizes["controller"]
     ctrl = loop["controller"]
-    for rows, (r, c), name in ((loop["a"], (n, n), "a"), (loop["bu"], (n, m), "bu"), (loop["c"], (p, n), "c"),
-                               (ctrl["a"], (k, k), "controller a"), (ctrl["b"], (k, p), "controller b"),
-                               (ctrl["c"], (m, k), "controller c"), (ctrl["d"], (m, p), "controller d")):
+    for rows, (r, c), name in ((loop["state"], (n, n), "state"), (loop["input"], (n, m), "input"),
+                               (loop["output"], (p, n), "output"), (ctrl["state"], (k, k), "controller state"),
+                               (ctrl["input"], (k, p), "controller input"), (ctrl["output"], (m, k), "controller output"),
+                               (ctrl["feedthrough"], (m, p), "controller feedthrough")):
         if r == 0 or c == 0:
             continue
         if not isinstance(rows, list) or len(rows) != r or any(not isinstance(row, list) or len(row) != c for row in rows):
@@ -888,10 +889,10 @@ def _closed_loop(loop: Mapping[str, Any]) -> flint.arb_mat:
     n, m = loop["shape"]["plant"][0], loop["shape"]["inputs"]
     p, k = loop["shape"]["outputs"], loop["shape"]["controller"]
     T = exact_q(loop["period"])
-    a, bu, c = _arb_rows(loop["a"], (n, n)), _arb_rows(loop["bu"], (n, m)), _arb_rows(loop["c"], (p, n))
+    a, bu, c = _arb_rows(loop["state"], (n, n)), _arb_rows(loop["input"], (n, m)), _arb_rows(loop["output"], (p, n))
     ctrl = loop["controller"]
-    A, B, C, D = (_arb_rows(ctrl["a"], (k, k)), _arb_rows(ctrl["b"], (k, p)), _arb_rows(ctrl["c"], (m, k)),
-                  _arb_rows(ctrl["d"], (m, p)))
+    A, B, C, D = (_arb_rows(ctrl["state"], (k, k)), _arb_rows(ctrl["input"], (k, p)), _arb_rows(ctrl["output"], (m, k)),
+                  _arb_rows(ctrl["feedthrough"], (m, p)))
     Tb = flint.arb(flint.fmpq(T.numerator, T.denominator))
     gen = flint.arb_mat(n + m, n + m)
     for i in range(n):
