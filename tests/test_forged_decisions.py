@@ -242,3 +242,13 @@ def test_fifth_attack_youla_and_terminations(reports):
     three_pr = _forged(three, lambda r: r["absolute_stability"]["certificate"].update(
         terminations=[[["0"]], [["0"]], [["0"]]]))
     assert not _accepted(three_pr)
+
+
+def test_type_edited_reports_are_refused_without_a_traceback(reports):
+    """A condition that is text, conditions that are a number, a definition's witness that is
+    text: refused (not accepted), never an exception out of the checker."""
+    for name in ("wall", "users", "two-port"):
+        report = reports[name]
+        for change in (lambda r: r["conditions"].__setitem__(0, "x"), lambda r: r.update(conditions=7),
+                       lambda r: r["conditions"][0].update(definition={"judge": "positive-real", "witness": "x"})):
+            assert not _accepted(_forged(report, change)), name

@@ -724,8 +724,9 @@ def _entries(report: Any) -> list[tuple[str, Any, dict[str, str]]]:
         return [(f"{p['paper']} ({e['id']})", e, keys(p)) for p in report["papers"] for e in p.get("equations", [])]
     if isinstance(report, dict) and "equations" in report:
         return [(f"{report.get('paper', '?')} ({e['id']})", e, keys(report)) for e in report["equations"]]
-    if isinstance(report, dict) and "conditions" in report:
-        return [(c.get("name", f"condition {i + 1}"), c, keys(report)) for i, c in enumerate(report["conditions"])]
+    if isinstance(report, dict) and isinstance(report.get("conditions"), list):
+        return [(str(c.get("name", f"condition {i + 1}")) if isinstance(c, dict) else f"condition {i + 1}", c, keys(report))
+                for i, c in enumerate(report["conditions"])]
     return [("report", report, keys(report))]
 
 

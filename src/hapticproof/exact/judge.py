@@ -1071,7 +1071,8 @@ def judge(obj: Mapping[str, Any]) -> Judgement:
         return Judgement(True, f"not judged: {err}", judged=False)
     except CheckFailed as err:
         return Judgement(False, f"FAILED: {err}")
-    except (KeyError, TypeError, ValueError, ZeroDivisionError, IndexError) as err:
+    except (KeyError, TypeError, ValueError, ZeroDivisionError, IndexError, AttributeError, ArithmeticError,
+            RecursionError) as err:
         return Judgement(False, f"FAILED: malformed judge object ({type(err).__name__}: {err})")
 
 
