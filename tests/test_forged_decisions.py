@@ -125,6 +125,9 @@ def test_a_teleoperator_decision_is_held_against_its_own_evidence(reports):
     assert not _accepted(_forged(tel, lambda r: r["decision"].update(decision="disproved")))
     assert not _accepted(_forged(tel, lambda r: r.update(condition="False")))
     assert not _accepted(_forged(tel, lambda r: r.update(error_coordinate_damping="1")))
+    assert not _accepted(_forged(tel, lambda r: r.update(sup_master="1/1000")))      # below the true 7/500
+    assert not _accepted(_forged(tel, lambda r: r.update(sup_slave="1")))            # above it
+    assert not _accepted(_forged(tel, lambda r: r.update(maximiser="1/2")))
 
 
 def test_nested_residues_roots_and_minimum(reports):

@@ -59,7 +59,7 @@ from hapticproof.exact.checkarith import (
 )
 
 __all__ = ["CLAIMLESS", "angle", "audit_binding", "claim_of", "decision_problems", "definition_proof", "derive_binding", "factored_transfers",
-           "rational_of", "residue_matrix", "unbound_verdict",
+           "rational_of", "residue_matrix", "teleoperator_bounds", "unbound_verdict",
            "same_transfer", "witness_problems"]
 
 #: Verdicts and decisions that claim nothing (no evidence needed to show them).
@@ -976,4 +976,40 @@ def decision_problems(node: Any, where: str = "report") -> list[str]:
     for key, value in node.items():
         if isinstance(value, (Mapping, list)) and key != "definition":
             out += decision_problems(value, name if "name" in node else where)
+    return out
+
+
+def teleoperator_bounds(report: Mapping[str, Any]) -> list[str]:
+    """A teleoperator's ``sup_master``/``sup_slave`` and ``maximiser``: the damping ``b`` of its
+    (D) certificate minus the minimum over ``c`` of the (32) certificate's ``c``-form ``b - bound(c)``
+    (exact, :func:`_minimum_of_form`), taken at the maximiser shown."""
+    conditions = report.get("conditions")
+    paper = report.get("criterion_32")
+    if not isinstance(conditions, list) or not isinstance(paper, Mapping) or not isinstance(paper.get("conditions"), list):
+        return []
+    damping = next((c for c in conditions if isinstance(c, Mapping) and str(c.get("name", "")).startswith("(D)")), None)
+    facts = ((damping or {}).get("evidence") or {}).get("facts") if isinstance(damping, Mapping) else None
+    if not isinstance(facts, Mapping):
+        return []
+    out = []
+    for side, key, cert_key in (("master", "sup_master", "certificate"), ("slave", "sup_slave", "slave")):
+        shown, cert = report.get(key), facts.get(cert_key)
+        cond = next((c for c in paper["conditions"] if isinstance(c, Mapping)
+                     and str(c.get("name", "")).startswith(f"(32) {side}")), None)
+        form_cert = next((c for c in certificates(cond) if "numerator" in c and "denominator" in c), None) if cond else None
+        if shown is None or not isinstance(cert, Mapping) or form_cert is None:
+            continue
+        b = json_poly(cert["polynomial"])
+        if b.degree() > 0:
+            continue                                   # a damping that varies: no one number to hold against
+        try:
+            sup = exact_q(str(shown))
+        except (TypeError, ValueError, ZeroDivisionError):
+            out.append(f"the {key} shown ({str(shown)[:30]}) cannot be read")
+            continue
+        value = b.coeffs()[0] if b.degree() == 0 else flint.fmpq(0)
+        low = Fraction(int(value.p), int(value.q)) - sup
+        form = (json_poly(form_cert["numerator"]), json_poly(form_cert["denominator"]))
+        out += [problem.replace("the minimum shown", f"the {key} shown").replace("Re G^-1", f"b_{side[0]} - bound(c)")
+                for problem in _minimum_of_form(form, low, report.get("maximiser"), shown)]
     return out

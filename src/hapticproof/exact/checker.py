@@ -777,6 +777,7 @@ def check_report(report: Any) -> ReportCheck:
         decision_problems,
         derive_binding,
         factored_transfers,
+        teleoperator_bounds,
         unbound_verdict,
         witness_problems,
     )
@@ -846,6 +847,7 @@ def check_report(report: Any) -> ReportCheck:
             top.append(CheckResult(True, unbound, verified=False, source="symbolic"))
         problems += _guarded(lambda: scene_binding(report), "binding")
         problems += _guarded(lambda: matrix_displays(report), "display")
+        problems += _guarded(lambda: teleoperator_bounds(report), "display")
         problems += _guarded(lambda: witness_problems({"witness": report.get("witness")},
                                                        witness_keys(report.get("notation"))), "display")
         problems += _guarded(lambda: witness_problems({"definition": report.get("definition")}), "display")
