@@ -58,7 +58,7 @@ from hapticproof.exact.checkarith import (
     Sturm,
 )
 
-__all__ = ["CLAIMLESS", "angle", "audit_binding", "claim_of", "decision_problems", "definition_proof", "derive_binding", "factored_transfers",
+__all__ = ["CLAIMLESS", "angle", "audit_binding", "claim_of", "decision_problems", "definition_proof", "differing_entry", "derive_binding", "factored_transfers",
            "rational_of", "residue_matrix", "teleoperator_bounds", "unbound_verdict",
            "same_transfer", "witness_problems"]
 
@@ -538,12 +538,19 @@ def _minimum_of_form(form: tuple[flint.fmpq_poly, flint.fmpq_poly], low: Fractio
     value = num(q) / den(q)
     if value != flint.fmpq(low.numerator, low.denominator):
         return [f"the minimum shown {str(shown)[:40]} is not Re G^-1 = {value} at the minimiser shown c = {at}"]
-    if den.degree() > 0 and not _sign_fixed_on(den, Fraction(-1), Fraction(1)):
-        return []                                # Re G^-1 has poles on the circle: its infimum is not at a point
-    sign = 1 if den(0) > 0 else -1
-    if not _nonnegative_on((num - den * flint.fmpq(low.numerator, low.denominator)) * sign, Fraction(-1), Fraction(1)):
+    if _at_least(form, low) is False:
         return [f"the minimum shown {str(shown)[:40]} is not the minimum: Re G^-1 is below it somewhere in c in [-1, 1]"]
     return []
+
+
+def _at_least(form: tuple[flint.fmpq_poly, flint.fmpq_poly], low: Fraction) -> bool | None:
+    """Whether ``N(c)/D(c) >= low`` for every ``c`` in ``[-1, 1]`` (exact); ``None`` when ``D``
+    vanishes there (poles on the circle: the infimum is not at a point)."""
+    num, den = form
+    if den.degree() > 0 and not _sign_fixed_on(den, Fraction(-1), Fraction(1)):
+        return None
+    sign = 1 if den(0) > 0 else -1
+    return _nonnegative_on((num - den * flint.fmpq(low.numerator, low.denominator)) * sign, Fraction(-1), Fraction(1))
 
 
 def _minimiser_of_form(form: tuple[flint.fmpq_poly, flint.fmpq_poly], at: Any) -> list[str]:
@@ -566,11 +573,11 @@ def _ball_of_form(form: tuple[flint.fmpq_poly, flint.fmpq_poly], shown: str, at:
     mid, _, rad = shown.strip("[]").partition("+/-")
     m, r = Fraction(mid.strip()), Fraction(rad.strip())
     num, den = form
-    if den.degree() > 0 and not _sign_fixed_on(den, Fraction(-1), Fraction(1)):
-        return []                                # poles on the circle: no finite minimum to bound
-    sign = 1 if den(0) > 0 else -1
     low = m - r
-    if not _nonnegative_on((num - den * flint.fmpq(low.numerator, low.denominator)) * sign, Fraction(-1), Fraction(1)):
+    bounded = _at_least(form, low)
+    if bounded is None:
+        return []                                # poles on the circle: no finite minimum to bound
+    if not bounded:
         return [f"the minimum shown {shown[:40]} is not a bound of Re G^-1: it is below {low} somewhere in [-1, 1]"]
     try:
         c = exact_q(at)
@@ -686,6 +693,27 @@ def rational_of(text: Any, degree: int, variable: str = "z") -> tuple[flint.fmpq
         return flint.fmpq_poly([flint.fmpq(int(c.p), int(c.q)) for c in coeffs])
 
     return poly(num), poly(den)
+
+
+def differing_entry(shown: Any, cells: list, variable: str = "z") -> tuple[int, int] | None:
+    """The first entry ``(i, j)`` (1-based) where a matrix shown entry by entry as text differs
+    from the transfer matrix ``cells`` (``{"num", "den"}`` per entry) as a rational function of
+    ``variable``; ``None`` when they are the same. A shown value that is not a matrix of the same
+    size raises :class:`ValueError`.
+
+    >>> differing_entry([["1/(z - 1)"]], [[{"num": ["1"], "den": ["-1", "1"]}]]), differing_entry([["z"]], [[{"num": ["1"], "den": ["1"]}]])
+    (None, (1, 1))
+    """
+    m = len(cells)
+    if not (isinstance(shown, list) and len(shown) == m and all(isinstance(r, list) and len(r) == m for r in shown)):
+        raise ValueError(f"the matrix shown is not {m} x {m}")
+    for i in range(m):
+        for j in range(m):
+            cell = cells[i][j]
+            num, den = rational_of(shown[i][j], max(len(cell["num"]), len(cell["den"])), variable)
+            if num * json_poly(cell["den"]) != json_poly(cell["num"]) * den:
+                return i + 1, j + 1
+    return None
 
 
 def audit_binding(entry: Mapping[str, Any]) -> list[str]:

@@ -26,8 +26,8 @@ from fractions import Fraction
 from itertools import count
 from typing import Any
 
-from hapticproof.exact.acceptance import rational_of, residue_matrix
-from hapticproof.exact.checkarith import CheckFailed, certificates, Gaussian, eval_transfer, exact_q, json_poly, max_degree
+from hapticproof.exact.acceptance import differing_entry, residue_matrix
+from hapticproof.exact.checkarith import CheckFailed, Gaussian, certificates, determinant, eval_transfer, exact_q, max_degree
 
 __all__ = ["matrix_displays"]
 
@@ -82,24 +82,6 @@ def _value(form: tuple, c: Fraction, s: Fraction) -> Gaussian:
     return Gaussian(Fraction(int(re.p), int(re.q)), Fraction(int(im.p), int(im.q)))
 
 
-def _det(rows: list[list[Gaussian]]) -> Gaussian:
-    """Exact determinant by elimination over the Gaussian rationals."""
-    a = [list(r) for r in rows]
-    n, det = len(a), Gaussian(Fraction(1))
-    for k in range(n):
-        pivot = next((i for i in range(k, n) if not a[i][k].is_zero()), None)
-        if pivot is None:
-            return Gaussian(Fraction(0))
-        if pivot != k:
-            a[k], a[pivot] = a[pivot], a[k]
-            det = det * Gaussian(Fraction(-1))
-        det = det * a[k][k]
-        for i in range(k + 1, n):
-            f = a[i][k] / a[k][k]
-            a[i] = [x - f * y for x, y in zip(a[i], a[k])]
-    return det
-
-
 def _worst_case(report: Mapping[str, Any]) -> list[str]:
     """``worst_case_condition`` is the decision of the condition a ``psd`` certificate decides;
     ``worst_c`` (and that condition's ``minimiser``) the ``c`` of its counterexample, none when
@@ -137,14 +119,9 @@ def matrix_displays(report: Mapping[str, Any]) -> list[str]:
         return []
     out: list[str] = []
     if "G_inverse" in report:
-        shown = _square(report["G_inverse"], m, "G^-1")
-        for i in range(m):
-            for j in range(m):
-                cell = cells[i][j]
-                degree = max(len(cell["num"]), len(cell["den"]))
-                num, den = rational_of(shown[i][j], degree)
-                if num * json_poly(cell["den"]) != json_poly(cell["num"]) * den:
-                    return [f"the G^-1 shown is not the report's G^-1(z): entry ({i + 1}, {j + 1}) differs"]
+        differs = differing_entry(_square(report["G_inverse"], m, "G^-1"), cells)
+        if differs:
+            return [f"the G^-1 shown is not the report's G^-1(z): entry {differs} differs"]
     if report.get("residue_at_1") is not None:
         shown = _square(report["residue_at_1"], m, "residue matrix")
         own = residue_matrix(cells, transfer, Fraction(1))
@@ -194,7 +171,7 @@ def matrix_displays(report: Mapping[str, Any]) -> list[str]:
         complex_part = complex_part or any(M[i][j].im != 0 for i in range(m) for j in range(m))
         for key, value in values.items():
             if key[0] == "minor":
-                if not (_det([[M[a][b] for b in key[1:]] for a in key[1:]]) - value).is_zero():
+                if not (determinant([[M[a][b] for b in key[1:]] for a in key[1:]]) - value).is_zero():
                     return [f"the principal minor {tuple(v + 1 for v in key[1:])} shown is not that of G^-1 + G^-H "
                             f"at {notation.get('cos', 'c')} = {c}"]
             elif not (M[key[0]][key[1]] - value).is_zero():

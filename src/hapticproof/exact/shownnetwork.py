@@ -25,8 +25,8 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
-from hapticproof.exact.acceptance import rational_of
-from hapticproof.exact.checkarith import certificates, exact_q, json_poly
+from hapticproof.exact.acceptance import differing_entry
+from hapticproof.exact.checkarith import certificates, exact_q
 
 __all__ = ["network_displays"]
 
@@ -92,19 +92,17 @@ def network_displays(report: Mapping[str, Any]) -> list[str]:
     transfer = definition.get("transfer") if isinstance(definition, Mapping) else None
     if not isinstance(transfer, Mapping) or "entries" not in transfer:
         return out + ["the matrix shown is not tied to a definition object (no condition 'Z positive real' carries one)"]
-    cells, shown = transfer["entries"], report["matrix"]
+    cells = transfer["entries"]
     m = len(cells)
-    if not (isinstance(shown, list) and len(shown) == m and all(isinstance(r, list) and len(r) == m for r in shown)):
+    try:
+        differs = differing_entry(report["matrix"], cells, "s")
+    except ValueError:
         return out + [f"the matrix shown is not the {m} x {m} matrix its conditions decide"]
     if report.get("size") != m or not (isinstance(report.get("ports"), list) and sum(report["ports"]) == m
                                         and all(isinstance(p, int) and p > 0 for p in report["ports"])):
         out.append(f"the size and ports shown do not fit the {m} x {m} matrix decided")
-    for i in range(m):
-        for j in range(m):
-            cell = cells[i][j]
-            num, den = rational_of(shown[i][j], max(len(cell["num"]), len(cell["den"])), "s")
-            if num * json_poly(cell["den"]) != json_poly(cell["num"]) * den:
-                return out + [f"the matrix shown is not the Z(s) its conditions decide: entry ({i + 1}, {j + 1}) differs"]
+    if differs:
+        return out + [f"the matrix shown is not the Z(s) its conditions decide: entry {differs} differs"]
     out += _symmetrization(report) + _absolute_stability(report, cells)
     poles = report.get("poles")
     roots = [c for cond in (pr.get("conditions") or []) if isinstance(cond, Mapping)
@@ -135,16 +133,12 @@ def _symmetrization(report: Mapping[str, Any]) -> list[str]:
                    and "entries" in c["transfer"]]
         if not decided:
             return out + ["the Z' shown is not tied to a certificate of its positive realness"]
-        cells = decided[0]["entries"]
-        m = len(cells)
-        if not (isinstance(shown, list) and len(shown) == m and all(isinstance(r, list) and len(r) == m for r in shown)):
+        try:
+            differs = differing_entry(shown, decided[0]["entries"], "s")
+        except ValueError:
             return out + ["the Z' shown is not the matrix its certificates decide"]
-        for i in range(m):
-            for j in range(m):
-                cell = cells[i][j]
-                num, den = rational_of(shown[i][j], max(len(cell["num"]), len(cell["den"])), "s")
-                if num * json_poly(cell["den"]) != json_poly(cell["num"]) * den:
-                    return out + [f"the Z' shown is not the one its certificates decide: entry ({i + 1}, {j + 1}) differs"]
+        if differs:
+            return out + [f"the Z' shown is not the one its certificates decide: entry {differs} differs"]
     return out
 
 
